@@ -1,0 +1,77 @@
+// Scenes: triangle meshes with the material inputs the OIT methods shade with.
+//
+// A Scene is plain CPU data (no GL). Meshes are stored in world space: node transforms are baked
+// in at load time, so a renderer only needs the camera. Loaders validate what they read and throw
+// starnt::Error with the file and the element at fault.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace starnt {
+
+enum class AlphaMode { Opaque, Mask, Blend };
+
+struct Texture {
+    int width = 0;
+    int height = 0;
+    std::vector<uint8_t> rgba8;  // as stored in the file: colour channels sRGB-encoded
+};
+
+struct Material {
+    glm::vec4 baseColorFactor{1.0f};  // linear RGB + alpha
+    int baseColorTexture = -1;        // index into Scene::textures, -1 when none
+    bool unlit = false;               // KHR_materials_unlit
+    bool doubleSided = true;
+    AlphaMode alphaMode = AlphaMode::Blend;
+    float alphaCutoff = 0.5f;  // for AlphaMode::Mask
+};
+
+struct Mesh {
+    std::vector<glm::vec3> positions;  // world space
+    std::vector<glm::vec3> normals;    // empty: the shader derives face normals
+    std::vector<glm::vec2> uvs;        // empty: no texture coordinates
+    std::vector<glm::vec4> colors;     // COLOR_0, linear RGBA; empty: white
+    std::vector<uint32_t> indices;     // triangle list
+    int material = 0;                  // index into Scene::materials
+};
+
+struct Bounds {
+    glm::vec3 min{0.0f};
+    glm::vec3 max{0.0f};
+    glm::vec3 center() const { return 0.5f * (min + max); }
+    float radius() const { return 0.5f * glm::length(max - min); }
+};
+
+struct Scene {
+    std::string name;
+    std::vector<Mesh> meshes;
+    std::vector<Material> materials;
+    std::vector<Texture> textures;
+
+    Bounds bounds() const;
+    size_t triangleCount() const;
+    size_t vertexCount() const;
+};
+
+// Loads "builtin:NAME" or a .gltf/.glb/.obj path. Validates the result (see validateScene).
+Scene loadScene(const std::string& spec);
+
+// Loaders for one format each; they also validate.
+Scene loadGltf(const std::string& path);
+Scene loadObj(const std::string& path);
+
+// Built-in procedural scenes, deterministic for a given seed. Names: see builtinSceneNames().
+Scene makeBuiltinScene(const std::string& name, uint32_t seed = 1);
+std::vector<std::string> builtinSceneNames();
+
+// Checks a scene and normalises it. Throws starnt::Error for: indices out of range, index count
+// not a multiple of 3, NaN/Inf positions, attribute arrays of the wrong length, material or
+// texture indices out of range, a scene with no renderable triangle. Zero-area triangles in an
+// otherwise valid mesh are removed (they cover no pixel) and counted in the return value; a
+// scene whose triangles are ALL zero-area is an error.
+size_t validateScene(Scene& scene, const std::string& source);
+
+}  // namespace starnt

@@ -1,0 +1,13 @@
+// Helpers shared by the tests: where the suite scenes are, temporary folders.
+#pragma once
+#include <filesystem>
+#include <string>
+
+namespace starnt::test {
+
+// ../shared/scenes beside the checkout; empty path when absent (tests then skip with a message).
+std::filesystem::path sharedScenesDir();
+// A fresh empty folder under the system temp dir, unique per call.
+std::filesystem::path makeTempDir(const std::string& tag);
+
+}  // namespace starnt::test
