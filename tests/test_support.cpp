@@ -21,3 +21,13 @@ std::filesystem::path makeTempDir(const std::string& tag) {
 }
 
 }  // namespace starnt::test
+
+#include "starnt/gl_context.hpp"
+
+namespace starnt::test {
+HeadlessGlContext& glContext() {
+    static HeadlessGlContext* context = new HeadlessGlContext();  // lives until exit
+    context->makeCurrent();
+    return *context;
+}
+}  // namespace starnt::test

@@ -11,3 +11,12 @@ std::filesystem::path sharedScenesDir();
 std::filesystem::path makeTempDir(const std::string& tag);
 
 }  // namespace starnt::test
+
+namespace starnt {
+class HeadlessGlContext;
+}
+
+namespace starnt::test {
+// One headless GL context per test process, created on first use.
+HeadlessGlContext& glContext();
+}  // namespace starnt::test

@@ -1,0 +1,85 @@
+// The interface every OIT method implements, and how an engine drives one.
+//
+// A method never owns the scene. The engine gives it
+//   - a SurfaceShader: the engine's vertex shader and a fragment function `vec4 starntSurface()`
+//     returning the fragment's linear, straight (not premultiplied) colour and alpha; the method
+//     wraps it in each of its geometry passes' fragment `main`;
+//   - a DrawCallback, called once per geometry pass with the pass's program already bound and the
+//     pass's GL state set; the engine sets its own uniforms on that program and issues its draws.
+// After render() the result is in outputTexture(): linear RGBA32F, composited over the background,
+// alpha 1, at the frame size.
+//
+//   auto method = starnt::createMethod("wboit", engineSurface, {});
+//   method->render(frame, [&](const starnt::GeometryPass& pass) { engine.drawTransparent(pass.program); });
+#pragma once
+#include <epoxy/gl.h>
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+namespace starnt {
+namespace gl {
+class GpuPassTimer;
+}
+
+struct SurfaceShader {
+    // Vertex shader body without #version. It must declare `invariant gl_Position;`: depth peeling
+    // compares depths of the same fragment across passes bit for bit.
+    std::string vertex;
+    // Fragment-stage code without #version or main; defines `vec4 starntSurface()`.
+    std::string fragment;
+};
+
+struct GeometryPass {
+    const char* name;  // e.g. "abuffer_build", "peel", "pass1"
+    GLuint program;    // bound; set the engine's uniforms on it
+};
+using DrawCallback = std::function<void(const GeometryPass&)>;
+
+struct FrameDesc {
+    int width = 0;
+    int height = 0;
+    glm::vec3 background{1.0f};  // linear
+    glm::mat4 view{1.0f};
+    glm::mat4 projection{1.0f};
+    float alphaCutoff = 0.03f;                // fragments with alpha below are discarded in every pass
+    gl::GpuPassTimer* timer = nullptr;        // optional per-pass GPU timing
+};
+
+struct MethodOptions {
+    // abuffer
+    double abufferInitialNodesPerPixel = 4.0;  // initial pool size; it grows on overflow
+    size_t abufferMemoryCapBytes = size_t(2) << 30;  // fail with a clear error beyond this
+    // peel: number of layers; 0 peels until a layer comes back empty (exact)
+    int peelLayers = 0;
+    // wboit weight function: "eq10" (default, SPEC), "eq7", "eq8", "eq9" (McGuire & Bavoil 2013)
+    std::string wboitWeight = "eq10";
+    // neural methods: weights file; empty = the shipped default for the method
+    std::string weightsPath;
+};
+
+class OitMethod {
+public:
+    virtual ~OitMethod() = default;
+    virtual std::string name() const = 0;
+    virtual void render(const FrameDesc& frame, const DrawCallback& draw) = 0;
+    virtual GLuint outputTexture() const = 0;
+    // Bytes of every GPU buffer and texture the method holds now.
+    virtual size_t gpuMemoryBytes() const = 0;
+    // Method-specific counters of the last frame (e.g. max fragments per pixel).
+    virtual nlohmann::json lastFrameStats() const { return nlohmann::json::object(); }
+};
+
+// Names accepted by createMethod, in a stable order.
+std::vector<std::string> methodNames();
+// Throws starnt::Error for an unknown name (listing the valid ones) or bad options.
+std::unique_ptr<OitMethod> createMethod(const std::string& name, const SurfaceShader& surface,
+                                        const MethodOptions& options = {});
+
+}  // namespace starnt

@@ -1,0 +1,183 @@
+#include "starnt/gl_context.hpp"
+
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
+
+#include <cstdio>
+#include <cstring>
+#include <vector>
+
+#include "starnt/error.hpp"
+
+namespace starnt {
+namespace {
+
+bool hasExtension(const char* list, const char* name) {
+    if (!list) return false;
+    size_t n = std::strlen(name);
+    for (const char* p = list; (p = std::strstr(p, name)) != nullptr; p += n) {
+        bool startOk = (p == list) || p[-1] == ' ';
+        bool endOk = p[n] == ' ' || p[n] == '\0';
+        if (startOk && endOk) return true;
+    }
+    return false;
+}
+
+#ifdef STARNT_GL_DEBUG
+void GLAPIENTRY onGlDebugMessage(GLenum, GLenum type, GLuint id, GLenum severity, GLsizei,
+                                 const GLchar* message, const void*) {
+    if (severity == GL_DEBUG_SEVERITY_HIGH || type == GL_DEBUG_TYPE_ERROR) {
+        throw Error(std::string("OpenGL error (id ") + std::to_string(id) + "): " + message);
+    }
+}
+#endif
+
+}  // namespace
+
+struct HeadlessGlContext::Impl {
+    EGLDisplay display = EGL_NO_DISPLAY;
+    EGLContext context = EGL_NO_CONTEXT;
+    GlContextInfo info;
+
+    // Creates a 4.5 core context on `dpy`; returns false (with a reason) when it cannot.
+    bool tryDisplay(EGLDisplay dpy, const char* platform, std::string& why) {
+        EGLint major = 0, minor = 0;
+        if (dpy == EGL_NO_DISPLAY || !eglInitialize(dpy, &major, &minor)) {
+            why += std::string(platform) + ": eglInitialize failed; ";
+            return false;
+        }
+        const char* exts = eglQueryString(dpy, EGL_EXTENSIONS);
+        if (!hasExtension(exts, "EGL_KHR_surfaceless_context") && !(major > 1 || minor >= 5)) {
+            why += std::string(platform) + ": no surfaceless contexts; ";
+            eglTerminate(dpy);
+            return false;
+        }
+        if (!eglBindAPI(EGL_OPENGL_API)) {
+            why += std::string(platform) + ": desktop OpenGL API unavailable; ";
+            eglTerminate(dpy);
+            return false;
+        }
+        const EGLint configAttribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+        EGLConfig config = nullptr;
+        EGLint numConfigs = 0;
+        bool haveConfig = eglChooseConfig(dpy, configAttribs, &config, 1, &numConfigs) && numConfigs > 0;
+        std::vector<EGLint> ctxAttribs = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                                          EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                          EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT};
+#ifdef STARNT_GL_DEBUG
+        ctxAttribs.push_back(EGL_CONTEXT_OPENGL_DEBUG);
+        ctxAttribs.push_back(EGL_TRUE);
+#endif
+        ctxAttribs.push_back(EGL_NONE);
+        EGLContext ctx = eglCreateContext(dpy, haveConfig ? config : EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT,
+                                          ctxAttribs.data());
+        if (ctx == EGL_NO_CONTEXT) {
+            why += std::string(platform) + ": no OpenGL 4.5 core context (EGL error 0x" +
+                   std::to_string(eglGetError()) + "); ";
+            eglTerminate(dpy);
+            return false;
+        }
+        if (!eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx)) {
+            why += std::string(platform) + ": eglMakeCurrent failed; ";
+            eglDestroyContext(dpy, ctx);
+            eglTerminate(dpy);
+            return false;
+        }
+        display = dpy;
+        context = ctx;
+        info.platform = platform;
+        return true;
+    }
+};
+
+HeadlessGlContext::HeadlessGlContext() : impl_(std::make_unique<Impl>()) {
+    std::string why;
+    const char* clientExts = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    if (!clientExts) {
+        throw Error("EGL is not usable (no client extensions); install libegl1 and libegl-mesa0 "
+                    "(or the NVIDIA EGL driver)");
+    }
+    bool done = false;
+    if (hasExtension(clientExts, "EGL_EXT_platform_device") && hasExtension(clientExts, "EGL_EXT_device_enumeration")) {
+        EGLint count = 0;
+        eglQueryDevicesEXT(0, nullptr, &count);
+        std::vector<EGLDeviceEXT> devices(size_t(count > 0 ? count : 0));
+        if (count > 0) eglQueryDevicesEXT(count, devices.data(), &count);
+        // Prefer hardware devices: Mesa lists its software device too, and on an NVIDIA machine we
+        // want the GPU. A device without EGL_MESA_device_software is taken as hardware.
+        std::vector<EGLDeviceEXT> ordered;
+        for (int pass = 0; pass < 2; ++pass) {
+            for (EGLDeviceEXT dev : devices) {
+                const char* devExts = eglQueryDeviceStringEXT(dev, EGL_EXTENSIONS);
+                bool software = hasExtension(devExts, "EGL_MESA_device_software");
+                if ((pass == 0) != software) ordered.push_back(dev);
+            }
+        }
+        for (EGLDeviceEXT dev : ordered) {
+            EGLDisplay dpy = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, dev, nullptr);
+            if (impl_->tryDisplay(dpy, "device", why)) {
+                done = true;
+                break;
+            }
+        }
+        if (!done && ordered.empty()) why += "device: no EGL devices; ";
+    } else {
+        why += "EGL_EXT_platform_device not offered; ";
+    }
+    if (!done && hasExtension(clientExts, "EGL_MESA_platform_surfaceless")) {
+        EGLDisplay dpy = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+        done = impl_->tryDisplay(dpy, "surfaceless", why);
+    } else if (!done) {
+        why += "EGL_MESA_platform_surfaceless not offered; ";
+    }
+    if (!done) {
+        throw Error("cannot create a headless OpenGL 4.5 core context: " + why +
+                    "install libgl1-mesa-dri and libegl-mesa0 (Mesa llvmpipe) or a GPU driver with EGL");
+    }
+    auto str = [](GLenum e) {
+        const GLubyte* s = glGetString(e);
+        return s ? std::string(reinterpret_cast<const char*>(s)) : std::string();
+    };
+    impl_->info.vendor = str(GL_VENDOR);
+    impl_->info.renderer = str(GL_RENDERER);
+    impl_->info.version = str(GL_VERSION);
+    impl_->info.software = impl_->info.renderer.find("llvmpipe") != std::string::npos ||
+                           impl_->info.renderer.find("softpipe") != std::string::npos;
+    checkGlRequirements();
+#ifdef STARNT_GL_DEBUG
+    if (epoxy_has_gl_extension("GL_KHR_debug") || epoxy_gl_version() >= 43) {
+        glEnable(GL_DEBUG_OUTPUT);
+        glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+        glDebugMessageCallback(onGlDebugMessage, nullptr);
+    }
+#endif
+}
+
+HeadlessGlContext::~HeadlessGlContext() {
+    if (impl_->display != EGL_NO_DISPLAY) {
+        eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        if (impl_->context != EGL_NO_CONTEXT) eglDestroyContext(impl_->display, impl_->context);
+        eglTerminate(impl_->display);
+    }
+}
+
+const GlContextInfo& HeadlessGlContext::info() const { return impl_->info; }
+
+void HeadlessGlContext::makeCurrent() {
+    eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, impl_->context);
+}
+
+void checkGlRequirements() {
+    int version = epoxy_gl_version();
+    if (version < 45 || epoxy_is_desktop_gl() == false) {
+        throw Error("OpenGL 4.5 core is required; the current context offers " +
+                    std::to_string(version / 10) + "." + std::to_string(version % 10));
+    }
+    GLint maxSsboFrag = 0, maxDrawBuffers = 0;
+    glGetIntegerv(GL_MAX_FRAGMENT_SHADER_STORAGE_BLOCKS, &maxSsboFrag);
+    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &maxDrawBuffers);
+    if (maxSsboFrag < 2) throw Error("the GL context offers fewer than 2 fragment shader storage blocks");
+    if (maxDrawBuffers < 4) throw Error("the GL context offers fewer than 4 draw buffers");
+}
+
+}  // namespace starnt

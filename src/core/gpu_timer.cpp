@@ -1,0 +1,61 @@
+#include "core/gpu_timer.hpp"
+
+#include "starnt/error.hpp"
+
+namespace starnt::gl {
+
+GpuPassTimer::GpuPassTimer() = default;
+
+GpuPassTimer::~GpuPassTimer() {
+    for (auto& p : pending_) {
+        free_.push_back(p.begin);
+        free_.push_back(p.end);
+    }
+    if (openQuery_) free_.push_back(openQuery_);
+    if (!free_.empty()) glDeleteQueries(GLsizei(free_.size()), free_.data());
+}
+
+GLuint GpuPassTimer::acquire() {
+    if (!free_.empty()) {
+        GLuint q = free_.back();
+        free_.pop_back();
+        return q;
+    }
+    GLuint q = 0;
+    glGenQueries(1, &q);
+    return q;
+}
+
+void GpuPassTimer::begin(const std::string& pass) {
+    if (openQuery_) throw Error("internal: GpuPassTimer::begin('" + pass + "') inside '" + open_ + "'");
+    glFlush();
+    openQuery_ = acquire();
+    open_ = pass;
+    glQueryCounter(openQuery_, GL_TIMESTAMP);
+}
+
+void GpuPassTimer::end() {
+    if (!openQuery_) throw Error("internal: GpuPassTimer::end without begin");
+    GLuint q = acquire();
+    glQueryCounter(q, GL_TIMESTAMP);
+    glFlush();
+    pending_.push_back({open_, openQuery_, q});
+    openQuery_ = 0;
+    open_.clear();
+}
+
+std::map<std::string, double> GpuPassTimer::collect() {
+    std::map<std::string, double> ms;
+    for (const Pending& p : pending_) {
+        GLuint64 t0 = 0, t1 = 0;
+        glGetQueryObjectui64v(p.begin, GL_QUERY_RESULT, &t0);
+        glGetQueryObjectui64v(p.end, GL_QUERY_RESULT, &t1);
+        ms[p.name] += t1 > t0 ? double(t1 - t0) * 1e-6 : 0.0;
+        free_.push_back(p.begin);
+        free_.push_back(p.end);
+    }
+    pending_.clear();
+    return ms;
+}
+
+}  // namespace starnt::gl

@@ -1,0 +1,31 @@
+// A-buffer build: every fragment is appended to its pixel's linked list.
+// Node layout (uvec4): x = packHalf2x16(r, g), y = packHalf2x16(b, a), z = depth bits, w = next.
+// The node counter keeps counting past the pool's capacity, so the host sees how many nodes the
+// frame needed and can grow the pool and render again: no fragment is ever silently dropped.
+#include "shaders/shared_constants.h"
+
+layout(std430, binding = STARNT_SSBO_ABUFFER_HEADS) coherent buffer Heads { uint heads[]; };
+layout(std430, binding = STARNT_SSBO_ABUFFER_NODES) writeonly buffer Nodes { uvec4 nodes[]; };
+layout(std430, binding = STARNT_SSBO_ABUFFER_COUNTERS) coherent buffer Counters { uint counters[4]; };
+#ifdef STARNT_ABUFFER_CAPTURE_ORDER
+// Capture mode (reference tools only): submission order key per node. gl_PrimitiveID in a
+// fragment shader needs GLSL ES 3.20 on ES; the capture is a desktop-only tool.
+layout(std430, binding = STARNT_SSBO_ABUFFER_ORDERS) writeonly buffer Orders { uint orders[]; };
+uniform int u_drawIndex;
+#endif
+
+uniform uint u_capacity;
+uniform int u_width;
+
+void main() {
+    vec4 s = fetchSurfaceOrDiscard();
+    uint index = atomicAdd(counters[0], 1u);
+    if (index < u_capacity) {
+        uint pixel = uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x);
+        uint next = atomicExchange(heads[pixel], index);
+        nodes[index] = uvec4(packHalf2x16(s.rg), packHalf2x16(s.ba), floatBitsToUint(gl_FragCoord.z), next);
+#ifdef STARNT_ABUFFER_CAPTURE_ORDER
+        orders[index] = (uint(u_drawIndex) << 24) | (uint(gl_PrimitiveID) & 0xFFFFFFu);
+#endif
+    }
+}

@@ -1,0 +1,92 @@
+#include "methods/abuffer/abuffer_lists.hpp"
+
+#include <cmath>
+#include <algorithm>
+#include <cstdio>
+#include <vector>
+
+#include "shaders/shared_constants.h"
+#include "starnt/error.hpp"
+
+namespace starnt {
+
+ABufferLists::ABufferLists(const MethodBase&, bool captureOrder, const MethodOptions& options)
+    : captureOrder_(captureOrder), options_(options) {}
+
+void ABufferLists::allocate(int width, int height, uint64_t capacity) {
+    const size_t perNode = kABufferNodeBytes + (captureOrder_ ? 4 : 0);
+    const size_t total = size_t(width) * size_t(height) * 4 + size_t(capacity) * perNode + 16;
+    if (total > options_.abufferMemoryCapBytes) {
+        throw Error("A-buffer needs " + std::to_string(total >> 20) + " MiB for " + std::to_string(capacity) +
+                    " fragments, over its memory cap of " + std::to_string(options_.abufferMemoryCapBytes >> 20) +
+                    " MiB (raise --abuffer-cap-mib, or lower the resolution)");
+    }
+    if (width != width_ || height != height_) {
+        heads_ = gl::Buffer(size_t(width) * size_t(height) * 4);
+        GLuint fb = 0;
+        glCreateFramebuffers(1, &fb);
+        emptyFb_ = gl::FramebufferHandle(fb);
+        glNamedFramebufferParameteri(fb, GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
+        glNamedFramebufferParameteri(fb, GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+        width_ = width;
+        height_ = height;
+    }
+    if (capacity != capacity_) {
+        nodes_ = gl::Buffer(size_t(capacity) * kABufferNodeBytes);
+        if (captureOrder_) orders_ = gl::Buffer(size_t(capacity) * 4);
+        capacity_ = capacity;
+    }
+    if (!counters_) counters_ = gl::Buffer(16);
+}
+
+void ABufferLists::bindBuffers() const {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STARNT_SSBO_ABUFFER_HEADS, heads_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STARNT_SSBO_ABUFFER_NODES, nodes_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STARNT_SSBO_ABUFFER_COUNTERS, counters_.id());
+    if (captureOrder_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STARNT_SSBO_ABUFFER_ORDERS, orders_.id());
+}
+
+void ABufferLists::build(const FrameDesc& frame, const DrawCallback& draw, const gl::Program& program) {
+    const double initial = double(frame.width) * double(frame.height) * std::max(0.0, options_.abufferInitialNodesPerPixel);
+    uint64_t wanted = std::max<uint64_t>({capacity_, uint64_t(initial), 16});
+    if (frame.width != width_ || frame.height != height_ || wanted != capacity_) {
+        allocate(frame.width, frame.height, wanted);
+    }
+    regrows_ = 0;
+    for (;;) {
+        const GLuint end = STARNT_ABUFFER_END, zero = 0;
+        glClearNamedBufferData(heads_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &end);
+        glClearNamedBufferData(counters_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        bindBuffers();
+        resetPassState();
+        glBindFramebuffer(GL_FRAMEBUFFER, emptyFb_.id());
+        glViewport(0, 0, width_, height_);
+        glUseProgram(program.id());
+        glUniform1ui(program.uniform("u_capacity"), GLuint(std::min<uint64_t>(capacity_, 0xFFFFFFFFull)));
+        glUniform1i(program.uniform("u_width"), width_);
+        {
+            gl::ScopedPass timing(frame.timer, "build");
+            glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+            const char* name = captureOrder_ ? "abuffer_capture" : "abuffer_build";
+            glUseProgram(program.id());
+            glUniform1f(program.uniform("u_alphaCutoff"), frame.alphaCutoff);
+            draw(GeometryPass{name, program.id()});
+            glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        }
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        GLuint count = 0;
+        glGetNamedBufferSubData(counters_.id(), 0, 4, &count);
+        lastCount_ = count;
+        if (count <= capacity_) break;
+        // The counter is 32-bit: a frame of more than 4G fragments cannot be represented at all.
+        uint64_t grown = uint64_t(std::ceil(double(count) * 1.25));
+        std::fprintf(stderr,
+                     "starnt: note: A-buffer pool overflow (%u fragments, capacity %llu); growing to %llu and "
+                     "rendering the frame again\n",
+                     count, (unsigned long long)capacity_, (unsigned long long)grown);
+        allocate(width_, height_, grown);
+        ++regrows_;
+    }
+}
+
+}  // namespace starnt

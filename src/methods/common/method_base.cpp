@@ -1,0 +1,52 @@
+#include "methods/common/method_base.hpp"
+
+namespace starnt {
+
+MethodBase::MethodBase(SurfaceShader surface)
+    : surface_(std::move(surface)), fullscreenVao_(gl::makeEmptyVertexArray()) {}
+
+gl::Program MethodBase::buildGeometryProgram(const std::string& label, const std::string& fragmentFile,
+                                             const std::string& defines) const {
+    std::string fragment = surface_.fragment + "\n#include \"methods/common/surface_fetch.glsl\"\n" +
+                           "#include \"" + fragmentFile + "\"\n";
+    return gl::buildProgram(label, surface_.vertex, fragment, defines);
+}
+
+gl::Program MethodBase::buildFullscreenProgram(const std::string& label, const std::string& fragmentFile,
+                                               const std::string& defines) const {
+    return gl::buildProgram(label, "#include \"methods/common/fullscreen.vert.glsl\"\n",
+                            "#include \"" + fragmentFile + "\"\n", defines);
+}
+
+bool MethodBase::resizeOutput(int width, int height) {
+    if (width == width_ && height == height_ && output_) return false;
+    width_ = width;
+    height_ = height;
+    output_ = gl::Texture2D(GL_RGBA32F, width, height);
+    outputFb_ = gl::makeFramebuffer({&output_});
+    return true;
+}
+
+void MethodBase::runGeometryPass(const char* name, const gl::Program& program, const FrameDesc& frame,
+                                 const DrawCallback& draw) const {
+    glUseProgram(program.id());
+    glUniform1f(program.uniform("u_alphaCutoff"), frame.alphaCutoff);
+    draw(GeometryPass{name, program.id()});
+}
+
+void MethodBase::bindOutputFramebuffer() const {
+    glBindFramebuffer(GL_FRAMEBUFFER, outputFb_.id());
+    glViewport(0, 0, width_, height_);
+}
+
+void resetPassState() {
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_CULL_FACE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glBlendEquation(GL_FUNC_ADD);
+}
+
+}  // namespace starnt

@@ -1,0 +1,46 @@
+// Shared plumbing of the OIT methods: program building around the engine's surface shader, the
+// full-resolution output target, and the full-screen triangle.
+#pragma once
+#include "core/gl_util.hpp"
+#include "core/gpu_timer.hpp"
+#include "core/shader.hpp"
+#include "starnt/oit_method.hpp"
+
+namespace starnt {
+
+class MethodBase : public OitMethod {
+public:
+    GLuint outputTexture() const override { return output_.id(); }
+
+protected:
+    explicit MethodBase(SurfaceShader surface);
+
+    // Geometry-pass program: engine vertex shader; fragment = engine surface code +
+    // methods/common/surface_fetch.glsl + `fragmentFile` (which has main()).
+    gl::Program buildGeometryProgram(const std::string& label, const std::string& fragmentFile,
+                                     const std::string& defines = {}) const;
+    // Full-screen program: methods/common/fullscreen.vert.glsl + `fragmentFile`.
+    gl::Program buildFullscreenProgram(const std::string& label, const std::string& fragmentFile,
+                                       const std::string& defines = {}) const;
+
+    // (Re)allocates the output target when the size changed; returns true when it did, so the
+    // method reallocates its own targets too.
+    bool resizeOutput(int width, int height);
+    // Binds `program` with the per-pass uniforms every geometry pass has and calls the engine.
+    void runGeometryPass(const char* name, const gl::Program& program, const FrameDesc& frame,
+                         const DrawCallback& draw) const;
+    void drawFullscreen() const { gl::drawFullscreenTriangle(fullscreenVao_); }
+    void bindOutputFramebuffer() const;
+    size_t outputBytes() const { return output_.bytes(); }
+
+    SurfaceShader surface_;
+    int width_ = 0, height_ = 0;
+    gl::Texture2D output_;
+    gl::FramebufferHandle outputFb_;
+    gl::VertexArrayHandle fullscreenVao_;
+};
+
+// Restores the GL state every pass may change to the defaults the methods assume.
+void resetPassState();
+
+}  // namespace starnt

@@ -1,0 +1,111 @@
+// Front-to-back depth peeling: one geometry pass per layer, each layer added under the previous
+// ones. With peelLayers = 0 it peels until a layer comes back empty (occlusion query), which is
+// exact; with k > 0 it stops after k layers (exact when k >= the depth complexity D).
+#include "methods/common/method_base.hpp"
+#include "methods/registry.hpp"
+#include "starnt/error.hpp"
+
+namespace starnt {
+namespace {
+
+constexpr int kMaxLayers = 4096;
+
+class PeelMethod final : public MethodBase {
+public:
+    PeelMethod(const SurfaceShader& surface, const MethodOptions& options)
+        : MethodBase(surface),
+          layersWanted_(options.peelLayers),
+          layer_(buildGeometryProgram("peel_layer", "methods/peel/peel_layer.frag.glsl")),
+          accumulate_(buildFullscreenProgram("peel_accumulate", "methods/peel/peel_accumulate.frag.glsl")),
+          composite_(buildFullscreenProgram("peel_composite", "methods/peel/peel_composite.frag.glsl")) {
+        if (layersWanted_ < 0 || layersWanted_ > kMaxLayers) {
+            throw Error("peel layers must be in 0.." + std::to_string(kMaxLayers) + " (0 = until empty)");
+        }
+        GLuint q = 0;
+        glGenQueries(1, &q);
+        query_ = gl::QueryHandle(q);
+    }
+
+    std::string name() const override { return "peel"; }
+    size_t gpuMemoryBytes() const override {
+        return outputBytes() + layerColor_.bytes() + depth_[0].bytes() + depth_[1].bytes() + accum_.bytes();
+    }
+    nlohmann::json lastFrameStats() const override {
+        return {{"layers", layersRendered_}, {"max_fragments", layersRendered_}};
+    }
+
+    void render(const FrameDesc& frame, const DrawCallback& draw) override {
+        if (resizeOutput(frame.width, frame.height)) {
+            layerColor_ = gl::Texture2D(GL_RGBA32F, width_, height_);
+            accum_ = gl::Texture2D(GL_RGBA32F, width_, height_);
+            for (int i = 0; i < 2; ++i) {
+                depth_[i] = gl::Texture2D(GL_DEPTH_COMPONENT32F, width_, height_);
+                layerFb_[i] = gl::makeFramebuffer({&layerColor_}, &depth_[i]);
+            }
+            accumFb_ = gl::makeFramebuffer({&accum_});
+        }
+        resetPassState();
+        glBindFramebuffer(GL_FRAMEBUFFER, accumFb_.id());
+        glViewport(0, 0, width_, height_);
+        const float start[4] = {0, 0, 0, 1};
+        glClearBufferfv(GL_COLOR, 0, start);
+
+        const int limit = layersWanted_ > 0 ? layersWanted_ : kMaxLayers;
+        layersRendered_ = 0;
+        for (int layer = 0; layer < limit; ++layer) {
+            const int cur = layer & 1;
+            GLuint anySamples = 0;
+            {
+                gl::ScopedPass timing(frame.timer, "peel");
+                glBindFramebuffer(GL_FRAMEBUFFER, layerFb_[cur].id());
+                const float clearColor[4] = {0, 0, 0, 0};
+                const float clearDepth = 1.0f;
+                glClearBufferfv(GL_COLOR, 0, clearColor);
+                glClearBufferfv(GL_DEPTH, 0, &clearDepth);
+                glEnable(GL_DEPTH_TEST);
+                glDepthFunc(GL_LESS);
+                glDepthMask(GL_TRUE);
+                glUseProgram(layer_.id());
+                glUniform1i(layer_.uniform("u_firstLayer"), layer == 0 ? 1 : 0);
+                glBindTextureUnit(0, depth_[cur ^ 1].id());
+                glBeginQuery(GL_ANY_SAMPLES_PASSED, query_.id());
+                runGeometryPass("peel", layer_, frame, draw);
+                glEndQuery(GL_ANY_SAMPLES_PASSED);
+                resetPassState();
+                glGetQueryObjectuiv(query_.id(), GL_QUERY_RESULT, &anySamples);
+            }
+            if (!anySamples) break;
+            ++layersRendered_;
+            gl::ScopedPass timing(frame.timer, "accumulate");
+            glBindFramebuffer(GL_FRAMEBUFFER, accumFb_.id());
+            glEnable(GL_BLEND);
+            glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
+            glUseProgram(accumulate_.id());
+            glBindTextureUnit(0, layerColor_.id());
+            drawFullscreen();
+            resetPassState();
+        }
+        gl::ScopedPass timing(frame.timer, "composite");
+        bindOutputFramebuffer();
+        glUseProgram(composite_.id());
+        glBindTextureUnit(0, accum_.id());
+        glUniform3fv(composite_.uniform("u_background"), 1, &frame.background[0]);
+        drawFullscreen();
+    }
+
+private:
+    int layersWanted_;
+    int layersRendered_ = 0;
+    gl::Program layer_, accumulate_, composite_;
+    gl::Texture2D layerColor_, accum_, depth_[2];
+    gl::FramebufferHandle layerFb_[2], accumFb_;
+    gl::QueryHandle query_;
+};
+
+}  // namespace
+
+std::unique_ptr<OitMethod> createPeelMethod(const SurfaceShader& surface, const MethodOptions& options) {
+    return std::make_unique<PeelMethod>(surface, options);
+}
+
+}  // namespace starnt

@@ -1,0 +1,42 @@
+#include "methods/registry.hpp"
+
+#include "starnt/error.hpp"
+
+namespace starnt {
+namespace {
+
+using Factory = std::unique_ptr<OitMethod> (*)(const SurfaceShader&, const MethodOptions&);
+struct Entry {
+    const char* name;
+    Factory factory;
+};
+
+const std::vector<Entry>& entries() {
+    static const std::vector<Entry> all = {
+        {"abuffer", createAbufferMethod},
+        {"peel", createPeelMethod},
+        {"unsorted", createUnsortedMethod},
+        {"wboit", createWboitMethod},
+    };
+    return all;
+}
+
+}  // namespace
+
+std::vector<std::string> methodNames() {
+    std::vector<std::string> names;
+    for (const Entry& e : entries()) names.emplace_back(e.name);
+    return names;
+}
+
+std::unique_ptr<OitMethod> createMethod(const std::string& name, const SurfaceShader& surface,
+                                        const MethodOptions& options) {
+    for (const Entry& e : entries()) {
+        if (name == e.name) return e.factory(surface, options);
+    }
+    std::string valid;
+    for (const Entry& e : entries()) valid += (valid.empty() ? "" : ", ") + std::string(e.name);
+    throw Error("unknown method '" + name + "' (valid: " + valid + ")");
+}
+
+}  // namespace starnt

@@ -1,0 +1,14 @@
+// Factories of the methods; createMethod (registry.cpp) dispatches on the name.
+#pragma once
+#include <memory>
+
+#include "starnt/oit_method.hpp"
+
+namespace starnt {
+
+std::unique_ptr<OitMethod> createAbufferMethod(const SurfaceShader&, const MethodOptions&);
+std::unique_ptr<OitMethod> createPeelMethod(const SurfaceShader&, const MethodOptions&);
+std::unique_ptr<OitMethod> createUnsortedMethod(const SurfaceShader&, const MethodOptions&);
+std::unique_ptr<OitMethod> createWboitMethod(const SurfaceShader&, const MethodOptions&);
+
+}  // namespace starnt

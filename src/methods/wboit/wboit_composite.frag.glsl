@@ -1,0 +1,13 @@
+// WBOIT resolve: average weighted colour times coverage, plus the background through revealage.
+layout(location = 0) out vec4 outColor;
+layout(binding = 0) uniform sampler2D u_accum;
+layout(binding = 1) uniform sampler2D u_reveal;
+uniform vec3 u_background;
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    vec4 accum = texelFetch(u_accum, p, 0);
+    float reveal = texelFetch(u_reveal, p, 0).r;
+    vec3 avg = accum.rgb / clamp(accum.a, 1e-4, 5e4);
+    outColor = vec4(avg * (1.0 - reveal) + u_background * reveal, 1.0);
+}

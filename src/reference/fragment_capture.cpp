@@ -1,0 +1,83 @@
+#include "reference/fragment_capture.hpp"
+
+#include <algorithm>
+
+#include <glm/gtc/packing.hpp>
+
+#include "shaders/shared_constants.h"
+
+namespace starnt {
+
+size_t CapturedFrame::maxDepthComplexity() const {
+    size_t m = 0;
+    for (const auto& p : pixels) m = std::max(m, p.size());
+    return m;
+}
+
+FragmentCapture::FragmentCapture(const SurfaceShader& surface, const MethodOptions& options)
+    : MethodBase(surface),
+      lists_(*this, true, options),
+      build_(buildGeometryProgram("abuffer_capture", "methods/abuffer/abuffer_build.frag.glsl",
+                                  "#define STARNT_ABUFFER_CAPTURE_ORDER 1\n")) {}
+
+CapturedFrame FragmentCapture::capture(const FrameDesc& frame, const DrawCallback& draw) {
+    lists_.build(frame, draw, build_);
+    glFinish();
+    const size_t pixelCount = size_t(frame.width) * size_t(frame.height);
+    const size_t count = size_t(lists_.fragmentCount());
+    std::vector<uint32_t> heads(pixelCount), orders(count);
+    std::vector<glm::uvec4> nodes(count);
+    glGetNamedBufferSubData(lists_.heads().id(), 0, GLsizeiptr(pixelCount * 4), heads.data());
+    if (count) {
+        glGetNamedBufferSubData(lists_.nodes().id(), 0, GLsizeiptr(count * 16), nodes.data());
+        glGetNamedBufferSubData(lists_.orders().id(), 0, GLsizeiptr(count * 4), orders.data());
+    }
+    CapturedFrame out;
+    out.width = frame.width;
+    out.height = frame.height;
+    out.pixels.resize(pixelCount);
+    for (int y = 0; y < frame.height; ++y) {
+        for (int x = 0; x < frame.width; ++x) {
+            // GL rows start at the bottom; CapturedFrame rows start at the top like Image.
+            FragmentList& list = out.pixels[size_t(frame.height - 1 - y) * size_t(frame.width) + size_t(x)];
+            for (uint32_t i = heads[size_t(y) * size_t(frame.width) + size_t(x)]; i != STARNT_ABUFFER_END;
+                 i = nodes[i].w) {
+                Fragment f;
+                glm::vec2 rg = glm::unpackHalf2x16(nodes[i].x), ba = glm::unpackHalf2x16(nodes[i].y);
+                f.color = glm::vec3(rg, ba.x);
+                f.alpha = ba.y;
+                f.depth = glm::uintBitsToFloat(nodes[i].z);
+                f.order = orders[i];
+                list.push_back(f);
+            }
+        }
+    }
+    return out;
+}
+
+DepthComplexityCounter::DepthComplexityCounter(const SurfaceShader& surface)
+    : MethodBase(surface), program_(buildGeometryProgram("count", "reference/count.frag.glsl")) {}
+
+unsigned DepthComplexityCounter::count(const FrameDesc& frame, const DrawCallback& draw) {
+    if (frame.width != width_ || frame.height != height_ || !output_) {
+        width_ = frame.width;
+        height_ = frame.height;
+        output_ = gl::Texture2D(GL_R32F, width_, height_);
+        outputFb_ = gl::makeFramebuffer({&output_});
+    }
+    resetPassState();
+    bindOutputFramebuffer();
+    const float zero[4] = {0, 0, 0, 0};
+    glClearBufferfv(GL_COLOR, 0, zero);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    runGeometryPass("count", program_, frame, draw);
+    resetPassState();
+    std::vector<float> counts(size_t(width_) * size_t(height_));
+    glGetTextureImage(output_.id(), 0, GL_RED, GL_FLOAT, GLsizei(counts.size() * 4), counts.data());
+    float m = 0.0f;
+    for (float c : counts) m = std::max(m, c);
+    return unsigned(m + 0.5f);
+}
+
+}  // namespace starnt

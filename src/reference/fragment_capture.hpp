@@ -1,0 +1,48 @@
+// Captures every fragment of a frame, per pixel, for the CPU references and the trainer: the
+// A-buffer build pass in capture mode (with a submission-order key per fragment), read back.
+#pragma once
+#include <vector>
+
+#include "methods/abuffer/abuffer_lists.hpp"
+#include "starnt/fragments.hpp"
+
+namespace starnt {
+
+struct CapturedFrame {
+    int width = 0, height = 0;
+    std::vector<FragmentList> pixels;  // row 0 = top (as Image), each list in arbitrary order
+    const FragmentList& at(int x, int y) const { return pixels[size_t(y) * size_t(width) + size_t(x)]; }
+    size_t maxDepthComplexity() const;
+};
+
+class FragmentCapture : public MethodBase {
+public:
+    explicit FragmentCapture(const SurfaceShader& surface, const MethodOptions& options = {});
+    CapturedFrame capture(const FrameDesc& frame, const DrawCallback& draw);
+
+    // OitMethod (unused: capture has no image output)
+    std::string name() const override { return "capture"; }
+    void render(const FrameDesc& frame, const DrawCallback& draw) override { capture(frame, draw); }
+    size_t gpuMemoryBytes() const override { return lists_.gpuMemoryBytes(); }
+
+private:
+    ABufferLists lists_;
+    gl::Program build_;
+};
+
+// Counts fragments per pixel (after the alpha cut-off) with one additive pass; returns the maximum.
+// Used for the `max_fragments` statistic of every method.
+class DepthComplexityCounter : public MethodBase {
+public:
+    explicit DepthComplexityCounter(const SurfaceShader& surface);
+    unsigned count(const FrameDesc& frame, const DrawCallback& draw);
+
+    std::string name() const override { return "count"; }
+    void render(const FrameDesc& frame, const DrawCallback& draw) override { count(frame, draw); }
+    size_t gpuMemoryBytes() const override { return outputBytes(); }
+
+private:
+    gl::Program program_;
+};
+
+}  // namespace starnt

@@ -1,0 +1,104 @@
+#include "render/scene_gpu.hpp"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "core/shader.hpp"
+#include "shaders/shared_constants.h"
+
+namespace starnt {
+namespace {
+
+template <typename T>
+gl::Buffer upload(const std::vector<T>& data) {
+    return gl::Buffer(data.size() * sizeof(T), data.data(), 0);
+}
+
+}  // namespace
+
+SurfaceShader SceneGpu::surfaceShader() {
+    return {gl::embeddedSource("render/scene_surface.vert.glsl"), gl::embeddedSource("render/scene_surface.frag.glsl")};
+}
+
+SceneGpu::SceneGpu(const Scene& scene) : materials_(scene.materials) {
+    for (const Texture& t : scene.textures) {
+        GLuint id = 0;
+        glCreateTextures(GL_TEXTURE_2D, 1, &id);
+        int levels = 1;
+        while ((std::max(t.width, t.height) >> levels) > 0) ++levels;
+        glTextureStorage2D(id, levels, GL_SRGB8_ALPHA8, t.width, t.height);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        glTextureSubImage2D(id, 0, 0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, t.rgba8.data());
+        glGenerateTextureMipmap(id);
+        glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        textures_.push_back(id);
+        bytes_ += size_t(t.width) * size_t(t.height) * 4 * 4 / 3;
+    }
+    for (const Mesh& m : scene.meshes) {
+        MeshGpu g;
+        GLuint vao = 0;
+        glCreateVertexArrays(1, &vao);
+        g.vao = gl::VertexArrayHandle(vao);
+        auto attach = [&](GLuint location, gl::Buffer buffer, GLint components) {
+            glVertexArrayVertexBuffer(vao, location, buffer.id(), 0, GLsizei(components * sizeof(float)));
+            glVertexArrayAttribFormat(vao, location, components, GL_FLOAT, GL_FALSE, 0);
+            glVertexArrayAttribBinding(vao, location, location);
+            glEnableVertexArrayAttrib(vao, location);
+            bytes_ += buffer.bytes();
+            g.buffers.push_back(std::move(buffer));
+        };
+        attach(STARNT_ATTRIB_POSITION, upload(m.positions), 3);
+        if (!m.normals.empty()) attach(STARNT_ATTRIB_NORMAL, upload(m.normals), 3);
+        if (!m.uvs.empty()) attach(STARNT_ATTRIB_UV, upload(m.uvs), 2);
+        if (!m.colors.empty()) attach(STARNT_ATTRIB_COLOR, upload(m.colors), 4);
+        gl::Buffer indices = upload(m.indices);
+        glVertexArrayElementBuffer(vao, indices.id());
+        bytes_ += indices.bytes();
+        g.buffers.push_back(std::move(indices));
+        g.indexCount = GLsizei(m.indices.size());
+        g.material = m.material;
+        g.hasNormals = !m.normals.empty();
+        meshes_.push_back(std::move(g));
+    }
+}
+
+SceneGpu::~SceneGpu() {
+    if (!textures_.empty()) glDeleteTextures(GLsizei(textures_.size()), textures_.data());
+}
+
+void SceneGpu::draw(const GeometryPass& pass, const glm::mat4& view, const glm::mat4& projection,
+                    const SurfaceOptions& options) const {
+    const GLuint p = pass.program;
+    auto loc = [p](const char* name) { return glGetUniformLocation(p, name); };
+    glUniformMatrix4fv(loc("u_view"), 1, GL_FALSE, glm::value_ptr(view));
+    glUniformMatrix4fv(loc("u_projection"), 1, GL_FALSE, glm::value_ptr(projection));
+    glUniform1f(loc("u_alphaOverride"), options.alphaOverride ? *options.alphaOverride : -1.0f);
+    const GLint baseColor = loc("u_baseColorFactor"), hasTexture = loc("u_hasTexture"), unlit = loc("u_unlit"),
+                hasNormals = loc("u_hasNormals"), drawIndex = loc("u_drawIndex");
+    // Absent attributes read these constants.
+    glVertexAttrib3f(STARNT_ATTRIB_NORMAL, 0.0f, 0.0f, 0.0f);
+    glVertexAttrib2f(STARNT_ATTRIB_UV, 0.0f, 0.0f);
+    glVertexAttrib4f(STARNT_ATTRIB_COLOR, 1.0f, 1.0f, 1.0f, 1.0f);
+    for (size_t i = 0; i < meshes_.size(); ++i) {
+        const MeshGpu& m = meshes_[i];
+        const Material& mat = materials_[size_t(m.material)];
+        glUniform4fv(baseColor, 1, glm::value_ptr(mat.baseColorFactor));
+        glUniform1i(unlit, (mat.unlit || options.forceUnlit) ? 1 : 0);
+        glUniform1i(hasNormals, m.hasNormals ? 1 : 0);
+        glUniform1i(hasTexture, mat.baseColorTexture >= 0 ? 1 : 0);
+        if (mat.baseColorTexture >= 0) {
+            glBindTextureUnit(STARNT_SURFACE_TEXTURE_UNIT, textures_[size_t(mat.baseColorTexture)]);
+        }
+        if (drawIndex >= 0) glUniform1i(drawIndex, GLint(i));
+        glBindVertexArray(m.vao.id());
+        glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
+    }
+    glBindVertexArray(0);
+}
+
+DrawCallback SceneGpu::callback(const glm::mat4& view, const glm::mat4& projection,
+                                const SurfaceOptions& options) const {
+    return [this, view, projection, options](const GeometryPass& pass) { draw(pass, view, projection, options); };
+}
+
+}  // namespace starnt

@@ -1,0 +1,188 @@
+// The classic methods on a real GL context against the CPU references.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/gl_util.hpp"
+#include "reference/cpu_raster.hpp"
+#include "reference/fragment_capture.hpp"
+#include "render/offscreen_renderer.hpp"
+#include "starnt/camera.hpp"
+#include "starnt/error.hpp"
+#include "test_support.hpp"
+
+using namespace starnt;
+
+namespace {
+
+constexpr int kW = 96, kH = 72;
+const glm::vec3 kBackground(0.2f, 0.5f, 0.9f);
+
+struct SceneSetup {
+    Scene scene;
+    Camera camera;
+    std::unique_ptr<SceneGpu> gpu;
+};
+
+SceneSetup makeSetup(const std::string& builtin, float azimuth = 20.0f) {
+    test::glContext();
+    SceneSetup s;
+    s.scene = makeBuiltinScene(builtin, 7);
+    s.camera = orbitCamera(s.scene.bounds(), azimuth, 10.0f, float(kW) / float(kH));
+    s.gpu = std::make_unique<SceneGpu>(s.scene);
+    return s;
+}
+
+RenderOutput render(const SceneSetup& s, const std::string& method, MethodOptions options = {}) {
+    RenderJob job;
+    job.method = method;
+    job.methodOptions = options;
+    job.width = kW;
+    job.height = kH;
+    job.camera = s.camera;
+    job.background = kBackground;
+    return renderScene(*s.gpu, job);
+}
+
+CpuRaster cpuReference(const SceneSetup& s) {
+    return rasterizeUnlit(s.scene, s.camera.view(), s.camera.projection(float(kW) / float(kH)), kW, kH, 0.03f);
+}
+
+// Compares the GPU image with `expected(list)` on every unambiguous pixel; returns pixels compared.
+template <typename F>
+size_t expectMatchesReference(const Image& gpu, const CpuRaster& ref, F expected, float tolerance = 1.0f / 255.0f) {
+    EXPECT_FALSE(ref.clipped);
+    size_t compared = 0, bad = 0;
+    for (int y = 0; y < kH; ++y) {
+        for (int x = 0; x < kW; ++x) {
+            if (ref.ambiguous[size_t(y) * kW + size_t(x)]) continue;
+            glm::vec3 want = expected(ref.frame.at(x, y));
+            const float* got = gpu.pixel(x, y);
+            ++compared;
+            for (int c = 0; c < 3; ++c) {
+                if (!(std::abs(got[c] - want[c]) <= tolerance)) {
+                    if (++bad <= 5) {
+                        ADD_FAILURE() << "pixel (" << x << "," << y << ") channel " << c << ": gpu " << got[c]
+                                      << " cpu " << want[c] << " (" << ref.frame.at(x, y).size() << " fragments)";
+                    }
+                }
+            }
+        }
+    }
+    EXPECT_EQ(bad, 0u);
+    return compared;
+}
+
+glm::vec3 exactComposite(FragmentList list) {
+    sortByDepth(list);
+    return compositeOver(list, kBackground);
+}
+
+}  // namespace
+
+TEST(GlMethods, AbufferMatchesCpuCompositorOnRandomTriangles) {
+    SceneSetup s = makeSetup("random");
+    CpuRaster ref = cpuReference(s);
+    ASSERT_GE(ref.frame.maxDepthComplexity(), 4u) << "the scene should overlap";
+    size_t n = expectMatchesReference(render(s, "abuffer").image, ref, exactComposite);
+    EXPECT_GT(n, size_t(kW * kH) / 2);
+}
+
+TEST(GlMethods, PeelMatchesCpuCompositorOnRandomTriangles) {
+    SceneSetup s = makeSetup("random");
+    CpuRaster ref = cpuReference(s);
+    RenderOutput out = render(s, "peel");
+    expectMatchesReference(out.image, ref, exactComposite);
+    EXPECT_EQ(out.stats["method_stats"]["layers"].get<size_t>(), out.stats["max_fragments"].get<size_t>());
+}
+
+TEST(GlMethods, AbufferMatchesCpuCompositorOnPanes) {
+    SceneSetup s = makeSetup("panes", 0.0f);
+    expectMatchesReference(render(s, "abuffer").image, cpuReference(s), exactComposite);
+}
+
+TEST(GlMethods, UnsortedMatchesSubmissionOrderBlend) {
+    SceneSetup s = makeSetup("random");
+    expectMatchesReference(render(s, "unsorted").image, cpuReference(s), [](FragmentList list) {
+        // Later submissions land on top: composite newest first.
+        sortBySubmission(list);
+        std::reverse(list.begin(), list.end());
+        return compositeOver(list, kBackground);
+    });
+}
+
+TEST(GlMethods, WboitMatchesMcGuireBavoilFormula) {
+    SceneSetup s = makeSetup("random");
+    expectMatchesReference(render(s, "wboit").image, cpuReference(s), [](const FragmentList& list) {
+        glm::vec3 sumColor(0.0f);
+        float sumWeight = 0.0f, reveal = 1.0f;
+        for (const Fragment& f : list) {
+            float d = 1.0f - f.depth;
+            float w = f.alpha * std::clamp(3e3f * d * d * d, 1e-2f, 3e3f);
+            sumColor += f.color * f.alpha * w;
+            sumWeight += f.alpha * w;
+            reveal *= 1.0f - f.alpha;
+        }
+        return sumColor / std::clamp(sumWeight, 1e-4f, 5e4f) * (1.0f - reveal) + kBackground * reveal;
+    });
+}
+
+TEST(GlMethods, CaptureSeesTheSameFragmentsAsTheCpuRasteriser) {
+    SceneSetup s = makeSetup("random");
+    CpuRaster ref = cpuReference(s);
+    FragmentCapture capture(SceneGpu::surfaceShader());
+    FrameDesc frame;
+    frame.width = kW;
+    frame.height = kH;
+    frame.view = s.camera.view();
+    frame.projection = s.camera.projection(float(kW) / float(kH));
+    CapturedFrame got = capture.capture(frame, s.gpu->callback(frame.view, frame.projection, {}));
+    for (int y = 0; y < kH; ++y) {
+        for (int x = 0; x < kW; ++x) {
+            if (ref.ambiguous[size_t(y) * kW + size_t(x)]) continue;
+            FragmentList a = got.at(x, y), b = ref.frame.at(x, y);
+            ASSERT_EQ(a.size(), b.size()) << "pixel " << x << "," << y;
+            sortBySubmission(a);
+            sortBySubmission(b);
+            for (size_t i = 0; i < a.size(); ++i) {
+                EXPECT_EQ(a[i].order, b[i].order);
+                EXPECT_NEAR(a[i].depth, b[i].depth, 1e-5f);
+                EXPECT_NEAR(a[i].alpha, b[i].alpha, 1e-3f);
+            }
+        }
+    }
+}
+
+TEST(GlMethods, AbufferPoolFarTooSmallStillGivesTheExactImage) {
+    SceneSetup s = makeSetup("random");
+    MethodOptions tiny;
+    tiny.abufferInitialNodesPerPixel = 0.01;
+    RenderOutput small = render(s, "abuffer", tiny);
+    RenderOutput normal = render(s, "abuffer");
+    EXPECT_GE(small.stats["method_stats"]["pool_regrows"].get<int>(), 1);
+    EXPECT_EQ(normal.stats["method_stats"]["pool_regrows"].get<int>(), 0);
+    ASSERT_EQ(small.image.rgba.size(), normal.image.rgba.size());
+    for (size_t i = 0; i < small.image.rgba.size(); ++i) ASSERT_EQ(small.image.rgba[i], normal.image.rgba[i]);
+}
+
+TEST(GlMethods, AbufferMemoryCapFailsWithClearError) {
+    SceneSetup s = makeSetup("random");
+    MethodOptions capped;
+    capped.abufferInitialNodesPerPixel = 0.01;
+    capped.abufferMemoryCapBytes = size_t(kW) * kH * 4 + 4096;
+    try {
+        render(s, "abuffer", capped);
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("memory cap"), std::string::npos) << e.what();
+    }
+}
+
+TEST(GlMethods, StatsReportMemoryAndFragments) {
+    SceneSetup s = makeSetup("random");
+    for (const char* m : {"abuffer", "peel", "unsorted", "wboit"}) {
+        RenderOutput out = render(s, m);
+        EXPECT_GE(out.stats["memory_bytes"].get<size_t>(), size_t(kW) * kH * 16) << m;
+        EXPECT_EQ(out.stats["max_fragments"].get<size_t>(), cpuReference(s).frame.maxDepthComplexity()) << m;
+    }
+}
