@@ -30,6 +30,8 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -93,10 +95,23 @@ const ColourConstants& colour() {
     return c;
 }
 
+// Cube root for t > 0: exponent-splitting initial guess (a few % off) refined by two Halley steps
+// (cubic convergence: ~3e-2 -> ~3e-5 -> float precision). libm's cbrtf was a quarter of the run time.
+inline float fastCbrt(float t) {
+    uint32_t bits = std::bit_cast<uint32_t>(t);
+    bits = bits / 3u + 709921077u;  // 709921077 = (127 - 127 / 3) << 23, adjusted for the mantissa
+    float y = std::bit_cast<float>(bits);
+    for (int i = 0; i < 2; ++i) {
+        const float y3 = y * y * y;
+        y = y * (y3 + 2.0f * t) / (2.0f * y3 + t);
+    }
+    return y;
+}
+
 // CIELab f(t) with its linear segment near 0.
 inline float labF(float t) {
     constexpr float d = 6.0f / 29.0f;
-    return t > d * d * d ? std::cbrt(t) : t / (3.0f * d * d) + 4.0f / 29.0f;
+    return t > d * d * d ? fastCbrt(t) : t / (3.0f * d * d) + 4.0f / 29.0f;
 }
 
 // linear RGB (already clamped) -> Hunt-adjusted CIELab (L, 0.01 L a, 0.01 L b)
@@ -366,9 +381,10 @@ FlipResult flip(const Image& reference, const Image& test, double pixelsPerDegre
 
         const float de = std::fabs(edgeR[i] - edgeT[i]);
         const float dp = std::fabs(pointR[i] - pointT[i]);
-        const float featureErr = std::min(1.0f, std::pow(std::max(de, dp) * invSqrt2, float(kQf)));
+        static_assert(kQf == 0.5, "the feature exponent is applied as a square root");
+        const float featureErr = std::min(1.0f, std::sqrt(std::max(de, dp) * invSqrt2));
 
-        const float e = std::pow(colourErr, 1.0f - featureErr);
+        const float e = featureErr == 0.0f ? colourErr : std::pow(colourErr, 1.0f - featureErr);
         float* px = &result.errorMap.rgba[i * 4];
         px[0] = px[1] = px[2] = e;
         sum += double(e);
