@@ -196,6 +196,27 @@ TEST(Flip, CsfHidesFineDetailAtHighPixelsPerDegree) {
     EXPECT_GT(near, 0.5);
 }
 
+// One changed pixel: the error is confined to the filters' reach (CSF radius ceil(3 * sqrt(0.04 /
+// (2 pi^2)) * 67.02) = 10, feature radius ceil(3 * 0.041 * 67.02) = 9 pixels) and largest there.
+TEST(Flip, SinglePixelChangeStaysLocal) {
+    const Image a = flat(64, 48, 0.4, 0.4, 0.4);
+    Image b = a;
+    b.pixel(30, 20)[0] = 1.0f;
+    const FlipResult r = flip(a, b);
+    float maxErr = 0.0f;
+    int maxX = -1, maxY = -1;
+    for (int y = 0; y < 48; ++y)
+        for (int x = 0; x < 64; ++x) {
+            const float e = r.errorMap.pixel(x, y)[0];
+            if (std::abs(x - 30) > 10 || std::abs(y - 20) > 10) ASSERT_EQ(e, 0.0f) << x << "," << y;
+            if (e > maxErr) maxErr = e, maxX = x, maxY = y;
+        }
+    EXPECT_EQ(maxX, 30);
+    EXPECT_EQ(maxY, 20);
+    EXPECT_GT(r.errorMap.pixel(30, 25)[0], 0.0f);  // spread vertically as well as horizontally
+    EXPECT_GT(r.errorMap.pixel(35, 20)[0], 0.0f);
+}
+
 TEST(Flip, SizeMismatchAndEmptyImagesThrow) {
     EXPECT_THROW(flip(Image(4, 4), Image(4, 5)), Error);
     EXPECT_THROW(flip(Image(0, 0), Image(0, 0)), Error);
