@@ -1,0 +1,230 @@
+// Image files: PNG (8-bit sRGB, via stb) and EXR (32-bit float linear, via OpenEXR), sRGB transfer
+// functions and the atomic file write every output goes through.
+#include "starnt/error.hpp"
+#include "starnt/image.hpp"
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStdIO.h>
+#include <stb_image.h>
+#include <stb_image_write.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fcntl.h>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <sstream>
+#include <unistd.h>
+
+namespace starnt {
+
+namespace {
+
+std::string lowerExtension(const std::string& path) {
+    const size_t slash = path.find_last_of('/');
+    const size_t dot = path.find_last_of('.');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return {};
+    std::string ext = path.substr(dot);
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+void checkWritable(const Image& image, const std::string& path) {
+    if (image.width <= 0 || image.height <= 0)
+        throw Error("cannot write " + path + ": empty image (" + std::to_string(image.width) + "x" +
+                    std::to_string(image.height) + ")");
+    if (image.rgba.size() != image.pixelCount() * 4)
+        throw Error("cannot write " + path + ": pixel buffer holds " + std::to_string(image.rgba.size()) +
+                    " floats, expected " + std::to_string(image.pixelCount() * 4));
+}
+
+std::string readWholeFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error("cannot open image " + path + ": " + std::strerror(errno));
+    std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) throw Error("cannot read image " + path);
+    return data;
+}
+
+Image loadPng(const std::string& path) {
+    const std::string data = readWholeFile(path);
+    if (data.empty()) throw Error("cannot read PNG " + path + ": file is empty");
+    const auto* bytes = reinterpret_cast<const stbi_uc*>(data.data());
+    const int len = int(std::min<size_t>(data.size(), size_t(INT32_MAX)));
+    int w = 0, h = 0, comp = 0;
+    if (!stbi_info_from_memory(bytes, len, &w, &h, &comp))
+        throw Error("cannot read PNG " + path + ": " + stbi_failure_reason());
+
+    Image img;
+    if (stbi_is_16_bit_from_memory(bytes, len)) {
+        std::unique_ptr<stbi_us, void (*)(void*)> px(stbi_load_16_from_memory(bytes, len, &w, &h, &comp, 4),
+                                                     stbi_image_free);
+        if (!px) throw Error("cannot read PNG " + path + ": " + stbi_failure_reason());
+        img = Image(w, h);
+        for (size_t i = 0; i < img.rgba.size(); ++i) {
+            const float v = float(px.get()[i]) / 65535.0f;
+            img.rgba[i] = (i % 4 == 3) ? v : srgbToLinear(v);
+        }
+    } else {
+        std::unique_ptr<stbi_uc, void (*)(void*)> px(stbi_load_from_memory(bytes, len, &w, &h, &comp, 4),
+                                                     stbi_image_free);
+        if (!px) throw Error("cannot read PNG " + path + ": " + stbi_failure_reason());
+        float lut[256];
+        for (int v = 0; v < 256; ++v) lut[v] = srgbToLinear(float(v) / 255.0f);
+        img = Image(w, h);
+        for (size_t i = 0; i < img.rgba.size(); ++i) {
+            const stbi_uc v = px.get()[i];
+            img.rgba[i] = (i % 4 == 3) ? float(v) / 255.0f : lut[v];
+        }
+    }
+    if (img.width <= 0 || img.height <= 0) throw Error("cannot read PNG " + path + ": empty image");
+    return img;
+}
+
+Image loadExr(const std::string& path) {
+    {
+        std::ifstream probe(path, std::ios::binary);
+        if (!probe) throw Error("cannot open image " + path + ": " + std::strerror(errno));
+    }
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imath::Box2i dw = file.header().dataWindow();
+        const int w = dw.max.x - dw.min.x + 1;
+        const int h = dw.max.y - dw.min.y + 1;
+        if (w <= 0 || h <= 0) throw Error("cannot read EXR " + path + ": empty data window");
+        Image img(w, h);
+        const Imf::ChannelList& channels = file.header().channels();
+        // Luminance-only files (channel Y, no R/G/B) are read as grey.
+        const bool grey = !channels.findChannel("R") && !channels.findChannel("G") && !channels.findChannel("B") &&
+                          channels.findChannel("Y");
+        const size_t xStride = 4 * sizeof(float);
+        const size_t yStride = size_t(w) * xStride;
+        // Slice base pointers are addressed with data-window coordinates.
+        char* base = reinterpret_cast<char*>(img.rgba.data()) -
+                     (ptrdiff_t(dw.min.x) * ptrdiff_t(xStride) + ptrdiff_t(dw.min.y) * ptrdiff_t(yStride));
+        Imf::FrameBuffer fb;
+        const char* names[4] = {"R", "G", "B", "A"};
+        for (int c = 0; c < 4; ++c) {
+            const char* name = (grey && c < 3) ? "Y" : names[c];
+            fb.insert(name, Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride, 1, 1,
+                                       c == 3 ? 1.0 : 0.0));
+        }
+        file.setFrameBuffer(fb);
+        file.readPixels(dw.min.y, dw.max.y);
+        return img;
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw Error("cannot read EXR " + path + ": " + e.what());
+    }
+}
+
+void appendToString(void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
+}
+
+}  // namespace
+
+float linearToSrgb(float linear) {
+    if (!(linear > 0.0f)) return 0.0f;  // also maps NaN to 0
+    // Evaluated in double so that 1 maps to exactly 1 (and back).
+    if (linear <= 0.0031308f) return float(12.92 * double(linear));
+    return float(1.055 * std::pow(double(linear), 1.0 / 2.4) - 0.055);
+}
+
+float srgbToLinear(float encoded) {
+    if (!(encoded > 0.0f)) return 0.0f;
+    if (encoded <= 0.04045f) return float(double(encoded) / 12.92);
+    return float(std::pow((double(encoded) + 0.055) / 1.055, 2.4));
+}
+
+Image loadImage(const std::string& path) {
+    const std::string ext = lowerExtension(path);
+    if (ext == ".png") return loadPng(path);
+    if (ext == ".exr") return loadExr(path);
+    throw Error("cannot read image " + path + ": unsupported extension '" + ext + "' (expected .png or .exr)");
+}
+
+void saveImage(const Image& image, const std::string& path) {
+    const std::string ext = lowerExtension(path);
+    if (ext == ".png") return savePng(image, path);
+    if (ext == ".exr") return saveExr(image, path);
+    throw Error("cannot write image " + path + ": unsupported extension '" + ext + "' (expected .png or .exr)");
+}
+
+void savePng(const Image& image, const std::string& path) {
+    checkWritable(image, path);
+    std::vector<unsigned char> bytes(image.rgba.size());
+    for (size_t i = 0; i < bytes.size(); ++i) {
+        float v = std::clamp(image.rgba[i], 0.0f, 1.0f);  // NaN is mapped to 0 by linearToSrgb / below
+        if (i % 4 != 3) v = linearToSrgb(v);
+        if (!(v > 0.0f)) v = 0.0f;
+        bytes[i] = static_cast<unsigned char>(std::lround(std::min(v, 1.0f) * 255.0f));
+    }
+    std::string encoded;
+    if (!stbi_write_png_to_func(appendToString, &encoded, image.width, image.height, 4, bytes.data(),
+                                image.width * 4))
+        throw Error("cannot write PNG " + path + ": encoding failed");
+    writeFileAtomic(path, encoded);
+}
+
+// EXR output holds 32-bit FLOAT R, G, B, A channels (ZIP compressed), so a round trip is exact.
+void saveExr(const Image& image, const std::string& path) {
+    checkWritable(image, path);
+    std::string encoded;
+    try {
+        Imf::Header header(image.width, image.height);
+        header.compression() = Imf::ZIP_COMPRESSION;
+        const char* names[4] = {"R", "G", "B", "A"};
+        for (const char* n : names) header.channels().insert(n, Imf::Channel(Imf::FLOAT));
+        Imf::FrameBuffer fb;
+        const size_t xStride = 4 * sizeof(float);
+        const size_t yStride = size_t(image.width) * xStride;
+        char* base = const_cast<char*>(reinterpret_cast<const char*>(image.rgba.data()));
+        for (int c = 0; c < 4; ++c) fb.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
+        Imf::StdOSStream stream;
+        {
+            Imf::OutputFile file(stream, header);
+            file.setFrameBuffer(fb);
+            file.writePixels(image.height);
+        }
+        encoded = stream.str();
+    } catch (const std::exception& e) {
+        throw Error("cannot write EXR " + path + ": " + e.what());
+    }
+    writeFileAtomic(path, encoded);
+}
+
+void writeFileAtomic(const std::string& path, const std::string& contents) {
+    const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+    if (fd < 0) throw Error("cannot write " + path + ": " + std::strerror(errno));
+    auto fail = [&](const std::string& what, int err) {
+        ::unlink(tmp.c_str());
+        throw Error("cannot write " + path + ": " + what + ": " + std::strerror(err));
+    };
+    size_t done = 0;
+    while (done < contents.size()) {
+        const ssize_t n = ::write(fd, contents.data() + done, contents.size() - done);
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            const int err = errno;
+            ::close(fd);
+            fail("write failed", err);
+        }
+        done += size_t(n);
+    }
+    if (::close(fd) != 0) fail("close failed", errno);
+    if (::rename(tmp.c_str(), path.c_str()) != 0) fail("rename failed", errno);
+}
+
+}  // namespace starnt
