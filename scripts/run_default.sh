@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# The main job: install, build, then render the built-in default scene with every method and
+# compare each against the A-buffer ground truth. Writes PNGs, stats and a summary to out/default/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/build.sh
+export LP_NUM_THREADS="${LP_NUM_THREADS:-$(nproc)}"
+scene="${STARNT_SCENE:-builtin:tubes}"
+size=(--width "${STARNT_WIDTH:-640}" --height "${STARNT_HEIGHT:-360}")
+out=out/default
+mkdir -p "$out"
+starnt=build/starnt
+methods=$($starnt methods)
+$starnt render --scene "$scene" --method abuffer "${size[@]}" --frames 3 \
+  --out "$out/abuffer.png" --exr "$out/abuffer.exr" --stats "$out/abuffer.json"
+summary="$out/summary.md"
+{
+  echo "# STAR-NT default run: $scene"
+  echo
+  echo "| method | frame ms (median) | MSE x10^2 | FLIP | GPU memory MiB |"
+  echo "|---|---|---|---|---|"
+} >"$summary.tmp"
+for m in $methods; do
+  [ "$m" = abuffer ] || $starnt render --scene "$scene" --method "$m" "${size[@]}" --frames 3 \
+    --out "$out/$m.png" --stats "$out/$m.json"
+  cmp=$($starnt compare --reference "$out/abuffer.png" --test "$out/$m.png" --json --flip-map "$out/${m}_flip.png")
+  python3 - "$out/$m.json" "$cmp" "$m" >>"$summary.tmp" <<'PY'
+import json, sys
+stats = json.load(open(sys.argv[1])); cmp = json.loads(sys.argv[2])
+print(f"| {sys.argv[3]} | {stats['frame_ms']:.1f} | {cmp['mse']*100:.4f} | {cmp['flip']:.4f} | {stats['memory_bytes']/2**20:.1f} |")
+PY
+done
+mv "$summary.tmp" "$summary"
+cat "$summary"
+echo "images and stats in $out/"

@@ -1,0 +1,44 @@
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "app/commands.hpp"
+#include "starnt/error.hpp"
+#include "starnt/image.hpp"
+#include "starnt/metrics.hpp"
+
+namespace starnt::app {
+
+void addCompareCommand(CLI::App& app) {
+    struct Args {
+        std::string reference, test, flipMap;
+        bool json = false;
+        double ppd = 67.02;
+    };
+    auto args = std::make_shared<Args>();
+    CLI::App* cmd = app.add_subcommand("compare", "MSE and LDR-FLIP of a test image against a reference (PNG or EXR)");
+    cmd->add_option("--reference", args->reference, "reference image (.png sRGB or .exr linear)")->required();
+    cmd->add_option("--test", args->test, "test image (.png sRGB or .exr linear)")->required();
+    cmd->add_flag("--json", args->json, "print {\"mse\": ..., \"flip\": ...}");
+    cmd->add_option("--flip-map", args->flipMap, "write the FLIP error map (magma colours) to this PNG");
+    cmd->add_option("--ppd", args->ppd, "FLIP pixels per degree (default 67.02)");
+    cmd->callback([args] {
+        Image ref = loadImage(args->reference);
+        Image test = loadImage(args->test);
+        if (ref.width != test.width || ref.height != test.height) {
+            throw Error("images differ in size: " + args->reference + " is " + std::to_string(ref.width) + "x" +
+                        std::to_string(ref.height) + ", " + args->test + " is " + std::to_string(test.width) + "x" +
+                        std::to_string(test.height));
+        }
+        const double mse = mseSrgb(ref, test);
+        FlipResult flipResult = flip(ref, test, args->ppd);
+        if (!args->flipMap.empty()) saveImage(flipHeatmap(flipResult.errorMap), args->flipMap);
+        if (args->json) {
+            std::printf("%s\n", nlohmann::json{{"mse", mse}, {"flip", flipResult.mean}}.dump().c_str());
+        } else {
+            std::printf("mse: %.8g (x10^2: %.6g)\nflip: %.6g\n", mse, mse * 100.0, flipResult.mean);
+        }
+    });
+}
+
+}  // namespace starnt::app
