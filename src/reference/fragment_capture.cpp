@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include <glm/gtc/packing.hpp>
 
 #include "shaders/shared_constants.h"
 
@@ -25,12 +24,12 @@ CapturedFrame FragmentCapture::capture(const FrameDesc& frame, const DrawCallbac
     glFinish();
     const size_t pixelCount = size_t(frame.width) * size_t(frame.height);
     const size_t count = size_t(lists_.fragmentCount());
-    std::vector<uint32_t> heads(pixelCount), orders(count);
-    std::vector<glm::uvec4> nodes(count);
+    std::vector<uint32_t> heads(pixelCount);
+    std::vector<glm::uvec4> nodes(count), extras(count);
     glGetNamedBufferSubData(lists_.heads().id(), 0, GLsizeiptr(pixelCount * 4), heads.data());
     if (count) {
         glGetNamedBufferSubData(lists_.nodes().id(), 0, GLsizeiptr(count * 16), nodes.data());
-        glGetNamedBufferSubData(lists_.orders().id(), 0, GLsizeiptr(count * 4), orders.data());
+        glGetNamedBufferSubData(lists_.orders().id(), 0, GLsizeiptr(count * 16), extras.data());
     }
     CapturedFrame out;
     out.width = frame.width;
@@ -43,11 +42,11 @@ CapturedFrame FragmentCapture::capture(const FrameDesc& frame, const DrawCallbac
             for (uint32_t i = heads[size_t(y) * size_t(frame.width) + size_t(x)]; i != STARNT_ABUFFER_END;
                  i = nodes[i].w) {
                 Fragment f;
-                glm::vec2 rg = glm::unpackHalf2x16(nodes[i].x), ba = glm::unpackHalf2x16(nodes[i].y);
-                f.color = glm::vec3(rg, ba.x);
-                f.alpha = ba.y;
+                f.color = glm::vec3(glm::uintBitsToFloat(extras[i].x), glm::uintBitsToFloat(extras[i].y),
+                                    glm::uintBitsToFloat(extras[i].z));
+                f.alpha = glm::uintBitsToFloat(extras[i].w);
                 f.depth = glm::uintBitsToFloat(nodes[i].z);
-                f.order = orders[i];
+                f.order = nodes[i].x;
                 list.push_back(f);
             }
         }

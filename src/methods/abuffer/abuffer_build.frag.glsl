@@ -8,9 +8,10 @@ layout(std430, binding = STARNT_SSBO_ABUFFER_HEADS) coherent buffer Heads { uint
 layout(std430, binding = STARNT_SSBO_ABUFFER_NODES) writeonly buffer Nodes { uvec4 nodes[]; };
 layout(std430, binding = STARNT_SSBO_ABUFFER_COUNTERS) coherent buffer Counters { uint counters[4]; };
 #ifdef STARNT_ABUFFER_CAPTURE_ORDER
-// Capture mode (reference tools only): submission order key per node. gl_PrimitiveID in a
-// fragment shader needs GLSL ES 3.20 on ES; the capture is a desktop-only tool.
-layout(std430, binding = STARNT_SSBO_ABUFFER_ORDERS) writeonly buffer Orders { uint orders[]; };
+// Capture mode (reference tools and the trainer): node.x holds the submission order key instead
+// of the half-float colour, and the full-precision colour goes to a second array. gl_PrimitiveID
+// in a fragment shader needs GLSL ES 3.20 on ES; the capture is a desktop-only tool.
+layout(std430, binding = STARNT_SSBO_ABUFFER_ORDERS) writeonly buffer Extras { uvec4 extras[]; };
 uniform int u_drawIndex;
 #endif
 
@@ -23,9 +24,12 @@ void main() {
     if (index < u_capacity) {
         uint pixel = uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x);
         uint next = atomicExchange(heads[pixel], index);
-        nodes[index] = uvec4(packHalf2x16(s.rg), packHalf2x16(s.ba), floatBitsToUint(gl_FragCoord.z), next);
 #ifdef STARNT_ABUFFER_CAPTURE_ORDER
-        orders[index] = (uint(u_drawIndex) << 24) | (uint(gl_PrimitiveID) & 0xFFFFFFu);
+        uint order = (uint(u_drawIndex) << 24) | (uint(gl_PrimitiveID) & 0xFFFFFFu);
+        nodes[index] = uvec4(order, packHalf2x16(s.ba), floatBitsToUint(gl_FragCoord.z), next);
+        extras[index] = floatBitsToUint(s);
+#else
+        nodes[index] = uvec4(packHalf2x16(s.rg), packHalf2x16(s.ba), floatBitsToUint(gl_FragCoord.z), next);
 #endif
     }
 }

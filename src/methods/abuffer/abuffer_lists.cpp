@@ -14,7 +14,7 @@ ABufferLists::ABufferLists(const MethodBase&, bool captureOrder, const MethodOpt
     : captureOrder_(captureOrder), options_(options) {}
 
 void ABufferLists::allocate(int width, int height, uint64_t capacity) {
-    const size_t perNode = kABufferNodeBytes + (captureOrder_ ? 4 : 0);
+    const size_t perNode = kABufferNodeBytes * (captureOrder_ ? 2 : 1);
     const size_t total = size_t(width) * size_t(height) * 4 + size_t(capacity) * perNode + 16;
     if (total > options_.abufferMemoryCapBytes) {
         throw Error("A-buffer needs " + std::to_string(total >> 20) + " MiB for " + std::to_string(capacity) +
@@ -33,7 +33,7 @@ void ABufferLists::allocate(int width, int height, uint64_t capacity) {
     }
     if (capacity != capacity_) {
         nodes_ = gl::Buffer(size_t(capacity) * kABufferNodeBytes);
-        if (captureOrder_) orders_ = gl::Buffer(size_t(capacity) * 4);
+        if (captureOrder_) orders_ = gl::Buffer(size_t(capacity) * kABufferNodeBytes);
         capacity_ = capacity;
     }
     if (!counters_) counters_ = gl::Buffer(16);

@@ -43,7 +43,7 @@ private:
     gl::FramebufferHandle emptyFb_;
 };
 
-// Bytes one A-buffer node takes (uvec4), plus 4 in capture mode.
+// Bytes one A-buffer node takes (uvec4); twice that in capture mode (full-precision colour).
 constexpr size_t kABufferNodeBytes = 16;
 
 }  // namespace starnt

@@ -1,0 +1,130 @@
+// The command-line contract (SPEC section 9): real runs of the starnt binary, good and bad input.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <sys/wait.h>
+
+#include <nlohmann/json.hpp>
+
+#include "starnt/image.hpp"
+#include "starnt/metrics.hpp"
+#include "test_support.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliRun {
+    int exitCode = -1;
+    std::string out, err;
+};
+
+CliRun run(const std::string& args) {
+    fs::path dir = starnt::test::makeTempDir("cli_io");
+    std::string cmd = std::string(STARNT_CLI) + " " + args + " >" + (dir / "out").string() + " 2>" + (dir / "err").string();
+    int status = std::system(cmd.c_str());
+    CliRun r;
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    auto slurp = [](const fs::path& p) {
+        std::ifstream f(p);
+        return std::string(std::istreambuf_iterator<char>(f), {});
+    };
+    r.out = slurp(dir / "out");
+    r.err = slurp(dir / "err");
+    fs::remove_all(dir);
+    return r;
+}
+
+// A bad invocation: non-zero exit, a message on stderr, and no output file left behind.
+void expectCleanFailure(const std::string& args, const fs::path& mustNotExist, const std::string& mentions) {
+    CliRun r = run(args);
+    EXPECT_NE(r.exitCode, 0) << args;
+    EXPECT_NE(r.exitCode, -1) << "crashed: " << args;
+    EXPECT_FALSE(r.err.empty()) << args;
+    EXPECT_NE(r.err.find(mentions), std::string::npos) << "stderr of `" << args << "` was: " << r.err;
+    EXPECT_FALSE(fs::exists(mustNotExist)) << args;
+    // No leftover temporary files either.
+    for (const auto& e : fs::directory_iterator(mustNotExist.parent_path())) {
+        EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+    }
+}
+
+}  // namespace
+
+TEST(Cli, RenderWritesImageStatsAndExr) {
+    fs::path dir = starnt::test::makeTempDir("cli");
+    CliRun r = run("render --scene builtin:panes --method wboit --width 64 --height 48 --frames 2 --out " +
+                (dir / "a.png").string() + " --exr " + (dir / "a.exr").string() + " --stats " + (dir / "a.json").string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    starnt::Image png = starnt::loadImage((dir / "a.png").string());
+    starnt::Image exr = starnt::loadImage((dir / "a.exr").string());
+    EXPECT_EQ(png.width, 64);
+    EXPECT_EQ(png.height, 48);
+    EXPECT_LT(starnt::mseSrgb(png, exr), 1e-5);
+    std::ifstream f(dir / "a.json");
+    nlohmann::json stats = nlohmann::json::parse(f);
+    for (const char* key : {"method", "width", "height", "frame_ms", "pass_ms", "scale_pass2", "scale_pass3", "w_bar",
+                            "tile_levels", "max_fragments", "memory_bytes", "frames", "interpolated_frames"}) {
+        EXPECT_TRUE(stats.contains(key)) << key;
+    }
+    EXPECT_EQ(stats["method"], "wboit");
+    EXPECT_EQ(stats["frames"], 2);
+    EXPECT_GT(stats["pass_ms"]["accumulate"].get<double>(), 0.0);
+    EXPECT_GE(stats["max_fragments"].get<int>(), 2);
+}
+
+TEST(Cli, CompareIdenticalIsZeroAndJsonShape) {
+    fs::path dir = starnt::test::makeTempDir("cli");
+    ASSERT_EQ(run("render --scene builtin:panes --method abuffer --width 40 --height 30 --out " + (dir / "a.png").string()).exitCode, 0);
+    ASSERT_EQ(run("render --scene builtin:panes --method unsorted --width 40 --height 30 --out " + (dir / "u.png").string()).exitCode, 0);
+    CliRun same = run("compare --reference " + (dir / "a.png").string() + " --test " + (dir / "a.png").string() + " --json");
+    ASSERT_EQ(same.exitCode, 0) << same.err;
+    nlohmann::json j = nlohmann::json::parse(same.out);
+    EXPECT_EQ(j["mse"].get<double>(), 0.0);
+    EXPECT_EQ(j["flip"].get<double>(), 0.0);
+    CliRun diff = run("compare --reference " + (dir / "a.png").string() + " --test " + (dir / "u.png").string() + " --json");
+    nlohmann::json d = nlohmann::json::parse(diff.out);
+    // The panes overlap in several orders: unsorted blending must differ from the exact image.
+    EXPECT_GT(d["mse"].get<double>(), 1e-5);
+    EXPECT_GT(d["flip"].get<double>(), 0.0);
+}
+
+TEST(Cli, BadInputFailsCleanly) {
+    fs::path dir = starnt::test::makeTempDir("cli_bad");
+    const std::string out = (dir / "x.png").string();
+    const std::string base = "render --width 32 --height 24 --out " + out + " ";
+    expectCleanFailure(base + "--scene /nonexistent/scene.glb", out, "nonexistent");
+    expectCleanFailure(base + "--scene builtin:nope", out, "nope");
+    {
+        std::ofstream(dir / "scene.xyz") << "hello";
+        expectCleanFailure(base + "--scene " + (dir / "scene.xyz").string(), out, "xyz");
+        std::ofstream(dir / "broken.gltf") << "{ \"asset\": { \"version\": \"2.0\" }, \"meshes\": [ ";
+        expectCleanFailure(base + "--scene " + (dir / "broken.gltf").string(), out, "broken.gltf");
+        std::ofstream(dir / "empty.gltf") << R"({"asset":{"version":"2.0"}})";
+        expectCleanFailure(base + "--scene " + (dir / "empty.gltf").string(), out, "no renderable triangles");
+        std::ofstream(dir / "nan.obj") << "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n";
+        expectCleanFailure(base + "--scene " + (dir / "nan.obj").string(), out, "NaN");
+        std::ofstream(dir / "range.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 999\n";
+        expectCleanFailure(base + "--scene " + (dir / "range.obj").string(), out, "range.obj");
+    }
+    expectCleanFailure("render --scene builtin:panes --width 0 --height 24 --out " + out, out, "out of range");
+    expectCleanFailure("render --scene builtin:panes --width 20000 --height 24 --out " + out, out, "out of range");
+    expectCleanFailure("render --scene builtin:panes --width 32 --height 24 --method magic --out " + out, out, "magic");
+    expectCleanFailure("render --scene builtin:panes --width 32 --height 24 --bogus-flag --out " + out, out, "bogus");
+    expectCleanFailure(base + "--scene builtin:panes --background 1,2", out, "R,G,B");
+    expectCleanFailure(base + "--scene builtin:panes --camera orbit:abc", out, "orbit");
+    expectCleanFailure(base + "--scene builtin:panes --alpha 1.5", out, "alpha");
+    expectCleanFailure("render --scene builtin:panes --width 32 --height 24 --out " + (dir / "missing_dir/x.png").string(),
+                       dir / "missing_dir", "does not exist");
+    // compare: different sizes, missing file.
+    ASSERT_EQ(run("render --scene builtin:panes --width 32 --height 24 --out " + (dir / "a.png").string()).exitCode, 0);
+    ASSERT_EQ(run("render --scene builtin:panes --width 30 --height 24 --out " + (dir / "b.png").string()).exitCode, 0);
+    CliRun r = run("compare --reference " + (dir / "a.png").string() + " --test " + (dir / "b.png").string());
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.err.find("differ in size"), std::string::npos) << r.err;
+    r = run("compare --reference " + (dir / "a.png").string() + " --test " + (dir / "nothere.png").string());
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.err.find("nothere.png"), std::string::npos) << r.err;
+}
