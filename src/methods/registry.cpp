@@ -17,6 +17,8 @@ const std::vector<Entry>& entries() {
         {"peel", createPeelMethod},
         {"unsorted", createUnsortedMethod},
         {"wboit", createWboitMethod},
+        {"dfaoit", createDfaoitMethod},
+        {"starnt", createStarntMethod},
     };
     return all;
 }

@@ -28,7 +28,7 @@ bool MethodBase::resizeOutput(int width, int height) {
 }
 
 void MethodBase::runGeometryPass(const char* name, const gl::Program& program, const FrameDesc& frame,
-                                 const DrawCallback& draw) const {
+                                 const DrawCallback& draw) {
     glUseProgram(program.id());
     glUniform1f(program.uniform("u_alphaCutoff"), frame.alphaCutoff);
     draw(GeometryPass{name, program.id()});

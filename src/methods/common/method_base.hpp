@@ -12,6 +12,10 @@ class MethodBase : public OitMethod {
 public:
     GLuint outputTexture() const override { return output_.id(); }
 
+    // Binds `program` with the per-pass uniforms every geometry pass has and calls the engine.
+    static void runGeometryPass(const char* name, const gl::Program& program, const FrameDesc& frame,
+                                const DrawCallback& draw);
+
 protected:
     explicit MethodBase(SurfaceShader surface);
 
@@ -26,9 +30,6 @@ protected:
     // (Re)allocates the output target when the size changed; returns true when it did, so the
     // method reallocates its own targets too.
     bool resizeOutput(int width, int height);
-    // Binds `program` with the per-pass uniforms every geometry pass has and calls the engine.
-    void runGeometryPass(const char* name, const gl::Program& program, const FrameDesc& frame,
-                         const DrawCallback& draw) const;
     void drawFullscreen() const { gl::drawFullscreenTriangle(fullscreenVao_); }
     void bindOutputFramebuffer() const;
     size_t outputBytes() const { return output_.bytes(); }

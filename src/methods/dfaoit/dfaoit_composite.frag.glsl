@@ -1,0 +1,36 @@
+// DFAOIT baseline (Tsopouridis et al. 2024), low-end variant, at full resolution:
+//   inputs x = [a_avg, C_avg.rgb, sum a C (rgb), C_exact2.rgb] (averages over the N-2 tail fragments)
+//   C = f(x) + T_all * C_bg, where f predicts the whole transparent colour (sigmoid output).
+// Pixels without fragments take the background only (f is not evaluated there).
+#include "methods/neural/neural_inputs.glsl"
+
+uniform vec3 u_background;
+layout(location = 0) out vec4 outColor;
+
+void main() {
+    PixelSums s = readPixelSums(ivec2(gl_FragCoord.xy));
+    if (s.count < 0.5) {
+        outColor = vec4(u_background, 1.0);
+        return;
+    }
+    float tailCount = s.count - 2.0;
+    float aAvg = 0.0;
+    vec3 cAvg = vec3(0.0);
+    if (tailCount > 0.5) {
+        aAvg = max(tailAlphaSum(s), 0.0) / tailCount;
+        cAvg = max(s.sumColor - s.c1 - s.c2, vec3(0.0)) / tailCount;
+    }
+    vec3 exact2 = exactTwo(s);
+    float x[STARNT_NN_INPUTS];
+    x[0] = aAvg;
+    x[1] = cAvg.r;
+    x[2] = cAvg.g;
+    x[3] = cAvg.b;
+    x[4] = s.sumAlphaColor.r;
+    x[5] = s.sumAlphaColor.g;
+    x[6] = s.sumAlphaColor.b;
+    x[7] = exact2.r;
+    x[8] = exact2.g;
+    x[9] = exact2.b;
+    outColor = vec4(nnEvaluate(x) + s.transmittance * u_background, 1.0);
+}

@@ -1,0 +1,47 @@
+// Reads what passes 1-3 left for this pixel (the GPU side of nn::PixelSums) and computes the
+// guarded quantities both networks use. STARNT_EPS_TRANSMITTANCE and STARNT_EPS_TAIL_ALPHA are
+// defined from nn::kTransmittanceEpsilon / nn::kTailAlphaEpsilon when the program is built, so the
+// CPU reference and the shader share one definition.
+layout(binding = 0) uniform sampler2D u_nearest;        // C1, a1
+layout(binding = 1) uniform sampler2D u_second;         // C2, a2
+layout(binding = 2) uniform sampler2D u_alphaColor;     // sum a C, sum a
+layout(binding = 3) uniform sampler2D u_colorCount;     // sum C, N
+layout(binding = 4) uniform sampler2D u_transmittance;  // prod (1 - a)
+
+struct PixelSums {
+    vec3 c1;
+    float a1;
+    vec3 c2;
+    float a2;
+    float count;
+    float sumAlpha;
+    vec3 sumAlphaColor;
+    vec3 sumColor;
+    float transmittance;
+};
+
+PixelSums readPixelSums(ivec2 p) {
+    PixelSums s;
+    vec4 f1 = texelFetch(u_nearest, p, 0);
+    vec4 f2 = texelFetch(u_second, p, 0);
+    vec4 ac = texelFetch(u_alphaColor, p, 0);
+    vec4 cn = texelFetch(u_colorCount, p, 0);
+    s.c1 = f1.rgb;
+    s.a1 = f1.a;
+    s.c2 = f2.rgb;
+    s.a2 = f2.a;
+    s.sumAlphaColor = ac.rgb;
+    s.sumAlpha = ac.a;
+    s.sumColor = cn.rgb;
+    s.count = cn.a;
+    s.transmittance = texelFetch(u_transmittance, p, 0).r;
+    return s;
+}
+
+// Exact composite of the two peeled fragments: a1 C1 + (1 - a1) a2 C2.
+vec3 exactTwo(PixelSums s) { return s.a1 * s.c1 + (1.0 - s.a1) * s.a2 * s.c2; }
+// Transmittance through the two peeled fragments.
+float twoLayerTransmittance(PixelSums s) { return (1.0 - s.a1) * (1.0 - s.a2); }
+// Premultiplied colour of the tail (fragments 3..N): sum a C minus the peeled ones.
+vec3 tailPremultiplied(PixelSums s) { return s.sumAlphaColor - s.a1 * s.c1 - s.a2 * s.c2; }
+float tailAlphaSum(PixelSums s) { return s.sumAlpha - s.a1 - s.a2; }

@@ -1,0 +1,25 @@
+// A neural OIT method: the three geometry passes (neural_passes.*) and a full-screen inference +
+// composite shader generated from a weights file. `starnt` and `dfaoit` are two configurations of
+// it (network kind, composite shader, default weights), each in its own folder.
+#pragma once
+#include <memory>
+
+#include "starnt/nn.hpp"
+#include "starnt/oit_method.hpp"
+
+namespace starnt {
+
+struct NeuralMethodConfig {
+    std::string name;                // "starnt" / "dfaoit"
+    nn::NetworkKind kind;
+    std::string compositeShader;     // embedded path of the composite fragment shader
+    std::string defaultWeights;      // embedded path of the shipped weights (JSON)
+};
+
+std::unique_ptr<OitMethod> createNeuralMethod(const NeuralMethodConfig& config, const SurfaceShader& surface,
+                                              const MethodOptions& options);
+
+// The network a method would use: options.weightsPath when set, else the shipped weights.
+nn::Network loadMethodNetwork(const NeuralMethodConfig& config, const MethodOptions& options);
+
+}  // namespace starnt
