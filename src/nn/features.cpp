@@ -1,0 +1,121 @@
+// CPU reference of the per-pixel sums (passes 1-3), the network features, the training targets
+// and the final composites. The guards are documented in include/starnt/nn.hpp.
+#include <algorithm>
+
+#include "starnt/nn.hpp"
+
+namespace starnt::nn {
+
+FragmentList preparedFragments(FragmentList fragments, float alphaCutoff) {
+    std::erase_if(fragments, [&](const Fragment& f) { return !(f.alpha >= alphaCutoff); });
+    sortByDepth(fragments);
+    return fragments;
+}
+
+PixelSums sumsFromFragments(FragmentList fragments, float alphaCutoff) {
+    fragments = preparedFragments(std::move(fragments), alphaCutoff);
+    PixelSums s;
+    if (!fragments.empty()) {
+        s.c1 = fragments[0].color;
+        s.a1 = fragments[0].alpha;
+    }
+    if (fragments.size() > 1) {
+        s.c2 = fragments[1].color;
+        s.a2 = fragments[1].alpha;
+    }
+    double sumAlpha = 0.0, transmittance = 1.0;
+    glm::dvec3 sumAlphaColor(0.0), sumColor(0.0);
+    for (const Fragment& f : fragments) {
+        const double a = f.alpha;
+        const glm::dvec3 c(f.color);
+        sumAlpha += a;
+        sumAlphaColor += a * c;
+        sumColor += c;
+        transmittance *= 1.0 - a;
+    }
+    s.count = static_cast<float>(fragments.size());
+    s.sumAlpha = static_cast<float>(sumAlpha);
+    s.sumAlphaColor = glm::vec3(sumAlphaColor);
+    s.sumColor = glm::vec3(sumColor);
+    s.transmittance = static_cast<float>(transmittance);
+    return s;
+}
+
+namespace {
+
+float twoLayerTransmittance(const PixelSums& s) { return (1.0f - s.a1) * (1.0f - s.a2); }
+
+glm::vec3 exactTwoLayers(const PixelSums& s) { return s.a1 * s.c1 + (1.0f - s.a1) * s.a2 * s.c2; }
+
+// S_aC - a1 C1 - a2 C2: the premultiplied tail sum.
+glm::vec3 tailAlphaColor(const PixelSums& s) { return s.sumAlphaColor - s.a1 * s.c1 - s.a2 * s.c2; }
+
+}  // namespace
+
+std::array<float, kStarntInputs> starntFeatures(const PixelSums& s) {
+    const float t2 = twoLayerTransmittance(s);
+    const float tTail = t2 > kTransmittanceEpsilon ? std::clamp(s.transmittance / t2, 0.0f, 1.0f) : 0.0f;
+    const float tailAlpha = s.sumAlpha - s.a1 - s.a2;
+    glm::vec3 cTilde(0.0f);
+    if (tailAlpha > kTailAlphaEpsilon) cTilde = glm::max(tailAlphaColor(s) / tailAlpha, glm::vec3(0.0f));
+    return {tTail, s.count, cTilde.r, cTilde.g, cTilde.b};
+}
+
+std::array<float, kDfaoitInputs> dfaoitFeatures(const PixelSums& s) {
+    const float tailCount = s.count - 2.0f;
+    float alphaAvg = 0.0f;
+    glm::vec3 colorAvg(0.0f);
+    if (tailCount > 0.5f) {
+        alphaAvg = std::max(s.sumAlpha - s.a1 - s.a2, 0.0f) / tailCount;
+        colorAvg = glm::max(s.sumColor - s.c1 - s.c2, glm::vec3(0.0f)) / tailCount;
+    }
+    const glm::vec3 exact2 = exactTwoLayers(s);
+    return {alphaAvg,           colorAvg.r,         colorAvg.g,         colorAvg.b, s.sumAlphaColor.r,
+            s.sumAlphaColor.g,  s.sumAlphaColor.b,  exact2.r,           exact2.g,   exact2.b};
+}
+
+glm::vec3 starntTarget(const FragmentList& sorted) {
+    glm::dvec3 color(0.0);
+    double transmittance = 1.0;
+    for (size_t i = 2; i < sorted.size(); ++i) {
+        const double a = sorted[i].alpha;
+        color += transmittance * a * glm::dvec3(sorted[i].color);
+        transmittance *= 1.0 - a;
+    }
+    return glm::vec3(color);
+}
+
+glm::vec3 dfaoitTarget(const FragmentList& sorted) {
+    glm::dvec3 color(0.0);
+    double transmittance = 1.0;
+    for (const Fragment& f : sorted) {
+        const double a = f.alpha;
+        color += transmittance * a * glm::dvec3(f.color);
+        transmittance *= 1.0 - a;
+    }
+    return glm::vec3(color);
+}
+
+glm::vec3 compositeStarnt(const Network& net, const PixelSums& s, glm::vec3 background) {
+    glm::vec3 tail(0.0f);
+    if (s.count < 2.5f) {
+        tail = glm::vec3(0.0f);
+    } else if (s.count < 3.5f) {
+        tail = glm::max(tailAlphaColor(s), glm::vec3(0.0f));
+    } else {
+        const auto x = starntFeatures(s);
+        tail = net.forward(x.data());
+    }
+    return exactTwoLayers(s) + twoLayerTransmittance(s) * tail + s.transmittance * background;
+}
+
+glm::vec3 compositeDfaoit(const Network& net, const PixelSums& s, glm::vec3 background) {
+    glm::vec3 transparent(0.0f);
+    if (s.count > 0.5f) {
+        const auto x = dfaoitFeatures(s);
+        transparent = net.forward(x.data());
+    }
+    return transparent + s.transmittance * background;
+}
+
+}  // namespace starnt::nn

@@ -1,0 +1,77 @@
+// Network kinds, architecture, CPU forward pass and initialisation.
+#include <cmath>
+
+#include "nn/random.hpp"
+#include "starnt/error.hpp"
+#include "starnt/nn.hpp"
+
+namespace starnt::nn {
+
+const char* kindName(NetworkKind kind) { return kind == NetworkKind::StarNT ? "starnt" : "dfaoit"; }
+
+NetworkKind parseKind(const std::string& name) {
+    if (name == "starnt") return NetworkKind::StarNT;
+    if (name == "dfaoit") return NetworkKind::DFAOIT;
+    throw Error("unknown network kind '" + name + "' (expected starnt or dfaoit)");
+}
+
+const std::vector<std::string>& canonicalInputNames(NetworkKind kind) {
+    static const std::vector<std::string> starnt = {"t_tail", "count", "c_tilde_r", "c_tilde_g", "c_tilde_b"};
+    static const std::vector<std::string> dfaoit = {
+        "alpha_avg",           "c_avg_r",             "c_avg_g",   "c_avg_b",   "sum_alpha_color_r",
+        "sum_alpha_color_g",   "sum_alpha_color_b",   "c_exact2_r", "c_exact2_g", "c_exact2_b"};
+    return kind == NetworkKind::StarNT ? starnt : dfaoit;
+}
+
+std::vector<int> layerSizes(NetworkKind kind) {
+    return {kind == NetworkKind::StarNT ? kStarntInputs : kDfaoitInputs, 32, 16, 3};
+}
+
+glm::vec3 Network::forward(const float* rawInputs) const {
+    // Largest layer is 32 wide; keep the buffers on the stack but allow any size.
+    std::vector<float> current(static_cast<size_t>(inputCount()));
+    for (size_t i = 0; i < current.size(); ++i) current[i] = (rawInputs[i] - inputOffset[i]) * inputScale[i];
+    std::vector<float> next;
+    for (const Layer& layer : layers) {
+        next.assign(static_cast<size_t>(layer.out), 0.0f);
+        for (int o = 0; o < layer.out; ++o) {
+            float z = layer.bias[o];
+            const float* w = layer.weights.data() + static_cast<size_t>(o) * layer.in;
+            for (int i = 0; i < layer.in; ++i) z += w[i] * current[i];
+            next[o] = layer.activation == Layer::ReLU ? std::max(z, 0.0f) : 1.0f / (1.0f + std::exp(-z));
+        }
+        current.swap(next);
+    }
+    glm::vec3 out(0.0f);
+    for (size_t i = 0; i < 3 && i < current.size(); ++i) out[static_cast<int>(i)] = current[i];
+    return out;
+}
+
+Network makeUntrained(NetworkKind kind, uint64_t seed) {
+    Network net;
+    net.kind = kind;
+    net.inputNames = canonicalInputNames(kind);
+    const std::vector<int> sizes = layerSizes(kind);
+    net.inputOffset.assign(static_cast<size_t>(sizes.front()), 0.0f);
+    net.inputScale.assign(static_cast<size_t>(sizes.front()), 1.0f);
+    net.seed = seed;
+    detail::Rng rng(seed ^ 0x5eed0f1a2b3c4d5eULL);
+    for (size_t l = 0; l + 1 < sizes.size(); ++l) {
+        Network::Layer layer;
+        layer.in = sizes[l];
+        layer.out = sizes[l + 1];
+        const bool last = l + 2 == sizes.size();
+        layer.activation = (last && kind == NetworkKind::DFAOIT) ? Network::Layer::Sigmoid : Network::Layer::ReLU;
+        // He for layers followed by ReLU, Xavier (Glorot normal) for the sigmoid output layer.
+        const double stddev = layer.activation == Network::Layer::ReLU ? std::sqrt(2.0 / layer.in)
+                                                                         : std::sqrt(2.0 / (layer.in + layer.out));
+        layer.weights.resize(static_cast<size_t>(layer.in) * layer.out);
+        for (float& w : layer.weights) w = static_cast<float>(stddev * rng.normal());
+        // A small positive output bias keeps the ReLU outputs of STAR-NT alive at the start.
+        layer.bias.assign(static_cast<size_t>(layer.out), last && kind == NetworkKind::StarNT ? 0.1f : 0.0f);
+        net.layers.push_back(std::move(layer));
+    }
+    return net;
+}
+
+}  // namespace starnt::nn

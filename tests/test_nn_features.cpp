@@ -1,0 +1,213 @@
+// Per-pixel sums, features, targets and composites of the neural OIT methods (CPU reference).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "starnt/nn.hpp"
+#include "starnt/train.hpp"
+
+using namespace starnt;
+using namespace starnt::nn;
+
+namespace {
+
+Fragment frag(glm::vec3 c, float a, float z, uint32_t order = 0) { return Fragment{c, a, z, order}; }
+
+void expectVec(glm::vec3 actual, glm::vec3 expected, float tol, const char* what) {
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(actual[k], expected[k], tol) << what << " channel " << k;
+}
+
+}  // namespace
+
+TEST(NnFeatures, EmptyPixel) {
+    const PixelSums s = sumsFromFragments({});
+    EXPECT_EQ(s.count, 0.0f);
+    EXPECT_EQ(s.a1, 0.0f);
+    EXPECT_EQ(s.a2, 0.0f);
+    EXPECT_EQ(s.sumAlpha, 0.0f);
+    EXPECT_EQ(s.transmittance, 1.0f);
+    const auto f = starntFeatures(s);
+    EXPECT_EQ(f[0], 1.0f);  // t_tail = T_all / T2 = 1 / 1
+    EXPECT_EQ(f[1], 0.0f);
+    EXPECT_EQ(f[2], 0.0f);
+    EXPECT_EQ(f[3], 0.0f);
+    EXPECT_EQ(f[4], 0.0f);
+    for (float v : dfaoitFeatures(s)) EXPECT_EQ(v, 0.0f);
+}
+
+TEST(NnFeatures, OneFragment) {
+    const PixelSums s = sumsFromFragments({frag({1.0f, 0.5f, 0.25f}, 0.5f, 0.3f)});
+    EXPECT_EQ(s.count, 1.0f);
+    EXPECT_EQ(s.a1, 0.5f);
+    EXPECT_EQ(s.c1, glm::vec3(1.0f, 0.5f, 0.25f));
+    EXPECT_EQ(s.a2, 0.0f);
+    EXPECT_EQ(s.c2, glm::vec3(0.0f));
+    EXPECT_FLOAT_EQ(s.sumAlpha, 0.5f);
+    expectVec(s.sumAlphaColor, {0.5f, 0.25f, 0.125f}, 1e-7f, "S_aC");
+    expectVec(s.sumColor, {1.0f, 0.5f, 0.25f}, 1e-7f, "S_C");
+    EXPECT_FLOAT_EQ(s.transmittance, 0.5f);
+    const auto f = starntFeatures(s);
+    EXPECT_FLOAT_EQ(f[0], 1.0f);
+    EXPECT_EQ(f[1], 1.0f);
+    EXPECT_EQ(f[2], 0.0f);  // no tail alpha: guarded to 0
+    const auto d = dfaoitFeatures(s);
+    EXPECT_EQ(d[0], 0.0f);  // N <= 2: no tail averages
+    EXPECT_EQ(d[1], 0.0f);
+    EXPECT_FLOAT_EQ(d[4], 0.5f);   // S_aC.r
+    EXPECT_FLOAT_EQ(d[7], 0.5f);   // C_exact2 = a1 C1
+    EXPECT_FLOAT_EQ(d[8], 0.25f);
+    EXPECT_FLOAT_EQ(d[9], 0.125f);
+}
+
+TEST(NnFeatures, TwoFragmentsAndCutoffDropsLowAlpha) {
+    // Submitted back to front, plus an alpha 0 and an alpha 0.02 fragment nearest to the camera.
+    FragmentList list = {frag({0, 0, 1}, 0.25f, 0.8f, 0), frag({1, 0, 0}, 0.5f, 0.2f, 1),
+                         frag({0, 1, 0}, 0.0f, 0.1f, 2), frag({1, 1, 1}, 0.02f, 0.05f, 3)};
+    const PixelSums s = sumsFromFragments(list);
+    EXPECT_EQ(s.count, 2.0f);
+    EXPECT_EQ(s.c1, glm::vec3(1, 0, 0));
+    EXPECT_EQ(s.a1, 0.5f);
+    EXPECT_EQ(s.c2, glm::vec3(0, 0, 1));
+    EXPECT_EQ(s.a2, 0.25f);
+    EXPECT_FLOAT_EQ(s.transmittance, 0.375f);
+    EXPECT_FLOAT_EQ(s.sumAlpha, 0.75f);
+    // A zero cut-off keeps the alpha 0.02 fragment (alpha 0 never contributes but counts).
+    EXPECT_EQ(sumsFromFragments(list, 0.0f).count, 4.0f);
+    EXPECT_EQ(sumsFromFragments(list, 0.0f).c1, glm::vec3(1, 1, 1));
+    const auto f = starntFeatures(s);
+    EXPECT_FLOAT_EQ(f[0], 1.0f);
+    EXPECT_EQ(f[1], 2.0f);
+    const auto d = dfaoitFeatures(s);
+    expectVec({d[7], d[8], d[9]}, {0.5f, 0.0f, 0.5f * 0.25f}, 1e-7f, "C_exact2");
+}
+
+TEST(NnFeatures, ThreeFragmentsTailIsTheThirdFragment) {
+    FragmentList list = {frag({0.2f, 0.4f, 0.6f}, 0.4f, 0.9f, 0), frag({1, 0, 0}, 0.5f, 0.1f, 1),
+                         frag({0, 1, 0}, 0.3f, 0.5f, 2)};
+    const PixelSums s = sumsFromFragments(list);
+    EXPECT_EQ(s.count, 3.0f);
+    EXPECT_EQ(s.c1, glm::vec3(1, 0, 0));
+    EXPECT_EQ(s.c2, glm::vec3(0, 1, 0));
+    const auto f = starntFeatures(s);
+    EXPECT_NEAR(f[0], 0.6f, 1e-6);  // T_all / T2 = 1 - a3
+    EXPECT_EQ(f[1], 3.0f);
+    expectVec({f[2], f[3], f[4]}, {0.2f, 0.4f, 0.6f}, 1e-6f, "C_tilde = C3");
+    const auto d = dfaoitFeatures(s);
+    EXPECT_NEAR(d[0], 0.4f, 1e-6);
+    expectVec({d[1], d[2], d[3]}, {0.2f, 0.4f, 0.6f}, 1e-6f, "C_avg");
+    expectVec(starntTarget(preparedFragments(list)), {0.08f, 0.16f, 0.24f}, 1e-7f, "tail target");
+}
+
+TEST(NnFeatures, FourFragmentsHandComputed) {
+    // Sorted: (red .5), (green .25), (blue .5), (white .2)
+    FragmentList list = {frag({1, 1, 1}, 0.2f, 0.9f, 3), frag({0, 0, 1}, 0.5f, 0.6f, 2),
+                         frag({1, 0, 0}, 0.5f, 0.1f, 0), frag({0, 1, 0}, 0.25f, 0.3f, 1)};
+    const PixelSums s = sumsFromFragments(list);
+    EXPECT_EQ(s.count, 4.0f);
+    EXPECT_FLOAT_EQ(s.sumAlpha, 1.45f);
+    expectVec(s.sumAlphaColor, {0.7f, 0.45f, 0.7f}, 1e-6f, "S_aC");
+    expectVec(s.sumColor, {2.0f, 2.0f, 2.0f}, 1e-6f, "S_C");
+    EXPECT_NEAR(s.transmittance, 0.5f * 0.75f * 0.5f * 0.8f, 1e-7);
+    const auto f = starntFeatures(s);
+    EXPECT_NEAR(f[0], 0.4f, 1e-6);  // (1 - .5)(1 - .2)
+    EXPECT_EQ(f[1], 4.0f);
+    // Tail premultiplied (0.2, 0.2, 0.7) over tail alpha 0.7.
+    expectVec({f[2], f[3], f[4]}, {0.2f / 0.7f, 0.2f / 0.7f, 1.0f}, 1e-6f, "C_tilde");
+    const auto d = dfaoitFeatures(s);
+    EXPECT_NEAR(d[0], 0.35f, 1e-6);
+    expectVec({d[1], d[2], d[3]}, {0.5f, 0.5f, 1.0f}, 1e-6f, "C_avg");
+    expectVec({d[4], d[5], d[6]}, {0.7f, 0.45f, 0.7f}, 1e-6f, "S_aC");
+    expectVec({d[7], d[8], d[9]}, {0.5f, 0.125f, 0.0f}, 1e-7f, "C_exact2");
+    const FragmentList sorted = preparedFragments(list);
+    // Tail: blue .5, then white .2 through .5.
+    expectVec(starntTarget(sorted), {0.1f, 0.1f, 0.6f}, 1e-7f, "tail target");
+    expectVec(dfaoitTarget(sorted), compositeOver(sorted, glm::vec3(0.0f)), 1e-7f, "dfaoit target");
+    expectVec(dfaoitTarget(sorted), {0.5f + 0.375f * 0.1f, 0.125f + 0.375f * 0.1f, 0.375f * 0.6f}, 1e-6f,
+              "dfaoit target by hand");
+}
+
+TEST(NnFeatures, OpaqueFrontFragmentGuardsTailTransmittance) {
+    FragmentList list = {frag({1, 0, 0}, 1.0f, 0.1f), frag({0, 1, 0}, 0.5f, 0.2f), frag({0, 0, 1}, 0.5f, 0.3f),
+                         frag({1, 1, 0}, 0.5f, 0.4f)};
+    const PixelSums s = sumsFromFragments(list);
+    EXPECT_EQ(s.transmittance, 0.0f);
+    const auto f = starntFeatures(s);
+    EXPECT_EQ(f[0], 0.0f);  // T2 = 0: guarded to 0 (the tail is invisible anyway)
+    expectVec({f[2], f[3], f[4]}, {0.5f, 0.5f, 0.5f}, 1e-6f, "C_tilde still defined");
+    for (float v : dfaoitFeatures(s)) EXPECT_TRUE(std::isfinite(v));
+}
+
+TEST(NnFeatures, FiveHundredFragmentsGiveFiniteFeatures) {
+    FragmentList list;
+    for (int i = 0; i < 500; ++i)
+        list.push_back(frag({(i % 7) / 7.0f, (i % 3) / 3.0f, 0.9f}, 0.03f + 0.9f * ((i * 37) % 100) / 100.0f,
+                            ((i * 7919) % 1000) / 1000.0f, static_cast<uint32_t>(i)));
+    const PixelSums s = sumsFromFragments(list);
+    EXPECT_EQ(s.count, 500.0f);
+    const auto f = starntFeatures(s);
+    for (float v : f) EXPECT_TRUE(std::isfinite(v));
+    EXPECT_GE(f[0], 0.0f);
+    EXPECT_LE(f[0], 1.0f);
+    for (float v : dfaoitFeatures(s)) EXPECT_TRUE(std::isfinite(v));
+    const glm::vec3 t = starntTarget(preparedFragments(list));
+    for (int k = 0; k < 3; ++k) EXPECT_TRUE(std::isfinite(t[k]));
+}
+
+TEST(NnComposite, UpToThreeFragmentsIsExactWhateverTheWeights) {
+    const glm::vec3 bg(0.9f, 0.6f, 0.3f);
+    const auto lists = syntheticFragmentLists(3000, 11);
+    int tested = 0;
+    for (uint64_t seed = 1; seed <= 3; ++seed) {
+        Network net = makeUntrained(NetworkKind::StarNT, seed);
+        for (auto& layer : net.layers)
+            for (float& b : layer.bias) b += 5.0f;  // a network that outputs something large
+        for (const auto& list : lists) {
+            const FragmentList sorted = preparedFragments(list);
+            if (sorted.size() > 3) continue;
+            const glm::vec3 c = compositeStarnt(net, sumsFromFragments(list), bg);
+            expectVec(c, compositeOver(sorted, bg), 1e-6f, "exact composite");
+            ++tested;
+        }
+    }
+    EXPECT_GT(tested, 30);
+}
+
+TEST(NnComposite, ExactTailGivesTheExactComposite) {
+    const glm::vec3 bg(0.2f, 0.5f, 1.0f);
+    int tested = 0;
+    for (const auto& list : syntheticFragmentLists(2000, 12)) {
+        const FragmentList sorted = preparedFragments(list);
+        if (sorted.size() <= 3) continue;
+        const PixelSums s = sumsFromFragments(list);
+        const float t2 = (1.0f - s.a1) * (1.0f - s.a2);
+        const glm::vec3 c =
+            s.a1 * s.c1 + (1.0f - s.a1) * s.a2 * s.c2 + t2 * starntTarget(sorted) + s.transmittance * bg;
+        expectVec(c, compositeOver(sorted, bg), 2e-6f, "formula");
+        ++tested;
+    }
+    EXPECT_GT(tested, 1000);
+}
+
+TEST(NnComposite, NetworkTailIsUsedBeyondThreeFragments) {
+    // A network that outputs a constant tail (all weights 0, output bias b): C = exact2 + T2 b + T bg.
+    Network net = makeUntrained(NetworkKind::StarNT, 3);
+    for (auto& layer : net.layers) std::fill(layer.weights.begin(), layer.weights.end(), 0.0f);
+    for (auto& layer : net.layers) std::fill(layer.bias.begin(), layer.bias.end(), 0.0f);
+    net.layers.back().bias = {0.25f, 0.5f, 0.75f};
+    FragmentList list = {frag({1, 0, 0}, 0.5f, 0.1f), frag({0, 1, 0}, 0.5f, 0.2f), frag({0, 0, 1}, 0.5f, 0.3f),
+                         frag({1, 1, 1}, 0.5f, 0.4f)};
+    const glm::vec3 c = compositeStarnt(net, sumsFromFragments(list), glm::vec3(1.0f));
+    expectVec(c, glm::vec3(0.5f, 0.25f, 0.0f) + 0.25f * glm::vec3(0.25f, 0.5f, 0.75f) + glm::vec3(0.0625f), 1e-6f,
+              "constant tail");
+}
+
+TEST(NnComposite, DfaoitAddsBackgroundThroughAllLayers) {
+    Network net = makeUntrained(NetworkKind::DFAOIT, 4);
+    for (auto& layer : net.layers) std::fill(layer.weights.begin(), layer.weights.end(), 0.0f);
+    for (auto& layer : net.layers) std::fill(layer.bias.begin(), layer.bias.end(), 0.0f);
+    FragmentList list = {frag({1, 0, 0}, 0.5f, 0.1f), frag({0, 1, 0}, 0.5f, 0.2f)};
+    // Sigmoid(0) = 0.5 everywhere, background through 0.25.
+    expectVec(compositeDfaoit(net, sumsFromFragments(list), glm::vec3(1.0f)), glm::vec3(0.75f), 1e-6f, "dfaoit");
+    // No fragment: the background alone.
+    expectVec(compositeDfaoit(net, sumsFromFragments({}), glm::vec3(0.3f)), glm::vec3(0.3f), 0.0f, "empty");
+}
