@@ -32,7 +32,8 @@ struct Material {
 struct Mesh {
     std::vector<glm::vec3> positions;  // world space
     std::vector<glm::vec3> normals;    // empty: the shader derives face normals
-    std::vector<glm::vec2> uvs;        // empty: no texture coordinates
+    std::vector<glm::vec2> uvs;        // empty: no texture coordinates; glTF convention: (0,0) is the
+                                       // first (top) row of Texture::rgba8 (OBJ v is flipped on load)
     std::vector<glm::vec4> colors;     // COLOR_0, linear RGBA; empty: white
     std::vector<uint32_t> indices;     // triangle list
     int material = 0;                  // index into Scene::materials
@@ -66,6 +67,18 @@ Scene loadObj(const std::string& path);
 // Built-in procedural scenes, deterministic for a given seed. Names: see builtinSceneNames().
 Scene makeBuiltinScene(const std::string& name, uint32_t seed = 1);
 std::vector<std::string> builtinSceneNames();
+
+// The exact layout of the built-in "panes" scene (independent of the seed), so tests can compute the
+// expected composite: pane i is the axis-aligned square [min.x,max.x] x [min.y,max.y] at depth z,
+// facing +Z, drawn as mesh i with material i (unlit, baseColorFactor = color, no vertex colours,
+// no texture). Panes are listed in submission order (not depth order).
+struct BuiltinPane {
+    glm::vec2 min;
+    glm::vec2 max;
+    float z;
+    glm::vec4 color;  // linear RGB + alpha
+};
+std::vector<BuiltinPane> builtinPanes();
 
 // Checks a scene and normalises it. Throws starnt::Error for: indices out of range, index count
 // not a multiple of 3, NaN/Inf positions, attribute arrays of the wrong length, material or

@@ -1,0 +1,248 @@
+// Built-in procedural scenes. All are centred near the origin with radius about 1 and are
+// deterministic for a given seed: random numbers come from std::mt19937 (whose output sequence the
+// standard fixes) mapped to floats by hand, never through std::*_distribution, whose results differ
+// between standard libraries.
+//
+//   tubes  - hairball-like tangle: 150 smooth random curves inside the unit sphere, each swept as a
+//            6-sided tube of radius 0.012 (48 segments), lit, with normals; per-tube colour and
+//            alpha (0.2-0.6) in COLOR_0; one mesh, one white material. 86,400 triangles.
+//            Max depth complexity from +Z at 256x256: 40-50 surfaces (seeds 1-8; 44 for seed 1).
+//   smoke  - 1,200 camera-facing quads (normal +Z, counter-clockwise seen from +Z) with centres in
+//            the box [-0.7,0.7]^2 x [-0.6,0.6], half-size 0.04-0.12, per-particle colour and alpha
+//            (0.05-0.4) in COLOR_0, unlit. 2,400 triangles; max depth complexity 29-36.
+//   panes  - five unlit axis-aligned squares perpendicular to Z; seed-independent, see builtinPanes().
+//   random - 60 large triangles in [-1,1]^3 (roughly equilateral, circumradius 0.28-0.5, centres in
+//            [-0.55,0.55]^2 x [-0.5,0.5], each vertex's z jittered by 0.2), each with one flat COLOR_0
+//            (alpha 0.2-0.8), unlit. Max depth complexity 13-19.
+//   Depth complexities: maximum triangles over one pixel centre, orthographic along -Z over [-1,1]^2.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "starnt/error.hpp"
+#include "starnt/scene.hpp"
+
+namespace starnt {
+
+namespace {
+
+class Rng {
+public:
+    explicit Rng(uint32_t seed) : gen_(seed) {}
+    // Uniform in [0, 1) from the top 24 bits of one mt19937 output.
+    float uniform() { return float(gen_() >> 8) * (1.0f / 16777216.0f); }
+    float range(float lo, float hi) { return lo + (hi - lo) * uniform(); }
+    glm::vec3 inBall(float radius) {
+        for (;;) {
+            // One statement per draw: argument evaluation order is unspecified in C++.
+            const float x = range(-1.0f, 1.0f);
+            const float y = range(-1.0f, 1.0f);
+            const float z = range(-1.0f, 1.0f);
+            const glm::vec3 p(x, y, z);
+            if (glm::dot(p, p) <= 1.0f) return p * radius;
+        }
+    }
+
+private:
+    std::mt19937 gen_;
+};
+
+// A saturated-ish random colour: a random hue at full saturation, mixed with white by `pastel`.
+glm::vec3 randomColor(Rng& rng, float pastel) {
+    const float h = rng.uniform() * 6.0f;
+    const float x = 1.0f - std::fabs(std::fmod(h, 2.0f) - 1.0f);
+    glm::vec3 c;
+    switch (int(h)) {
+        case 0: c = {1, x, 0}; break;
+        case 1: c = {x, 1, 0}; break;
+        case 2: c = {0, 1, x}; break;
+        case 3: c = {0, x, 1}; break;
+        case 4: c = {x, 0, 1}; break;
+        default: c = {1, 0, x}; break;
+    }
+    return glm::mix(c, glm::vec3(1.0f), pastel);
+}
+
+Material blendMaterial(bool unlit) {
+    Material m;
+    m.baseColorFactor = glm::vec4(1.0f);
+    m.unlit = unlit;
+    m.doubleSided = true;
+    m.alphaMode = AlphaMode::Blend;
+    return m;
+}
+
+glm::vec3 catmullRom(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& p3, float t) {
+    const float t2 = t * t, t3 = t2 * t;
+    return 0.5f * ((2.0f * p1) + (-p0 + p2) * t + (2.0f * p0 - 5.0f * p1 + 4.0f * p2 - p3) * t2 +
+                   (-p0 + 3.0f * p1 - 3.0f * p2 + p3) * t3);
+}
+
+glm::vec3 anyPerpendicular(const glm::vec3& t) {
+    const glm::vec3 a = std::fabs(t.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+    return glm::normalize(glm::cross(t, a));
+}
+
+Scene makeTubes(uint32_t seed) {
+    constexpr int kTubes = 150, kControl = 7, kSegments = 48, kSides = 6;
+    constexpr float kRadius = 0.012f, kSphere = 0.85f;
+    Rng rng(seed);
+    Scene s;
+    s.materials.push_back(blendMaterial(false));
+    Mesh mesh;
+    for (int tube = 0; tube < kTubes; ++tube) {
+        std::vector<glm::vec3> ctrl(kControl);
+        for (glm::vec3& c : ctrl) c = rng.inBall(kSphere);
+        const glm::vec3 rgb = randomColor(rng, 0.3f);
+        const glm::vec4 color(rgb, rng.range(0.2f, 0.6f));
+        // Centre line: uniform Catmull-Rom through the inner control points (the ends are guides).
+        std::vector<glm::vec3> line(kSegments + 1);
+        for (int i = 0; i <= kSegments; ++i) {
+            const float u = float(i) / float(kSegments) * float(kControl - 3);
+            const int seg = std::min(int(u), kControl - 4);
+            line[size_t(i)] = catmullRom(ctrl[size_t(seg)], ctrl[size_t(seg + 1)], ctrl[size_t(seg + 2)],
+                                         ctrl[size_t(seg + 3)], u - float(seg));
+        }
+        // Parallel-transport frames avoid twisting.
+        glm::vec3 normal(0.0f);
+        const uint32_t base = uint32_t(mesh.positions.size());
+        for (int i = 0; i <= kSegments; ++i) {
+            const glm::vec3 d = line[size_t(std::min(i + 1, kSegments))] - line[size_t(std::max(i - 1, 0))];
+            const glm::vec3 tangent = glm::length(d) > 1e-12f ? glm::normalize(d) : glm::vec3(0, 0, 1);
+            glm::vec3 nrm = i == 0 ? anyPerpendicular(tangent) : normal - glm::dot(normal, tangent) * tangent;
+            nrm = glm::length(nrm) > 1e-6f ? glm::normalize(nrm) : anyPerpendicular(tangent);
+            normal = nrm;
+            const glm::vec3 binormal = glm::cross(tangent, nrm);
+            for (int k = 0; k < kSides; ++k) {
+                const float a = 2.0f * std::numbers::pi_v<float> * float(k) / float(kSides);
+                const glm::vec3 radial = std::cos(a) * nrm + std::sin(a) * binormal;
+                mesh.positions.push_back(line[size_t(i)] + kRadius * radial);
+                mesh.normals.push_back(radial);
+                mesh.colors.push_back(color);
+            }
+        }
+        // Counter-clockwise seen from outside the tube.
+        for (int i = 0; i < kSegments; ++i)
+            for (int k = 0; k < kSides; ++k) {
+                const uint32_t a = base + uint32_t(i * kSides + k);
+                const uint32_t b = base + uint32_t(i * kSides + (k + 1) % kSides);
+                const uint32_t c = a + kSides, d = b + kSides;
+                mesh.indices.insert(mesh.indices.end(), {a, b, c, b, d, c});
+            }
+    }
+    s.meshes.push_back(std::move(mesh));
+    return s;
+}
+
+Scene makeSmoke(uint32_t seed) {
+    constexpr int kParticles = 1200;
+    Rng rng(seed);
+    Scene s;
+    s.materials.push_back(blendMaterial(true));
+    Mesh mesh;
+    for (int p = 0; p < kParticles; ++p) {
+        const float x = rng.range(-0.7f, 0.7f);
+        const float y = rng.range(-0.7f, 0.7f);
+        const float z = rng.range(-0.6f, 0.6f);
+        const float h = rng.range(0.04f, 0.12f);
+        const float grey = rng.range(0.55f, 0.95f);
+        const glm::vec3 tint = randomColor(rng, 0.85f);
+        const glm::vec4 color(grey * tint, rng.range(0.05f, 0.4f));
+        const uint32_t base = uint32_t(mesh.positions.size());
+        const glm::vec3 corners[4] = {{x - h, y - h, z}, {x + h, y - h, z}, {x + h, y + h, z}, {x - h, y + h, z}};
+        for (const glm::vec3& c : corners) {
+            mesh.positions.push_back(c);
+            mesh.normals.emplace_back(0.0f, 0.0f, 1.0f);
+            mesh.colors.push_back(color);
+        }
+        mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+    }
+    s.meshes.push_back(std::move(mesh));
+    return s;
+}
+
+Scene makePanes() {
+    Scene s;
+    for (const BuiltinPane& p : builtinPanes()) {
+        Material m = blendMaterial(true);
+        m.baseColorFactor = p.color;
+        s.materials.push_back(m);
+        Mesh mesh;
+        mesh.positions = {{p.min.x, p.min.y, p.z}, {p.max.x, p.min.y, p.z}, {p.max.x, p.max.y, p.z}, {p.min.x, p.max.y, p.z}};
+        mesh.normals.assign(4, glm::vec3(0.0f, 0.0f, 1.0f));
+        mesh.indices = {0, 1, 2, 0, 2, 3};
+        mesh.material = int(s.materials.size()) - 1;
+        s.meshes.push_back(std::move(mesh));
+    }
+    return s;
+}
+
+Scene makeRandom(uint32_t seed) {
+    constexpr int kTriangles = 60;
+    Rng rng(seed);
+    Scene s;
+    s.materials.push_back(blendMaterial(true));
+    Mesh mesh;
+    for (int t = 0; t < kTriangles; ++t) {
+        // A roughly equilateral triangle (circumradius 0.6-0.95, jittered angles) around a centre
+        // near the middle, each vertex at its own depth, clamped to the box.
+        const float cx = rng.range(-0.55f, 0.55f);
+        const float cy = rng.range(-0.55f, 0.55f);
+        const glm::vec2 c(cx, cy);
+        const float cz = rng.range(-0.5f, 0.5f);
+        const float r = rng.range(0.28f, 0.5f);
+        const float a0 = rng.range(0.0f, 2.0f * std::numbers::pi_v<float>);
+        const glm::vec3 rgb = randomColor(rng, 0.1f);
+        const glm::vec4 color(rgb, rng.range(0.2f, 0.8f));
+        const uint32_t base = uint32_t(mesh.positions.size());
+        for (int k = 0; k < 3; ++k) {
+            const float a = a0 + float(k) * 2.0f * std::numbers::pi_v<float> / 3.0f + rng.range(-0.3f, 0.3f);
+            const float dz = rng.range(-0.2f, 0.2f);
+            glm::vec3 v(c.x + r * std::cos(a), c.y + r * std::sin(a), cz + dz);
+            v = glm::clamp(v, glm::vec3(-1.0f), glm::vec3(1.0f));
+            mesh.positions.push_back(v);
+            mesh.colors.push_back(color);
+        }
+        mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2});
+    }
+    s.meshes.push_back(std::move(mesh));
+    return s;
+}
+
+}  // namespace
+
+std::vector<BuiltinPane> builtinPanes() {
+    // Submission order differs from depth order on purpose (z: 0, +0.4, -0.4, +0.2, -0.2).
+    return {
+        {{-0.50f, -0.25f}, {0.50f, 0.75f}, 0.0f, {0.0f, 0.0f, 1.0f, 0.6f}},   // blue
+        {{-0.75f, -0.75f}, {0.25f, 0.25f}, 0.4f, {1.0f, 0.0f, 0.0f, 0.5f}},   // red (nearest to +Z camera)
+        {{-0.10f, -0.30f}, {0.70f, 0.50f}, -0.4f, {1.0f, 0.0f, 1.0f, 0.7f}},  // magenta (farthest)
+        {{-0.25f, -0.75f}, {0.75f, 0.25f}, 0.2f, {0.0f, 1.0f, 0.0f, 0.4f}},   // green
+        {{-0.70f, -0.10f}, {0.10f, 0.70f}, -0.2f, {1.0f, 1.0f, 0.0f, 0.3f}},  // yellow
+    };
+}
+
+std::vector<std::string> builtinSceneNames() { return {"tubes", "smoke", "panes", "random"}; }
+
+Scene makeBuiltinScene(const std::string& name, uint32_t seed) {
+    Scene s;
+    if (name == "tubes") {
+        s = makeTubes(seed);
+    } else if (name == "smoke") {
+        s = makeSmoke(seed);
+    } else if (name == "panes") {
+        s = makePanes();
+    } else if (name == "random") {
+        s = makeRandom(seed);
+    } else {
+        std::string list;
+        for (const std::string& n : builtinSceneNames()) list += (list.empty() ? "" : ", ") + n;
+        throw Error("builtin:" + name + ": unknown built-in scene (valid names: " + list + ")");
+    }
+    s.name = name;
+    validateScene(s, "builtin:" + name);
+    return s;
+}
+
+}  // namespace starnt
