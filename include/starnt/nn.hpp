@@ -118,6 +118,9 @@ glm::vec3 compositeDfaoit(const Network& net, const PixelSums& s, glm::vec3 back
 // naming the file and the problem; `expected` additionally requires that kind.
 void saveWeights(const Network& net, const std::filesystem::path& path);
 Network loadWeights(const std::filesystem::path& path, std::optional<NetworkKind> expected = std::nullopt);
+// The same checks on a weights file's text; `what` names its source in error messages.
+Network parseWeights(const std::string& text, const std::string& what,
+                     std::optional<NetworkKind> expected = std::nullopt);
 // Same checks on a network in memory (throws starnt::Error, `what` names its source).
 void validateNetwork(const Network& net, const std::string& what);
 

@@ -143,9 +143,13 @@ Network loadWeights(const std::filesystem::path& path, std::optional<NetworkKind
     if (!std::filesystem::is_regular_file(path) || !in) fail(what, "cannot be opened (missing or unreadable)");
     std::stringstream buffer;
     buffer << in.rdbuf();
+    return parseWeights(buffer.str(), what, expected);
+}
+
+Network parseWeights(const std::string& text, const std::string& what, std::optional<NetworkKind> expected) {
     nlohmann::json j;
     try {
-        j = nlohmann::json::parse(buffer.str());
+        j = nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception& e) {
         fail(what, std::string("is not valid JSON (truncated or corrupt): ") + e.what());
     }
