@@ -1,7 +1,7 @@
 // Trainer: MSE loss, Adam written by hand, mini-batches, forward and backward with Eigen.
 //
-// Why Eigen and not libtorch: the networks are tiny (5-32-16-3 has 755 parameters, 10-32-16-3
-// has 915), so one training step is a handful of (<=32) x (<=32) x 256 matrix products; framework
+// Why Eigen and not libtorch: the networks are tiny (5-32-16-3 has 771 parameters, 10-32-16-3
+// has 931), so one training step is a handful of (<=32) x (<=32) x 256 matrix products; framework
 // overhead per op would dominate in libtorch. Eigen is header-only and already a dependency of the
 // project, whereas libtorch (CPU) is a ~2 GB download / ~500 MB of shared libraries that no
 // distribution package provides. Measured with this trainer (one thread, batch 256, Release build,
@@ -13,7 +13,6 @@
 // Determinism: everything runs on one thread in a fixed order, and all random draws come from
 // detail::Rng (no std distributions), so a seed gives bit-identical weights on every run of the
 // same binary.
-#include <chrono>
 #include <cmath>
 #include <numeric>
 
