@@ -104,8 +104,9 @@ TEST(Cli, BadInputFailsCleanly) {
         expectCleanFailure(base + "--scene " + (dir / "broken.gltf").string(), out, "broken.gltf");
         std::ofstream(dir / "empty.gltf") << R"({"asset":{"version":"2.0"}})";
         expectCleanFailure(base + "--scene " + (dir / "empty.gltf").string(), out, "no renderable triangles");
-        std::ofstream(dir / "nan.obj") << "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n";
-        expectCleanFailure(base + "--scene " + (dir / "nan.obj").string(), out, "NaN");
+        // A zero-area scene (all three vertices on one line).
+        std::ofstream(dir / "flat.obj") << "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n";
+        expectCleanFailure(base + "--scene " + (dir / "flat.obj").string(), out, "no renderable triangles");
         std::ofstream(dir / "range.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 999\n";
         expectCleanFailure(base + "--scene " + (dir / "range.obj").string(), out, "range.obj");
     }

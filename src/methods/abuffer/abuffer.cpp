@@ -12,14 +12,13 @@ public:
         : MethodBase(surface),
           lists_(*this, false, options),
           build_(buildGeometryProgram("abuffer_build", "methods/abuffer/abuffer_build.frag.glsl")),
-          resolve_(buildFullscreenProgram("abuffer_resolve", "methods/abuffer/abuffer_resolve.frag.glsl")) {}
+          resolve_(gl::buildComputeProgram("abuffer_resolve", gl::embeddedSource("methods/abuffer/abuffer_resolve.comp.glsl"))) {}
 
     std::string name() const override { return "abuffer"; }
     size_t gpuMemoryBytes() const override { return outputBytes() + lists_.gpuMemoryBytes(); }
 
     nlohmann::json lastFrameStats() const override {
-        return {{"max_fragments", maxFragments_},
-                {"fragments", lists_.fragmentCount()},
+        return {{"fragments", lists_.fragmentCount()},
                 {"pool_capacity", lists_.capacity()},
                 {"pool_regrows", lists_.regrows()}};
     }
@@ -28,23 +27,18 @@ public:
         resizeOutput(frame.width, frame.height);
         lists_.build(frame, draw, build_);
         gl::ScopedPass timing(frame.timer, "resolve");
-        resetPassState();
-        bindOutputFramebuffer();
         lists_.bindBuffers();
         glUseProgram(resolve_.id());
-        glUniform1i(resolve_.uniform("u_width"), width_);
+        glUniform2i(resolve_.uniform("u_size"), width_, height_);
         glUniform3fv(resolve_.uniform("u_background"), 1, &frame.background[0]);
-        drawFullscreen();
-        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        GLuint counters[4] = {};
-        glGetNamedBufferSubData(lists_.counters().id(), 0, sizeof(counters), counters);
-        maxFragments_ = counters[1];
+        glBindImageTexture(0, output_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glDispatchCompute(GLuint((width_ + 7) / 8), GLuint((height_ + 7) / 8), 1);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
     }
 
 private:
     ABufferLists lists_;
     gl::Program build_, resolve_;
-    unsigned maxFragments_ = 0;
 };
 
 }  // namespace
