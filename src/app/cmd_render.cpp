@@ -53,12 +53,12 @@ void addRenderCommand(CLI::App& app) {
         int width = 1920, height = 1080, frames = 1, peelLayers = 0;
         double alpha = -1.0, alphaCutoff = 0.03, abufferCapMib = 2048;
         bool unlit = false;
-        std::string wboitWeight = "eq10";
+        std::string wboitWeight = "eq10", weights;
     };
     auto a = std::make_shared<Args>();
     CLI::App* cmd = app.add_subcommand("render", "render a scene with one OIT method");
     cmd->add_option("--scene", a->scene, "scene file (.gltf/.glb/.obj) or builtin:NAME")->capture_default_str();
-    cmd->add_option("--method", a->method, "abuffer|peel|unsorted|wboit")->capture_default_str();
+    cmd->add_option("--method", a->method, "abuffer|peel|unsorted|wboit|dfaoit|starnt")->capture_default_str();
     cmd->add_option("--width", a->width, "image width")->capture_default_str();
     cmd->add_option("--height", a->height, "image height")->capture_default_str();
     cmd->add_option("--camera", a->camera, "orbit:DEG[,ELEV] or a camera .json (default: auto-framed)");
@@ -70,6 +70,7 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--peel-layers", a->peelLayers, "peel: layers (0 = until empty, exact)")->capture_default_str();
     cmd->add_option("--wboit-weight", a->wboitWeight, "wboit: eq7|eq8|eq9|eq10")->capture_default_str();
     cmd->add_option("--abuffer-cap-mib", a->abufferCapMib, "abuffer: memory cap in MiB")->capture_default_str();
+    cmd->add_option("--weights", a->weights, "starnt/dfaoit: weights file (default: the shipped weights)");
     cmd->add_option("--out", a->out, "output image (.png, sRGB)")->required();
     cmd->add_option("--exr", a->exr, "also write linear float EXR");
     cmd->add_option("--stats", a->stats, "write statistics JSON");
@@ -100,6 +101,7 @@ void addRenderCommand(CLI::App& app) {
         job.surface.forceUnlit = a->unlit;
         job.methodOptions.peelLayers = a->peelLayers;
         job.methodOptions.wboitWeight = a->wboitWeight;
+        job.methodOptions.weightsPath = a->weights;
         job.methodOptions.abufferMemoryCapBytes = size_t(a->abufferCapMib * 1024.0 * 1024.0);
         RenderOutput out = renderScene(sceneGpu, job);
 
