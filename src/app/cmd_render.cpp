@@ -53,7 +53,7 @@ void addRenderCommand(CLI::App& app) {
         int width = 1920, height = 1080, frames = 1, peelLayers = 0;
         double alpha = -1.0, alphaCutoff = 0.03, abufferCapMib = 2048;
         bool unlit = false;
-        std::string wboitWeight = "eq10", weights;
+        std::string wboitWeight = "eq10", weights, spatial = "off", temporal = "off", scales = "100,100";
     };
     auto a = std::make_shared<Args>();
     CLI::App* cmd = app.add_subcommand("render", "render a scene with one OIT method");
@@ -70,6 +70,9 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--peel-layers", a->peelLayers, "peel: layers (0 = until empty, exact)")->capture_default_str();
     cmd->add_option("--wboit-weight", a->wboitWeight, "wboit: eq7|eq8|eq9|eq10")->capture_default_str();
     cmd->add_option("--abuffer-cap-mib", a->abufferCapMib, "abuffer: memory cap in MiB")->capture_default_str();
+    cmd->add_option("--spatial", a->spatial, "starnt: adaptive tiles (only 'off' in this version)")->capture_default_str();
+    cmd->add_option("--scales", a->scales, "starnt: pass 2/3 scales in % (only 100,100 in this version)")->capture_default_str();
+    cmd->add_option("--temporal", a->temporal, "starnt: temporal reprojection (only 'off' in this version)")->capture_default_str();
     cmd->add_option("--weights", a->weights, "starnt/dfaoit: weights file (default: the shipped weights)");
     cmd->add_option("--out", a->out, "output image (.png, sRGB)")->required();
     cmd->add_option("--exr", a->exr, "also write linear float EXR");
@@ -80,6 +83,10 @@ void addRenderCommand(CLI::App& app) {
         if (a->alpha != -1.0 && !(a->alpha >= 0.0 && a->alpha <= 1.0)) throw Error("--alpha must be in [0, 1]");
         if (!(a->alphaCutoff >= 0.0 && a->alphaCutoff <= 1.0)) throw Error("--alpha-cutoff must be in [0, 1]");
         if (!(a->abufferCapMib > 0.0)) throw Error("--abuffer-cap-mib must be positive");
+        // Adaptive tiles and temporal reprojection are not built yet: say so instead of ignoring the flag.
+        if (a->spatial != "off") throw Error("--spatial " + a->spatial + ": adaptive tiles are not implemented yet; only 'off'");
+        if (a->scales != "100,100") throw Error("--scales " + a->scales + ": reduced-resolution passes are not implemented yet");
+        if (a->temporal != "off") throw Error("--temporal " + a->temporal + ": temporal reprojection is not implemented yet; only 'off'");
         checkOutputPath(a->out, ".png", "--out");
         checkOutputPath(a->exr, ".exr", "--exr");
         checkOutputPath(a->stats, ".json", "--stats");

@@ -1,10 +1,27 @@
 #include "core/gpu_timer.hpp"
 
+#include <chrono>
+#include <string_view>
+
 #include "starnt/error.hpp"
 
 namespace starnt::gl {
 
-GpuPassTimer::GpuPassTimer() = default;
+namespace {
+double nowMs() {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+}  // namespace
+
+bool currentContextIsSoftware() {
+    const GLubyte* r = glGetString(GL_RENDERER);
+    if (!r) return false;
+    std::string_view renderer(reinterpret_cast<const char*>(r));
+    return renderer.find("llvmpipe") != std::string_view::npos || renderer.find("softpipe") != std::string_view::npos ||
+           renderer.find("swrast") != std::string_view::npos;
+}
+
+GpuPassTimer::GpuPassTimer(bool finishAndWallClock) : wallClock_(finishAndWallClock) {}
 
 GpuPassTimer::~GpuPassTimer() {
     for (auto& p : pending_) {
@@ -27,6 +44,14 @@ GLuint GpuPassTimer::acquire() {
 }
 
 void GpuPassTimer::begin(const std::string& pass) {
+    if (wallClock_) {
+        if (open_wall_) throw Error("internal: GpuPassTimer::begin('" + pass + "') inside '" + open_ + "'");
+        glFinish();
+        open_ = pass;
+        open_wall_ = true;
+        openStartMs_ = nowMs();
+        return;
+    }
     if (openQuery_) throw Error("internal: GpuPassTimer::begin('" + pass + "') inside '" + open_ + "'");
     glFlush();
     openQuery_ = acquire();
@@ -35,6 +60,14 @@ void GpuPassTimer::begin(const std::string& pass) {
 }
 
 void GpuPassTimer::end() {
+    if (wallClock_) {
+        if (!open_wall_) throw Error("internal: GpuPassTimer::end without begin");
+        glFinish();
+        wallMs_[open_] += nowMs() - openStartMs_;
+        open_wall_ = false;
+        open_.clear();
+        return;
+    }
     if (!openQuery_) throw Error("internal: GpuPassTimer::end without begin");
     GLuint q = acquire();
     glQueryCounter(q, GL_TIMESTAMP);
@@ -46,6 +79,7 @@ void GpuPassTimer::end() {
 
 std::map<std::string, double> GpuPassTimer::collect() {
     std::map<std::string, double> ms;
+    ms.swap(wallMs_);
     for (const Pending& p : pending_) {
         GLuint64 t0 = 0, t1 = 0;
         glGetQueryObjectui64v(p.begin, GL_QUERY_RESULT, &t0);

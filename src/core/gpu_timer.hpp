@@ -1,8 +1,11 @@
-// Per-pass GPU timing with GL_TIMESTAMP query pairs.
+// Per-pass GPU timing.
 //
-// GL_TIME_ELAPSED returns garbage on Mesa llvmpipe, so each pass is bracketed by two timestamp
-// queries with a glFlush after each (llvmpipe records a timestamp when the flushed work before it
-// has run). Results are read after the frame; medians over frames come from PassTimeLog.
+// On a GPU: GL_TIMESTAMP query pairs around each pass, with a glFlush after each, read after the
+// frame (no stall inside the frame). GL_TIME_ELAPSED is not used: it returns garbage on llvmpipe.
+// On a software rasteriser (llvmpipe) timestamp queries are taken when the command is submitted,
+// not when the binned triangles are rasterised, so they measured e.g. 0.04 ms for an A-buffer build
+// that takes tens of ms; there each pass is bracketed by glFinish and timed with the wall clock
+// (a CPU "GPU" has no pipelining to lose).
 #pragma once
 #include <epoxy/gl.h>
 
@@ -14,8 +17,10 @@ namespace starnt::gl {
 
 class GpuPassTimer {
 public:
-    GpuPassTimer();
+    // `finishAndWallClock`: time passes with glFinish + steady_clock (software rasterisers).
+    explicit GpuPassTimer(bool finishAndWallClock = false);
     ~GpuPassTimer();
+    bool usesWallClock() const { return wallClock_; }
     GpuPassTimer(const GpuPassTimer&) = delete;
     GpuPassTimer& operator=(const GpuPassTimer&) = delete;
 
@@ -34,7 +39,14 @@ private:
     std::vector<Pending> pending_;
     std::string open_;
     GLuint openQuery_ = 0;
+    bool wallClock_ = false;
+    double openStartMs_ = 0.0;
+    bool open_wall_ = false;
+    std::map<std::string, double> wallMs_;
 };
+
+// True when the current context is a software rasteriser (llvmpipe, softpipe, swrast).
+bool currentContextIsSoftware();
 
 // RAII: times the enclosed GL work as `pass` when a timer is given; no-op for nullptr.
 class ScopedPass {

@@ -37,7 +37,7 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
     frame.view = job.camera.view();
     frame.projection = job.camera.projection(float(job.width) / float(job.height));
     frame.alphaCutoff = job.alphaCutoff;
-    gl::GpuPassTimer timer;
+    gl::GpuPassTimer timer(gl::currentContextIsSoftware());
     frame.timer = &timer;
     const DrawCallback draw = scene.callback(frame.view, frame.projection, job.surface);
 
@@ -85,6 +85,7 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
         {"frames", job.frames},
         {"timed_frames", frameMs.size()},
         {"interpolated_frames", 0},
+        {"pass_timing", timer.usesWallClock() ? "glFinish + wall clock (software rasteriser)" : "GL_TIMESTAMP pairs"},
         {"method_stats", methodStats},
     };
     for (auto& [key, value] : methodStats.items()) {
