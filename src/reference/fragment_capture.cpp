@@ -15,7 +15,7 @@ size_t CapturedFrame::maxDepthComplexity() const {
 
 FragmentCapture::FragmentCapture(const SurfaceShader& surface, const MethodOptions& options)
     : MethodBase(surface),
-      lists_(*this, true, options),
+      lists_(true, options),
       build_(buildGeometryProgram("abuffer_capture", "methods/abuffer/abuffer_build.frag.glsl",
                                   "#define STARNT_ABUFFER_CAPTURE_ORDER 1\n")) {}
 

@@ -10,7 +10,7 @@ class AbufferMethod final : public MethodBase {
 public:
     AbufferMethod(const SurfaceShader& surface, const MethodOptions& options)
         : MethodBase(surface),
-          lists_(*this, false, options),
+          lists_(false, options),
           build_(buildGeometryProgram("abuffer_build", "methods/abuffer/abuffer_build.frag.glsl")),
           resolve_(gl::buildComputeProgram("abuffer_resolve", gl::embeddedSource("methods/abuffer/abuffer_resolve.comp.glsl"))) {}
 

@@ -10,7 +10,7 @@
 
 namespace starnt {
 
-ABufferLists::ABufferLists(const MethodBase&, bool captureOrder, const MethodOptions& options)
+ABufferLists::ABufferLists(bool captureOrder, const MethodOptions& options)
     : captureOrder_(captureOrder), options_(options) {}
 
 void ABufferLists::allocate(int width, int height, uint64_t capacity) {

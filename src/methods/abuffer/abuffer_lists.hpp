@@ -14,7 +14,7 @@ namespace starnt {
 
 class ABufferLists {
 public:
-    ABufferLists(const MethodBase& owner, bool captureOrder, const MethodOptions& options);
+    ABufferLists(bool captureOrder, const MethodOptions& options);
 
     void build(const FrameDesc& frame, const DrawCallback& draw, const gl::Program& program);
     // Binds heads, nodes and counters (and orders in capture mode) to their SSBO slots.

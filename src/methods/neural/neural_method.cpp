@@ -28,7 +28,7 @@ public:
                                             "#define STARNT_EPS_TRANSMITTANCE " + floatLiteral(nn::kTransmittanceEpsilon) +
                                                 "\n#define STARNT_EPS_TAIL_ALPHA " + floatLiteral(nn::kTailAlphaEpsilon) +
                                                 "\n" + nn::generateInferenceGlsl(network_))),
-          passes_(*this, pass1_, pass2_, pass3_) {}
+          passes_(pass1_, pass2_, pass3_) {}
 
     std::string name() const override { return config_.name; }
     size_t gpuMemoryBytes() const override { return outputBytes() + passes_.gpuMemoryBytes(); }
@@ -40,7 +40,7 @@ public:
 
     void render(const FrameDesc& frame, const DrawCallback& draw) override {
         resizeOutput(frame.width, frame.height);
-        passes_.run(*this, frame, draw, NeuralPasses::kDefaultPeelEpsilon);
+        passes_.run(frame, draw, NeuralPasses::kDefaultPeelEpsilon);
         gl::ScopedPass timing(frame.timer, "inference");
         resetPassState();
         bindOutputFramebuffer();

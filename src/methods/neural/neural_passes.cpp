@@ -2,8 +2,7 @@
 
 namespace starnt {
 
-NeuralPasses::NeuralPasses(const MethodBase&, const gl::Program& pass1, const gl::Program& pass2,
-                           const gl::Program& pass3)
+NeuralPasses::NeuralPasses(const gl::Program& pass1, const gl::Program& pass2, const gl::Program& pass3)
     : pass1_(pass1), pass2_(pass2), pass3_(pass3) {}
 
 void NeuralPasses::resize(int width, int height) {
@@ -27,7 +26,7 @@ size_t NeuralPasses::gpuMemoryBytes() const {
            colorCount_.bytes() + transmittance_.bytes();
 }
 
-void NeuralPasses::run(const MethodBase&, const FrameDesc& frame, const DrawCallback& draw, float peelEpsilon) {
+void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float peelEpsilon) {
     resize(frame.width, frame.height);
     const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1}, farDepth = 1.0f;
     resetPassState();

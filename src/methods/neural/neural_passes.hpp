@@ -29,10 +29,10 @@ public:
     // would otherwise flicker between first and second with rounding.
     static constexpr float kDefaultPeelEpsilon = 1e-6f;
 
-    NeuralPasses(const MethodBase& owner, const gl::Program& pass1, const gl::Program& pass2, const gl::Program& pass3);
+    NeuralPasses(const gl::Program& pass1, const gl::Program& pass2, const gl::Program& pass3);
 
     void resize(int width, int height);
-    void run(const MethodBase& owner, const FrameDesc& frame, const DrawCallback& draw, float peelEpsilon);
+    void run(const FrameDesc& frame, const DrawCallback& draw, float peelEpsilon);
     void bindInputs() const;  // binds the pass outputs to the NeuralInputUnit units
     size_t gpuMemoryBytes() const;
     const gl::Texture2D& nearestDepth() const { return nearestDepth_; }
