@@ -18,34 +18,18 @@ namespace {
 constexpr int kW = 96, kH = 72;
 const glm::vec3 kBackground(0.2f, 0.5f, 0.9f);
 
-struct SceneSetup {
-    Scene scene;
-    Camera camera;
-    std::unique_ptr<SceneGpu> gpu;
-};
+using SceneSetup = test::TestScene;
 
 SceneSetup makeSetup(const std::string& builtin, float azimuth = 20.0f) {
-    test::glContext();
-    SceneSetup s;
-    s.scene = makeBuiltinScene(builtin, 7);
-    s.camera = orbitCamera(s.scene.bounds(), azimuth, 10.0f, float(kW) / float(kH));
-    s.gpu = std::make_unique<SceneGpu>(s.scene);
-    return s;
+    return SceneSetup(makeBuiltinScene(builtin, 7), kW, kH, azimuth, 10.0f, kBackground);
 }
 
 RenderOutput render(const SceneSetup& s, const std::string& method, MethodOptions options = {}) {
-    RenderJob job;
-    job.method = method;
-    job.methodOptions = options;
-    job.width = kW;
-    job.height = kH;
-    job.camera = s.camera;
-    job.background = kBackground;
-    return renderScene(*s.gpu, job);
+    return s.render(method, options);
 }
 
 CpuRaster cpuReference(const SceneSetup& s) {
-    return rasterizeUnlit(s.scene, s.camera.view(), s.camera.projection(float(kW) / float(kH)), kW, kH, 0.03f);
+    return rasterizeUnlit(s.scene, s.camera.view(), s.camera.projection(s.aspect()), kW, kH, 0.03f);
 }
 
 // Compares the GPU image with `expected(list)` on every unambiguous pixel; returns pixels compared.
@@ -130,13 +114,7 @@ TEST(GlMethods, WboitMatchesMcGuireBavoilFormula) {
 TEST(GlMethods, CaptureSeesTheSameFragmentsAsTheCpuRasteriser) {
     SceneSetup s = makeSetup("random");
     CpuRaster ref = cpuReference(s);
-    FragmentCapture capture(SceneGpu::surfaceShader());
-    FrameDesc frame;
-    frame.width = kW;
-    frame.height = kH;
-    frame.view = s.camera.view();
-    frame.projection = s.camera.projection(float(kW) / float(kH));
-    CapturedFrame got = capture.capture(frame, s.gpu->callback(frame.view, frame.projection, {}));
+    CapturedFrame got = s.capture();
     for (int y = 0; y < kH; ++y) {
         for (int x = 0; x < kW; ++x) {
             if (ref.ambiguous[size_t(y) * kW + size_t(x)]) continue;

@@ -21,43 +21,20 @@ namespace {
 constexpr int kW = 80, kH = 60;
 const glm::vec3 kBackground(0.9f, 0.85f, 0.8f);
 
-struct Case {
-    Scene scene;
-    Camera camera;
-    std::unique_ptr<SceneGpu> gpu;
-    FrameDesc frame;
-};
+using Case = test::TestScene;
 
 Case makeCase(const std::string& builtin, float azimuth) {
-    test::glContext();
-    Case c;
-    c.scene = makeBuiltinScene(builtin, 3);
-    c.camera = orbitCamera(c.scene.bounds(), azimuth, 20.0f, float(kW) / float(kH));
-    c.gpu = std::make_unique<SceneGpu>(c.scene);
-    c.frame.width = kW;
-    c.frame.height = kH;
-    c.frame.background = kBackground;
-    c.frame.view = c.camera.view();
-    c.frame.projection = c.camera.projection(float(kW) / float(kH));
-    return c;
+    return Case(makeBuiltinScene(builtin, 3), kW, kH, azimuth, 20.0f, kBackground);
 }
 
 Image renderWith(const Case& c, const std::string& method, MethodOptions options = {}) {
-    RenderJob job;
-    job.method = method;
-    job.methodOptions = options;
-    job.width = kW;
-    job.height = kH;
-    job.camera = c.camera;
-    job.background = kBackground;
-    return renderScene(*c.gpu, job).image;
+    return c.render(method, options).image;
 }
 
 // GPU image vs CPU composite of the captured fragments, per pixel.
 template <typename Composite>
 void expectGpuMatchesCpu(const Case& c, const Image& gpu, Composite composite, float tolerance) {
-    FragmentCapture capture(SceneGpu::surfaceShader());
-    CapturedFrame frags = capture.capture(c.frame, c.gpu->callback(c.frame.view, c.frame.projection, {}));
+    CapturedFrame frags = c.capture();
     size_t deep = 0, bad = 0;
     for (int y = 0; y < kH; ++y) {
         for (int x = 0; x < kW; ++x) {
@@ -99,8 +76,7 @@ TEST(GlNeural, StarntIsExactWhereThreeOrFewerFragments) {
     Case c = makeCase("panes", 10.0f);
     Image exact = renderWith(c, "abuffer");
     Image neural = renderWith(c, "starnt");
-    FragmentCapture capture(SceneGpu::surfaceShader());
-    CapturedFrame frags = capture.capture(c.frame, c.gpu->callback(c.frame.view, c.frame.projection, {}));
+    CapturedFrame frags = c.capture();
     size_t checked[4] = {};
     for (int y = 0; y < kH; ++y) {
         for (int x = 0; x < kW; ++x) {

@@ -20,15 +20,14 @@ std::string suitePath(const std::string& relative) {
     return dir.empty() ? std::string() : (dir / relative).string();
 }
 
-RenderOutput renderSuite(const Scene& scene, const SceneGpu& gpu, const std::string& method, float alpha) {
-    RenderJob job;
-    job.method = method;
-    job.width = kW;
-    job.height = kH;
-    job.camera = orbitCamera(scene.bounds(), 35.0f, 20.0f, float(kW) / float(kH));
-    job.background = glm::vec3(1.0f);
-    job.surface.alphaOverride = alpha;
-    return renderScene(gpu, job);
+test::TestScene suiteScene(const std::string& file) {
+    return test::TestScene(loadScene(suitePath(file)), kW, kH, 35.0f, 20.0f, glm::vec3(1.0f));
+}
+
+SurfaceOptions alphaOverride(float alpha) {
+    SurfaceOptions surface;
+    surface.alphaOverride = alpha;
+    return surface;
 }
 
 }  // namespace
@@ -38,23 +37,14 @@ TEST(SuiteScenes, AbufferEqualsExactDepthPeeling) {
     test::glContext();
     for (const char* file : {"chess/chess_classic_board.glb", "magic_stars/magic_stars_procedural.glb",
                              "candycat/spot.obj", "tree/tree_grove.glb"}) {
-        Scene scene = loadScene(suitePath(file));
-        SceneGpu gpu(scene);
-        RenderOutput a = renderSuite(scene, gpu, "abuffer", 0.35f);
-        RenderOutput p = renderSuite(scene, gpu, "peel", 0.35f);
+        test::TestScene ts = suiteScene(file);
+        RenderOutput a = ts.render("abuffer", {}, alphaOverride(0.35f));
+        RenderOutput p = ts.render("peel", {}, alphaOverride(0.35f));
         EXPECT_GE(p.stats["method_stats"]["layers"].get<unsigned>(), p.stats["max_fragments"].get<unsigned>()) << file;
         EXPECT_GE(a.stats["max_fragments"].get<unsigned>(), 4u) << file;
         // Coincident surfaces (equal depth) are the one legitimate difference: peeling takes them as
         // one layer. Find those pixels from the captured lists and compare every other pixel.
-        FragmentCapture capture(SceneGpu::surfaceShader());
-        FrameDesc frame;
-        frame.width = kW;
-        frame.height = kH;
-        frame.view = orbitCamera(scene.bounds(), 35.0f, 20.0f, float(kW) / float(kH)).view();
-        frame.projection = orbitCamera(scene.bounds(), 35.0f, 20.0f, float(kW) / float(kH)).projection(float(kW) / float(kH));
-        SurfaceOptions surface;
-        surface.alphaOverride = 0.35f;
-        CapturedFrame frags = capture.capture(frame, gpu.callback(frame.view, frame.projection, surface));
+        CapturedFrame frags = ts.capture(alphaOverride(0.35f));
         size_t compared = 0, coincident = 0;
         for (int y = 0; y < kH; ++y) {
             for (int x = 0; x < kW; ++x) {
@@ -85,10 +75,9 @@ TEST(SuiteScenes, EveryFileRendersWithTheNeuralAndClassicMethods) {
                              "tree/tree_grove.glb", "powerplant/Buggy_flat.glb", "powerplant/GearboxAssy_flat.glb",
                              "hair/hair_procedural.glb", "hairball/hairball_procedural.glb",
                              "smoke/smoke_procedural.glb", "magic_stars/magic_stars_procedural.glb"}) {
-        Scene scene = loadScene(suitePath(file));
-        SceneGpu gpu(scene);
+        test::TestScene ts = suiteScene(file);
         for (const char* method : {"starnt", "wboit"}) {
-            RenderOutput out = renderSuite(scene, gpu, method, 0.4f);
+            RenderOutput out = ts.render(method, {}, alphaOverride(0.4f));
             // Something transparent is on screen: some pixel differs from the white background.
             float darkest = 1.0f;
             for (size_t i = 0; i < out.image.rgba.size(); i += 4) darkest = std::min(darkest, out.image.rgba[i + 1]);

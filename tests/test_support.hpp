@@ -1,7 +1,13 @@
-// Helpers shared by the tests: where the suite scenes are, temporary folders.
+// Helpers shared by the tests: where the suite scenes are, temporary folders, a GL context and a
+// ready-to-render test scene.
 #pragma once
 #include <filesystem>
+#include <memory>
 #include <string>
+
+#include "reference/fragment_capture.hpp"
+#include "render/offscreen_renderer.hpp"
+#include "starnt/camera.hpp"
 
 namespace starnt::test {
 
@@ -19,4 +25,26 @@ class HeadlessGlContext;
 namespace starnt::test {
 // One headless GL context per test process, created on first use.
 HeadlessGlContext& glContext();
+}  // namespace starnt::test
+
+
+namespace starnt::test {
+
+// A scene on the GPU with a fixed orbit camera, size and background: what the GL tests render,
+// capture and compare. Creates the test GL context on first use.
+struct TestScene {
+    Scene scene;
+    Camera camera;
+    std::unique_ptr<SceneGpu> gpu;
+    int width = 0, height = 0;
+    glm::vec3 background{1.0f};
+
+    TestScene(Scene s, int w, int h, float azimuth, float elevation, glm::vec3 bg);
+    float aspect() const { return float(width) / float(height); }
+    FrameDesc frame() const;
+    RenderOutput render(const std::string& method, const MethodOptions& options = {},
+                        const SurfaceOptions& surface = {}) const;
+    CapturedFrame capture(const SurfaceOptions& surface = {}) const;
+};
+
 }  // namespace starnt::test
