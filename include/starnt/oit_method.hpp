@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,25 @@ struct MethodOptions {
     std::string wboitWeight = "eq10";
     // neural methods: weights file; empty = the shipped default for the method
     std::string weightsPath;
+
+    // ---- acceleration of the neural methods (SPEC sections 4-6); the other methods ignore it ----
+    // Adaptive screen-space tiles evaluated after every real frame; their level histogram (w_bar)
+    // sets the pass 2/3 scales of the next real frame. Unset: on for starnt, off for dfaoit.
+    std::optional<bool> spatial;
+    // Fixed pass 2/3 scales per axis in [0.25, 1] for ablations; 0 = chosen by the tiles (1 when
+    // spatial is off).
+    float fixedScale2 = 0.0f;
+    float fixedScale3 = 0.0f;
+    // Full: the network at every pixel. Corners: only at quadtree leaf corners, bilinear inside each
+    // leaf (beyond the paper; needs the tiles, so it turns them on).
+    enum class Inference { Full, Corners };
+    Inference inference = Inference::Full;
+    // Temporal reprojection: one real frame, then temporalInterval - 1 interpolated frames
+    // (1 = off, at most 4). temporalAuto picks the interval from the measured real-frame rate:
+    // clamp(floor(fps_real / targetFps), 1, 4).
+    int temporalInterval = 1;
+    bool temporalAuto = false;
+    double targetFps = 60.0;
 };
 
 class OitMethod {
@@ -72,8 +92,14 @@ public:
     virtual GLuint outputTexture() const = 0;
     // Bytes of every GPU buffer and texture the method holds now.
     virtual size_t gpuMemoryBytes() const = 0;
-    // Method-specific counters of the last frame (e.g. max fragments per pixel).
+    // Method-specific counters of the last frame (e.g. max fragments per pixel). The neural methods
+    // report "interpolated" (bool), "w_bar", "scale_pass2", "scale_pass3" and "tile_levels" (N_0..N_3).
     virtual nlohmann::json lastFrameStats() const { return nlohmann::json::object(); }
+    // The output of the last frame with the tile levels of the last real frame blended over it
+    // (RGBA32F, frame size); 0 when the method has no tiles.
+    virtual GLuint tileOverlayTexture() { return 0; }
+    // Forgets temporal history (last real frame, tile masks), e.g. after a scene change or a cut.
+    virtual void resetHistory() {}
 };
 
 // Names accepted by createMethod, in a stable order.

@@ -1,9 +1,11 @@
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
 
 #include "app/commands.hpp"
+#include "render/method_options.hpp"
 #include "render/offscreen_renderer.hpp"
 #include "starnt/error.hpp"
 #include "starnt/gl_context.hpp"
@@ -30,6 +32,28 @@ void checkOutputPath(const std::string& path, const std::string& wantedExt, cons
     }
 }
 
+// Checks a numbered-output pattern: exactly one %d or %0Nd (N 1..9) and no other '%'.
+bool isFramePattern(const std::string& path) { return path.find('%') != std::string::npos; }
+
+void checkFramePattern(const std::string& path, const char* flag) {
+    size_t pos = path.find('%');
+    size_t end = pos + 1;
+    if (end < path.size() && path[end] == '0') {
+        ++end;
+        if (end < path.size() && path[end] >= '1' && path[end] <= '9') ++end;
+        else end = std::string::npos;
+    }
+    if (end == std::string::npos || end >= path.size() || path[end] != 'd' || path.find('%', end) != std::string::npos) {
+        throw Error(std::string(flag) + " " + path + ": a frame pattern needs exactly one %d or %0Nd (e.g. frame_%04d.png)");
+    }
+}
+
+std::string framePath(const std::string& pattern, int frame) {
+    char buf[4096];
+    std::snprintf(buf, sizeof buf, pattern.c_str(), frame);
+    return buf;
+}
+
 }  // namespace
 
 glm::vec3 parseColor(const std::string& text, const char* flag) {
@@ -49,11 +73,13 @@ glm::vec3 parseColor(const std::string& text, const char* flag) {
 
 void addRenderCommand(CLI::App& app) {
     struct Args {
-        std::string scene = "builtin:tubes", method = "abuffer", camera, background = "1,1,1", out, exr, stats;
+        std::string scene = "builtin:tubes", method = "abuffer", camera, cameraPath, background = "1,1,1", out, exr, stats;
+        std::string frameStats, tilesImage, referenceMethod, inference = "full";
+        double targetFps = 60.0;
         int width = 1920, height = 1080, frames = 1, peelLayers = 0;
         double alpha = -1.0, alphaCutoff = 0.03, abufferCapMib = 2048;
         bool unlit = false;
-        std::string wboitWeight = "eq10", weights, spatial = "off", temporal = "off", scales = "100,100";
+        std::string wboitWeight = "eq10", weights, spatial, temporal = "off", scales = "auto";
     };
     auto a = std::make_shared<Args>();
     CLI::App* cmd = app.add_subcommand("render", "render a scene with one OIT method");
@@ -70,11 +96,18 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--peel-layers", a->peelLayers, "peel: layers (0 = until empty, exact)")->capture_default_str();
     cmd->add_option("--wboit-weight", a->wboitWeight, "wboit: eq7|eq8|eq9|eq10")->capture_default_str();
     cmd->add_option("--abuffer-cap-mib", a->abufferCapMib, "abuffer: memory cap in MiB")->capture_default_str();
-    cmd->add_option("--spatial", a->spatial, "starnt: adaptive tiles (only 'off' in this version)")->capture_default_str();
-    cmd->add_option("--scales", a->scales, "starnt: pass 2/3 scales in % (only 100,100 in this version)")->capture_default_str();
-    cmd->add_option("--temporal", a->temporal, "starnt: temporal reprojection (only 'off' in this version)")->capture_default_str();
+    cmd->add_option("--camera-path", a->cameraPath, "sequence camera: orbit:START,END[,ELEV] or a keyframe .json");
+    cmd->add_option("--spatial", a->spatial, "starnt/dfaoit: adaptive tiles on|off (default: on for starnt)");
+    cmd->add_option("--scales", a->scales, "starnt/dfaoit: pass 2/3 scales, auto or P2,P3 in %")->capture_default_str();
+    cmd->add_option("--inference", a->inference, "starnt/dfaoit: full|corners")->capture_default_str();
+    cmd->add_option("--temporal", a->temporal, "starnt/dfaoit: off|auto|K (K in 1..4)")->capture_default_str();
+    cmd->add_option("--target-fps", a->targetFps, "frame rate that --temporal auto aims for")->capture_default_str();
+    cmd->add_option("--tiles-image", a->tilesImage, "write the tile levels over the last frame (.png)");
+    cmd->add_option("--frame-stats", a->frameStats, "write one JSON line per frame (.jsonl)");
+    cmd->add_option("--reference-method", a->referenceMethod,
+                    "also render this method (e.g. abuffer) per frame and record MSE/FLIP against it");
     cmd->add_option("--weights", a->weights, "starnt/dfaoit: weights file (default: the shipped weights)");
-    cmd->add_option("--out", a->out, "output image (.png, sRGB)")->required();
+    cmd->add_option("--out", a->out, "output image (.png, sRGB); frame_%04d.png writes every frame")->required();
     cmd->add_option("--exr", a->exr, "also write linear float EXR");
     cmd->add_option("--stats", a->stats, "write statistics JSON");
     cmd->callback([a] {
@@ -83,12 +116,26 @@ void addRenderCommand(CLI::App& app) {
         if (a->alpha != -1.0 && !(a->alpha >= 0.0 && a->alpha <= 1.0)) throw Error("--alpha must be in [0, 1]");
         if (!(a->alphaCutoff >= 0.0 && a->alphaCutoff <= 1.0)) throw Error("--alpha-cutoff must be in [0, 1]");
         if (!(a->abufferCapMib > 0.0)) throw Error("--abuffer-cap-mib must be positive");
-        // Adaptive tiles and temporal reprojection are not built yet: say so instead of ignoring the flag.
-        if (a->spatial != "off") throw Error("--spatial " + a->spatial + ": adaptive tiles are not implemented yet; only 'off'");
-        if (a->scales != "100,100") throw Error("--scales " + a->scales + ": reduced-resolution passes are not implemented yet");
-        if (a->temporal != "off") throw Error("--temporal " + a->temporal + ": temporal reprojection is not implemented yet; only 'off'");
-        checkOutputPath(a->out, ".png", "--out");
-        checkOutputPath(a->exr, ".exr", "--exr");
+        MethodOptions options;
+        parseSpatialOption(a->spatial, options);
+        parseScalesOption(a->scales, options);
+        parseInferenceOption(a->inference, options);
+        parseTemporalOption(a->temporal, options);
+        parseTargetFpsOption(a->targetFps, options);
+        if (!a->camera.empty() && !a->cameraPath.empty()) throw Error("--camera and --camera-path exclude each other");
+        const bool numbered = isFramePattern(a->out);
+        if (numbered) checkFramePattern(a->out, "--out");
+        if (isFramePattern(a->exr)) checkFramePattern(a->exr, "--exr");
+        checkOutputPath(numbered ? framePath(a->out, 0) : a->out, ".png", "--out");
+        checkOutputPath(a->tilesImage, ".png", "--tiles-image");
+        checkOutputPath(a->frameStats, ".jsonl", "--frame-stats");
+        if (!a->referenceMethod.empty()) {
+            const auto names = methodNames();
+            if (std::find(names.begin(), names.end(), a->referenceMethod) == names.end()) {
+                throw Error("--reference-method '" + a->referenceMethod + "' is not a method (see `starnt methods`)");
+            }
+        }
+        checkOutputPath(isFramePattern(a->exr) ? framePath(a->exr, 0) : a->exr, ".exr", "--exr");
         checkOutputPath(a->stats, ".json", "--stats");
         const glm::vec3 background = parseColor(a->background, "--background");
 
@@ -103,20 +150,38 @@ void addRenderCommand(CLI::App& app) {
         job.frames = a->frames;
         job.background = background;
         job.alphaCutoff = float(a->alphaCutoff);
-        job.camera = parseCameraSpec(a->camera, scene.bounds(), float(a->width) / float(a->height));
+        const float aspect = float(a->width) / float(a->height);
+        job.camera = parseCameraSpec(a->camera, scene.bounds(), aspect);
+        if (!a->cameraPath.empty()) job.path = parseCameraPathSpec(a->cameraPath, scene.bounds(), aspect);
+        job.referenceMethod = a->referenceMethod;
+        job.readTileOverlay = !a->tilesImage.empty();
         if (a->alpha >= 0.0) job.surface.alphaOverride = float(a->alpha);
         job.surface.forceUnlit = a->unlit;
+        job.methodOptions = options;
         job.methodOptions.peelLayers = a->peelLayers;
         job.methodOptions.wboitWeight = a->wboitWeight;
         job.methodOptions.weightsPath = a->weights;
         job.methodOptions.abufferMemoryCapBytes = size_t(a->abufferCapMib * 1024.0 * 1024.0);
+        std::string frameLines;
+        const bool numberedExr = isFramePattern(a->exr);
+        if (numbered || numberedExr) job.readEveryFrame = true;
+        job.onFrame = [&](const FrameRecord& record) {
+            frameLines += record.stats.dump() + "\n";
+            if (numbered) saveImage(*record.image, framePath(a->out, record.index));
+            if (numberedExr) saveImage(*record.image, framePath(a->exr, record.index));
+        };
         RenderOutput out = renderScene(sceneGpu, job);
+        if (!a->tilesImage.empty()) {
+            if (!out.tileOverlay) throw Error("--tiles-image: method " + a->method + " has no tiles (use starnt with --spatial on or --inference corners)");
+            saveImage(*out.tileOverlay, a->tilesImage);
+        }
 
         out.stats["scene"] = a->scene;
         out.stats["triangles"] = scene.triangleCount();
         out.stats["gl_renderer"] = context.info().renderer;
-        saveImage(out.image, a->out);
-        if (!a->exr.empty()) saveImage(out.image, a->exr);
+        if (!numbered) saveImage(out.image, a->out);
+        if (!a->exr.empty() && !numberedExr) saveImage(out.image, a->exr);
+        if (!a->frameStats.empty()) writeFileAtomic(a->frameStats, frameLines);
         if (!a->stats.empty()) writeFileAtomic(a->stats, out.stats.dump(2) + "\n");
         std::printf("%s: %s %dx%d, frame %.2f ms (median of %d), max %u fragments/pixel -> %s\n", a->method.c_str(),
                     a->scene.c_str(), a->width, a->height, out.stats["frame_ms"].get<double>(),

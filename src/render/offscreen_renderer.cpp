@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <numeric>
 
+#include "core/gl_util.hpp"
 #include "core/gpu_timer.hpp"
 #include "reference/fragment_capture.hpp"
 #include "starnt/error.hpp"
+#include "starnt/metrics.hpp"
 
 namespace starnt {
 
@@ -24,43 +27,98 @@ double median(std::vector<double> v) {
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+double mean(const std::vector<double>& v) {
+    return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / double(v.size());
+}
+
+namespace {
+
+nlohmann::json nullableMean(const std::vector<double>& v) { return v.empty() ? nlohmann::json(nullptr) : nlohmann::json(mean(v)); }
+
+}  // namespace
+
 RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
     checkImageSize(job.width, job.height);
     if (job.frames < 1) throw Error("--frames must be at least 1");
     const SurfaceShader surface = SceneGpu::surfaceShader();
     auto method = createMethod(job.method, surface, job.methodOptions);
+    std::unique_ptr<OitMethod> reference;
+    if (!job.referenceMethod.empty()) reference = createMethod(job.referenceMethod, surface, {});
 
+    const float aspect = float(job.width) / float(job.height);
     FrameDesc frame;
     frame.width = job.width;
     frame.height = job.height;
     frame.background = job.background;
-    frame.view = job.camera.view();
-    frame.projection = job.camera.projection(float(job.width) / float(job.height));
     frame.alphaCutoff = job.alphaCutoff;
     gl::GpuPassTimer timer(gl::currentContextIsSoftware());
-    frame.timer = &timer;
-    const DrawCallback draw = scene.callback(frame.view, frame.projection, job.surface);
 
-    std::vector<double> frameMs;
+    // Per-frame timings; the first frame compiles shaders on first use and is excluded when there
+    // are others.
+    std::vector<double> frameMs, realMs, interpolatedMs;
     std::map<std::string, std::vector<double>> passMs;
+    std::vector<double> mseReal, mseInterp, flipReal, flipInterp;
+    int interpolatedFrames = 0;
+    Image image, referenceImage;
+    DrawCallback draw;
     for (int i = 0; i < job.frames; ++i) {
+        const Camera camera = job.path ? job.path->frame(i, job.frames) : job.camera;
+        frame.view = camera.view();
+        frame.projection = camera.projection(aspect);
+        frame.timer = &timer;
+        draw = scene.callback(frame.view, frame.projection, job.surface);
+
         glFinish();
         auto t0 = std::chrono::steady_clock::now();
         method->render(frame, draw);
         glFinish();
         auto t1 = std::chrono::steady_clock::now();
+        const double ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
         auto passes = timer.collect();
-        // The first frame compiles shaders on first use; it is excluded when there are others.
+        const nlohmann::json methodStats = method->lastFrameStats();
+        const bool interpolated = methodStats.value("interpolated", false);
+        interpolatedFrames += interpolated ? 1 : 0;
+
+        FrameRecord record;
+        record.index = i;
+        record.camera = camera;
+        record.stats = {{"frame", i}, {"frame_ms", ms}, {"interpolated", interpolated}, {"pass_ms", passes}};
+        for (const char* key : {"scale_pass2", "scale_pass3", "w_bar", "tile_levels"}) {
+            if (methodStats.contains(key)) record.stats[key] = methodStats[key];
+        }
+        const bool last = i + 1 == job.frames;
+        if (job.readEveryFrame || reference || last) image = gl::readTexture(method->outputTexture(), job.width, job.height);
+        if (reference) {
+            FrameDesc untimed = frame;
+            untimed.timer = nullptr;
+            reference->render(untimed, draw);
+            referenceImage = gl::readTexture(reference->outputTexture(), job.width, job.height);
+            const double mse = mseSrgb(referenceImage, image);
+            const double flipMean = flip(referenceImage, image, job.flipPixelsPerDegree).mean;
+            record.stats["mse"] = mse;
+            record.stats["flip"] = flipMean;
+            (interpolated ? mseInterp : mseReal).push_back(mse);
+            (interpolated ? flipInterp : flipReal).push_back(flipMean);
+        }
+        if (job.onFrame) {
+            record.image = (job.readEveryFrame || reference) ? &image : nullptr;
+            record.reference = reference ? &referenceImage : nullptr;
+            job.onFrame(record);
+        }
         if (i == 0 && job.frames > 1) continue;
-        frameMs.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
-        for (auto& [name, ms] : passes) passMs[name].push_back(ms);
+        frameMs.push_back(ms);
+        (interpolated ? interpolatedMs : realMs).push_back(ms);
+        for (auto& [name, value] : passes) passMs[name].push_back(value);
     }
 
     RenderOutput out;
-    out.image = gl::readTexture(method->outputTexture(), job.width, job.height);
+    out.image = std::move(image);
+    if (job.readTileOverlay) {
+        if (GLuint overlay = method->tileOverlayTexture()) out.tileOverlay = gl::readTexture(overlay, job.width, job.height);
+    }
 
-    // Depth complexity is measured by a separate counting pass, outside the timed frames, so every
-    // method reports the same max_fragments.
+    // Depth complexity is measured by a separate counting pass at the last camera, outside the
+    // timed frames, so every method reports the same max_fragments.
     DepthComplexityCounter counter(surface);
     FrameDesc untimed = frame;
     untimed.timer = nullptr;
@@ -74,6 +132,9 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
         {"width", job.width},
         {"height", job.height},
         {"frame_ms", median(frameMs)},
+        {"frame_ms_mean", mean(frameMs)},
+        {"real_frame_ms", realMs.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(realMs))},
+        {"interpolated_frame_ms", interpolatedMs.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(interpolatedMs))},
         {"pass_ms", passes},
         {"scale_pass2", 1.0},
         {"scale_pass3", 1.0},
@@ -84,12 +145,20 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
         {"scene_memory_bytes", scene.gpuMemoryBytes()},
         {"frames", job.frames},
         {"timed_frames", frameMs.size()},
-        {"interpolated_frames", 0},
+        {"interpolated_frames", interpolatedFrames},
         {"pass_timing", timer.usesWallClock() ? "glFinish + wall clock (software rasteriser)" : "GL_TIMESTAMP pairs"},
         {"method_stats", methodStats},
     };
     for (auto& [key, value] : methodStats.items()) {
-        if (out.stats.contains(key) && key != "max_fragments") out.stats[key] = value;
+        if (out.stats.contains(key) && key != "max_fragments" && key != "frames") out.stats[key] = value;
+    }
+    if (reference) {
+        out.stats["reference_method"] = job.referenceMethod;
+        out.stats["error"] = {
+            {"real", {{"frames", mseReal.size()}, {"mse_mean", nullableMean(mseReal)}, {"flip_mean", nullableMean(flipReal)}}},
+            {"interpolated",
+             {{"frames", mseInterp.size()}, {"mse_mean", nullableMean(mseInterp)}, {"flip_mean", nullableMean(flipInterp)}}},
+        };
     }
     return out;
 }

@@ -1,31 +1,55 @@
-// Renders a scene with one method for N frames and gathers the SPEC section 9 statistics.
-// This is what `starnt render`, the tests and the benchmarks call.
+// Renders a scene with one method for N frames (one camera, or a camera path) and gathers the
+// SPEC section 9 statistics, optionally per frame and against a reference method at the same
+// cameras. This is what `starnt render`, `starnt bench`, the tests and the viewer's screenshots call.
 #pragma once
+#include <functional>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "render/scene_gpu.hpp"
 #include "starnt/camera.hpp"
+#include "starnt/camera_path.hpp"
 #include "starnt/image.hpp"
 
 namespace starnt {
+
+// One displayed frame of a sequence, handed to RenderJob::onFrame right after it was rendered.
+struct FrameRecord {
+    int index = 0;
+    Camera camera;
+    // "frame", "frame_ms", "interpolated", "pass_ms", "scale_pass2", "scale_pass3", "w_bar" and,
+    // with a reference method, "mse" and "flip".
+    nlohmann::json stats;
+    const Image* image = nullptr;      // linear; set when RenderJob::readEveryFrame
+    const Image* reference = nullptr;  // set when RenderJob::referenceMethod is not empty
+};
 
 struct RenderJob {
     std::string method = "abuffer";
     MethodOptions methodOptions;
     int width = 1920;
     int height = 1080;
-    Camera camera;
+    Camera camera;                   // used when there is no path
+    std::optional<CameraPath> path;  // frame i uses path->frame(i, frames)
     glm::vec3 background{1.0f};
     float alphaCutoff = 0.03f;
     SurfaceOptions surface;
     int frames = 1;  // timings are medians over the frames after the first (shader warm-up)
+    // When set (e.g. "abuffer"), every frame is also rendered (untimed) with this method at the same
+    // camera and compared: per-frame "mse"/"flip", and means split into real and interpolated frames.
+    std::string referenceMethod;
+    double flipPixelsPerDegree = 67.02;
+    bool readEveryFrame = false;  // read each frame back (FrameRecord::image)
+    bool readTileOverlay = false;  // RenderOutput::tileOverlay of the last frame (methods with tiles)
+    std::function<void(const FrameRecord&)> onFrame;
 };
 
 struct RenderOutput {
-    Image image;           // last frame, linear
-    nlohmann::json stats;  // SPEC section 9 fields plus method counters
+    Image image;                         // last frame, linear
+    std::optional<Image> tileOverlay;    // last frame's tile levels over the image, when asked and available
+    nlohmann::json stats;                // SPEC section 9 fields plus method counters
 };
 
 // Largest width or height accepted (SPEC: over 16384 is an error).
@@ -36,5 +60,6 @@ void checkImageSize(int width, int height);
 RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job);
 
 double median(std::vector<double> values);
+double mean(const std::vector<double>& values);
 
 }  // namespace starnt

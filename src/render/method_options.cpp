@@ -1,0 +1,75 @@
+#include "render/method_options.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "starnt/error.hpp"
+
+namespace starnt {
+
+void parseSpatialOption(const std::string& text, MethodOptions& options) {
+    if (text.empty()) options.spatial.reset();
+    else if (text == "on") options.spatial = true;
+    else if (text == "off") options.spatial = false;
+    else throw Error("--spatial '" + text + "': expected on or off");
+}
+
+void parseScalesOption(const std::string& text, MethodOptions& options) {
+    if (text == "auto") {
+        options.fixedScale2 = options.fixedScale3 = 0.0f;
+        return;
+    }
+    std::istringstream in(text);
+    double p2 = 0, p3 = 0;
+    char comma = 0, extra = 0;
+    if (!(in >> p2 >> comma >> p3) || comma != ',' || (in >> extra)) {
+        throw Error("--scales '" + text + "': expected auto or P2,P3 in percent (e.g. 100,50)");
+    }
+    if (!(p2 >= 25.0 && p2 <= 100.0 && p3 >= 25.0 && p3 <= 100.0)) {
+        throw Error("--scales '" + text + "': each scale must be within 25..100 percent");
+    }
+    options.fixedScale2 = float(p2 / 100.0);
+    options.fixedScale3 = float(p3 / 100.0);
+}
+
+void parseInferenceOption(const std::string& text, MethodOptions& options) {
+    if (text == "full") options.inference = MethodOptions::Inference::Full;
+    else if (text == "corners") options.inference = MethodOptions::Inference::Corners;
+    else throw Error("--inference '" + text + "': expected full or corners");
+}
+
+void parseTemporalOption(const std::string& text, MethodOptions& options) {
+    options.temporalAuto = false;
+    if (text == "off") {
+        options.temporalInterval = 1;
+    } else if (text == "auto") {
+        options.temporalAuto = true;
+        options.temporalInterval = 1;
+    } else if (text.size() == 1 && text[0] >= '1' && text[0] <= '4') {
+        options.temporalInterval = text[0] - '0';
+    } else {
+        throw Error("--temporal '" + text + "': expected off, auto or an interval K in 1..4");
+    }
+}
+
+void parseTargetFpsOption(double fps, MethodOptions& options) {
+    if (!std::isfinite(fps) || !(fps > 0.0) || fps > 1000.0) throw Error("--target-fps must be in (0, 1000]");
+    options.targetFps = fps;
+}
+
+std::string spatialText(const MethodOptions& options) {
+    return options.spatial ? (*options.spatial ? "on" : "off") : "default";
+}
+
+std::string scalesText(const MethodOptions& options) {
+    if (options.fixedScale2 <= 0.0f) return "auto";
+    return std::to_string(int(std::lround(options.fixedScale2 * 100))) + "," +
+           std::to_string(int(std::lround(options.fixedScale3 * 100)));
+}
+
+std::string temporalText(const MethodOptions& options) {
+    if (options.temporalAuto) return "auto";
+    return options.temporalInterval <= 1 ? "off" : std::to_string(options.temporalInterval);
+}
+
+}  // namespace starnt

@@ -1,0 +1,26 @@
+// Text forms of the acceleration options (SPEC section 9), shared by `render`, `bench` and `view`
+// so every front end accepts and rejects exactly the same spellings.
+#pragma once
+#include <string>
+
+#include "starnt/oit_method.hpp"
+
+namespace starnt {
+
+// "on" | "off" | "" (method default).
+void parseSpatialOption(const std::string& text, MethodOptions& options);
+// "auto" | "P2,P3" in percent, each in 25..100 (e.g. "100,50").
+void parseScalesOption(const std::string& text, MethodOptions& options);
+// "full" | "corners".
+void parseInferenceOption(const std::string& text, MethodOptions& options);
+// "off" | "auto" | "K" with K in 1..4.
+void parseTemporalOption(const std::string& text, MethodOptions& options);
+// Target frame rate for --temporal auto: finite and in (0, 1000].
+void parseTargetFpsOption(double fps, MethodOptions& options);
+
+// The inverse, for stats and the viewer: e.g. "on"/"off", "auto" or "100,50", "auto" or "2".
+std::string spatialText(const MethodOptions& options);
+std::string scalesText(const MethodOptions& options);
+std::string temporalText(const MethodOptions& options);
+
+}  // namespace starnt
