@@ -61,7 +61,7 @@ public:
     int width() const { return width_; }
     int height() const { return height_; }
     GLenum format() const { return format_; }
-    size_t bytes() const { return size_t(width_) * size_t(height_) * bytesPerTexel(format_); }
+    size_t bytes() const { return handle_ ? size_t(width_) * size_t(height_) * bytesPerTexel(format_) : 0; }
     explicit operator bool() const { return bool(handle_); }
 
 private:

@@ -11,6 +11,11 @@
 #define STARNT_SSBO_ABUFFER_NODES 1
 #define STARNT_SSBO_ABUFFER_COUNTERS 2
 #define STARNT_SSBO_ABUFFER_ORDERS 3
+// Adaptive tiles: masks read (previous / current), masks written, per-tile occupancy, histogram.
+#define STARNT_SSBO_TILE_MASKS_IN 4
+#define STARNT_SSBO_TILE_MASKS_OUT 5
+#define STARNT_SSBO_TILE_OCCUPANCY 6
+#define STARNT_SSBO_TILE_HISTOGRAM 7
 
 // A-buffer list terminator.
 #define STARNT_ABUFFER_END 0xFFFFFFFFu

@@ -14,8 +14,14 @@ gl::Program MethodBase::buildGeometryProgram(const std::string& label, const std
 
 gl::Program MethodBase::buildFullscreenProgram(const std::string& label, const std::string& fragmentFile,
                                                const std::string& defines) const {
-    return gl::buildProgram(label, "#include \"methods/common/fullscreen.vert.glsl\"\n",
-                            "#include \"" + fragmentFile + "\"\n", defines);
+    return buildFullscreenProgram(label, std::vector<std::string>{fragmentFile}, defines);
+}
+
+gl::Program MethodBase::buildFullscreenProgram(const std::string& label, const std::vector<std::string>& fragmentFiles,
+                                               const std::string& defines) const {
+    std::string fragment;
+    for (const auto& file : fragmentFiles) fragment += "#include \"" + file + "\"\n";
+    return gl::buildProgram(label, "#include \"methods/common/fullscreen.vert.glsl\"\n", fragment, defines);
 }
 
 bool MethodBase::resizeOutput(int width, int height) {
@@ -45,6 +51,7 @@ void resetPassState() {
     glDepthMask(GL_TRUE);
     glDepthFunc(GL_LESS);
     glDisable(GL_CULL_FACE);
+    glDisable(GL_SCISSOR_TEST);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glBlendEquation(GL_FUNC_ADD);
 }

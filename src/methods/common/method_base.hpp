@@ -26,6 +26,9 @@ protected:
     // Full-screen program: methods/common/fullscreen.vert.glsl + `fragmentFile`.
     gl::Program buildFullscreenProgram(const std::string& label, const std::string& fragmentFile,
                                        const std::string& defines = {}) const;
+    // The same with several fragment files concatenated in order (e.g. features + a main).
+    gl::Program buildFullscreenProgram(const std::string& label, const std::vector<std::string>& fragmentFiles,
+                                       const std::string& defines = {}) const;
 
     // (Re)allocates the output target when the size changed; returns true when it did, so the
     // method reallocates its own targets too.

@@ -6,7 +6,7 @@ namespace starnt {
 
 const NeuralMethodConfig& dfaoitConfig() {
     static const NeuralMethodConfig config{"dfaoit", nn::NetworkKind::DFAOIT, "methods/dfaoit/dfaoit_composite.frag.glsl",
-                                           "methods/dfaoit/dfaoit_weights.json"};
+                                           "methods/dfaoit/dfaoit_weights.json", false};
     return config;
 }
 

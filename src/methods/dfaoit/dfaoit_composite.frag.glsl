@@ -1,18 +1,15 @@
-// DFAOIT baseline (Tsopouridis et al. 2024), low-end variant, at full resolution:
+// DFAOIT baseline (Tsopouridis et al. 2024), low-end variant, features and composite, read by the
+// inference passes in methods/neural/infer_*.frag.glsl:
 //   inputs x = [a_avg, C_avg.rgb, sum a C (rgb), C_exact2.rgb] (averages over the N-2 tail fragments)
 //   C = f(x) + T_all * C_bg, where f predicts the whole transparent colour (sigmoid output).
 // Pixels without fragments take the background only (f is not evaluated there).
 #include "methods/neural/neural_inputs.glsl"
 
 uniform vec3 u_background;
-layout(location = 0) out vec4 outColor;
 
-void main() {
-    PixelSums s = readPixelSums(ivec2(gl_FragCoord.xy));
-    if (s.count < 0.5) {
-        outColor = vec4(u_background, 1.0);
-        return;
-    }
+bool networkApplies(PixelSums s) { return s.count >= 0.5; }
+
+void networkInputs(PixelSums s, out float x[STARNT_NN_INPUTS]) {
     float tailCount = s.count - 2.0;
     float aAvg = 0.0;
     vec3 cAvg = vec3(0.0);
@@ -21,7 +18,6 @@ void main() {
         cAvg = max(s.sumColor - s.c1 - s.c2, vec3(0.0)) / tailCount;
     }
     vec3 exact2 = exactTwo(s);
-    float x[STARNT_NN_INPUTS];
     x[0] = aAvg;
     x[1] = cAvg.r;
     x[2] = cAvg.g;
@@ -32,5 +28,9 @@ void main() {
     x[7] = exact2.r;
     x[8] = exact2.g;
     x[9] = exact2.b;
-    outColor = vec4(nnEvaluate(x) + s.transmittance * u_background, 1.0);
+}
+
+vec3 compositePixel(PixelSums s, vec3 networkOutput) {
+    if (s.count < 0.5) return u_background;
+    return networkOutput + s.transmittance * u_background;
 }

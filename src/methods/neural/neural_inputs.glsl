@@ -1,5 +1,6 @@
-// Reads what passes 1-3 left for this pixel (the GPU side of nn::PixelSums) and computes the
-// guarded quantities both networks use. STARNT_EPS_TRANSMITTANCE and STARNT_EPS_TAIL_ALPHA are
+// Reads what passes 1-3 left for this pixel (the GPU side of nn::PixelSums), passes 2 and 3
+// upsampled to full resolution when they ran at a reduced scale, and computes the guarded
+// quantities both networks use. STARNT_EPS_TRANSMITTANCE and STARNT_EPS_TAIL_ALPHA are
 // defined from nn::kTransmittanceEpsilon / nn::kTailAlphaEpsilon when the program is built, so the
 // CPU reference and the shader share one definition.
 layout(binding = 0) uniform sampler2D u_nearest;        // C1, a1
@@ -7,6 +8,7 @@ layout(binding = 1) uniform sampler2D u_second;         // C2, a2
 layout(binding = 2) uniform sampler2D u_alphaColor;     // sum a C, sum a
 layout(binding = 3) uniform sampler2D u_colorCount;     // sum C, N
 layout(binding = 4) uniform sampler2D u_transmittance;  // prod (1 - a)
+#include "methods/neural/upsample.glsl"
 
 struct PixelSums {
     vec3 c1;
@@ -23,9 +25,9 @@ struct PixelSums {
 PixelSums readPixelSums(ivec2 p) {
     PixelSums s;
     vec4 f1 = texelFetch(u_nearest, p, 0);
-    vec4 f2 = texelFetch(u_second, p, 0);
-    vec4 ac = texelFetch(u_alphaColor, p, 0);
-    vec4 cn = texelFetch(u_colorCount, p, 0);
+    vec4 f2 = upsampleAlphaWeighted(u_second, p, u_pass2Size);
+    vec4 ac = upsampleLinear(u_alphaColor, p, u_pass3Size);
+    vec4 cn = upsampleLinear(u_colorCount, p, u_pass3Size);
     s.c1 = f1.rgb;
     s.a1 = f1.a;
     s.c2 = f2.rgb;
@@ -34,7 +36,7 @@ PixelSums readPixelSums(ivec2 p) {
     s.sumAlpha = ac.a;
     s.sumColor = cn.rgb;
     s.count = cn.a;
-    s.transmittance = texelFetch(u_transmittance, p, 0).r;
+    s.transmittance = upsampleLinear(u_transmittance, p, u_pass3Size).r;
     return s;
 }
 

@@ -5,6 +5,11 @@
 #include "core/shader.hpp"
 #include "methods/common/method_base.hpp"
 #include "methods/neural/neural_passes.hpp"
+#include "methods/neural/tiles/tile_constants.h"
+#include "methods/neural/tiles/tiles_cpu.hpp"
+#include "methods/neural/tiles/tiles_gpu.hpp"
+#include "shaders/shared_constants.h"
+#include "starnt/error.hpp"
 
 namespace starnt {
 namespace {
@@ -15,46 +20,161 @@ std::string floatLiteral(float v) {
     return buf;
 }
 
+// Texture unit of the corner network outputs in infer_fill.frag.glsl (after the NeuralInputUnit units).
+constexpr GLuint kUnitCornerNetwork = 6;
+
 class NeuralMethod final : public MethodBase {
 public:
     NeuralMethod(const NeuralMethodConfig& config, const SurfaceShader& surface, const MethodOptions& options)
         : MethodBase(surface),
           config_(config),
+          options_(validated(options)),
+          spatial_(options.spatial.value_or(config.spatialByDefault)),
+          corners_(options.inference == MethodOptions::Inference::Corners),
           network_(loadMethodNetwork(config, options)),
           pass1_(buildGeometryProgram("neural_pass1", "methods/neural/pass1_nearest.frag.glsl")),
           pass2_(buildGeometryProgram("neural_pass2", "methods/neural/pass2_second.frag.glsl")),
           pass3_(buildGeometryProgram("neural_pass3", "methods/neural/pass3_accumulate.frag.glsl")),
-          composite_(buildFullscreenProgram(config.name + "_composite", config.compositeShader,
-                                            "#define STARNT_EPS_TRANSMITTANCE " + floatLiteral(nn::kTransmittanceEpsilon) +
-                                                "\n#define STARNT_EPS_TAIL_ALPHA " + floatLiteral(nn::kTailAlphaEpsilon) +
-                                                "\n" + nn::generateInferenceGlsl(network_))),
-          passes_(pass1_, pass2_, pass3_) {}
+          inferFull_(buildInference("infer_full")),
+          passes_(pass1_, pass2_, pass3_) {
+        if (spatial_ || corners_) tiles_ = std::make_unique<tiles::GpuTiles>();
+        if (corners_) {
+            inferCorners_ = buildInference("infer_corners");
+            inferFill_ = buildInference("infer_fill");
+        }
+    }
 
     std::string name() const override { return config_.name; }
-    size_t gpuMemoryBytes() const override { return outputBytes() + passes_.gpuMemoryBytes(); }
+    size_t gpuMemoryBytes() const override {
+        return outputBytes() + passes_.gpuMemoryBytes() + cornerNetwork_.bytes() + overlay_.bytes() +
+               (tiles_ ? tiles_->gpuMemoryBytes() : 0);
+    }
+
     nlohmann::json lastFrameStats() const override {
-        return {{"network", nn::kindName(network_.kind)},
-                {"weights_training_samples", network_.trainingSamples},
-                {"peel_epsilon", NeuralPasses::kDefaultPeelEpsilon}};
+        nlohmann::json stats = {{"network", nn::kindName(network_.kind)},
+                                {"weights_training_samples", network_.trainingSamples},
+                                {"peel_epsilon", NeuralPasses::kDefaultPeelEpsilon},
+                                {"spatial", spatial_},
+                                {"inference", corners_ ? "corners" : "full"},
+                                {"corner_inference_used", cornersUsed_},
+                                {"interpolated", false},
+                                {"scale_pass2", scale2_},
+                                {"scale_pass3", scale3_},
+                                {"pass2_size", {passes_.pass2Size().width, passes_.pass2Size().height}},
+                                {"pass3_size", {passes_.pass3Size().width, passes_.pass3Size().height}}};
+        if (tiles_) {
+            tiles_->pollHistogram();
+            stats["w_bar"] = tiles_->hasHistogram() ? nlohmann::json(tiles_->wBar()) : nlohmann::json(nullptr);
+            const auto& h = tiles_->histogram();
+            stats["tile_levels"] = {h[0], h[1], h[2], h[3]};
+        }
+        return stats;
+    }
+
+    GLuint tileOverlayTexture() override {
+        if (!tiles_ || !output_) return 0;
+        if (overlay_.width() != width_ || overlay_.height() != height_) overlay_ = gl::Texture2D(GL_RGBA32F, width_, height_);
+        tiles_->renderOverlay(output_.id(), overlay_.id());
+        return overlay_.id();
+    }
+
+    void resetHistory() override {
+        if (tiles_) tiles_->reset();
     }
 
     void render(const FrameDesc& frame, const DrawCallback& draw) override {
-        resizeOutput(frame.width, frame.height);
-        passes_.run(frame, draw, NeuralPasses::kDefaultPeelEpsilon);
-        gl::ScopedPass timing(frame.timer, "inference");
-        resetPassState();
-        bindOutputFramebuffer();
-        glUseProgram(composite_.id());
-        passes_.bindInputs();
-        glUniform3fv(composite_.uniform("u_background"), 1, &frame.background[0]);
-        drawFullscreen();
+        if (resizeOutput(frame.width, frame.height) && tiles_) tiles_->resize(frame.width, frame.height);
+        chooseScales();
+        const Size2 full{frame.width, frame.height};
+        passes_.run(frame, draw, NeuralPasses::kDefaultPeelEpsilon,
+                    {tiles::scaledSize(full.width, scale2_), tiles::scaledSize(full.height, scale2_)},
+                    {tiles::scaledSize(full.width, scale3_), tiles::scaledSize(full.height, scale3_)});
+        infer(frame);
+        if (tiles_) {
+            gl::ScopedPass timing(frame.timer, "tiles");
+            tiles_->update(output_.id(), passes_.nearest().id());
+        }
     }
 
 private:
+    static const MethodOptions& validated(const MethodOptions& o) {
+        auto scaleOk = [](float s) { return s == 0.0f || (s >= float(STARNT_SCALE_MIN) && s <= 1.0f); };
+        if (!scaleOk(o.fixedScale2) || !scaleOk(o.fixedScale3) || ((o.fixedScale2 == 0.0f) != (o.fixedScale3 == 0.0f))) {
+            throw Error("fixed pass scales must both be 0 (from the tiles) or both within 0.25..1");
+        }
+        if (o.temporalInterval < 1 || o.temporalInterval > 4) throw Error("temporal interval must be within 1..4");
+        return o;
+    }
+
+    gl::Program buildInference(const std::string& stage) const {
+        const std::string defines = "#define STARNT_EPS_TRANSMITTANCE " + floatLiteral(nn::kTransmittanceEpsilon) +
+                                    "\n#define STARNT_EPS_TAIL_ALPHA " + floatLiteral(nn::kTailAlphaEpsilon) + "\n" +
+                                    nn::generateInferenceGlsl(network_);
+        return buildFullscreenProgram(config_.name + "_" + stage,
+                                      {config_.compositeShader, "methods/neural/" + stage + ".frag.glsl"}, defines);
+    }
+
+    // Scales of this frame (SPEC 5): fixed for ablations, else from the newest tile histogram
+    // (the last real frame's, or one older if the GPU has not finished it), else full resolution.
+    void chooseScales() {
+        if (options_.fixedScale2 > 0.0f) {
+            scale2_ = options_.fixedScale2;
+            scale3_ = options_.fixedScale3;
+        } else if (spatial_ && tiles_) {
+            tiles_->pollHistogram();
+            const double wBar = tiles_->hasHistogram() ? tiles_->wBar() : 3.0;  // no history yet: full resolution
+            scale2_ = tiles::passScale(wBar, STARNT_SCALE_DELTA_PASS2);
+            scale3_ = tiles::passScale(wBar, STARNT_SCALE_DELTA_PASS3);
+        } else {
+            scale2_ = scale3_ = 1.0f;
+        }
+    }
+
+    void setCommonUniforms(const gl::Program& program, const FrameDesc& frame) const {
+        glUseProgram(program.id());
+        passes_.bindInputs(program);
+        glUniform3fv(program.uniform("u_background"), 1, &frame.background[0]);
+        glUniform2i(program.uniform("u_tiles"), tiles_ ? tiles_->tilesX() : 0, tiles_ ? tiles_->tilesY() : 0);
+    }
+
+    void infer(const FrameDesc& frame) {
+        gl::ScopedPass timing(frame.timer, "inference");
+        resetPassState();
+        // Corner inference needs the masks of a previous real frame; the first frame infers everywhere.
+        cornersUsed_ = corners_ && tiles_->updates() > 0;
+        if (!cornersUsed_) {
+            bindOutputFramebuffer();
+            setCommonUniforms(inferFull_, frame);
+            drawFullscreen();
+            return;
+        }
+        if (cornerNetwork_.width() != width_ || cornerNetwork_.height() != height_) {
+            cornerNetwork_ = gl::Texture2D(GL_RGBA32F, width_, height_);
+            cornerFb_ = gl::makeFramebuffer({&cornerNetwork_});
+        }
+        tiles_->bindMasks();
+        glBindFramebuffer(GL_FRAMEBUFFER, cornerFb_.id());
+        glViewport(0, 0, width_, height_);
+        setCommonUniforms(inferCorners_, frame);
+        drawFullscreen();
+
+        bindOutputFramebuffer();
+        setCommonUniforms(inferFill_, frame);
+        glBindTextureUnit(kUnitCornerNetwork, cornerNetwork_.id());
+        drawFullscreen();
+    }
+
     NeuralMethodConfig config_;
+    MethodOptions options_;
+    bool spatial_, corners_;
     nn::Network network_;
-    gl::Program pass1_, pass2_, pass3_, composite_;
+    gl::Program pass1_, pass2_, pass3_, inferFull_, inferCorners_, inferFill_;
     NeuralPasses passes_;
+    std::unique_ptr<tiles::GpuTiles> tiles_;
+    gl::Texture2D cornerNetwork_, overlay_;
+    gl::FramebufferHandle cornerFb_;
+    float scale2_ = 1.0f, scale3_ = 1.0f;
+    bool cornersUsed_ = false;
 };
 
 }  // namespace

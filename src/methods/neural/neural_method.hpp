@@ -1,5 +1,7 @@
-// A neural OIT method: the three geometry passes (neural_passes.*) and a full-screen inference +
-// composite shader generated from a weights file. `starnt` and `dfaoit` are two configurations of
+// A neural OIT method, in the order the data flows through a real frame:
+//   passes (neural_passes.*) -> upsample (upsample.glsl, fused into the reads) -> infer
+//   (infer_full / infer_corners + infer_fill, with the network generated from a weights file)
+//   -> tiles (tiles/, SPEC 4) -> scales of the next real frame (SPEC 5). `starnt` and `dfaoit` are two configurations of
 // it (network kind, composite shader, default weights), each in its own folder.
 #pragma once
 #include <memory>
@@ -14,6 +16,7 @@ struct NeuralMethodConfig {
     nn::NetworkKind kind;
     std::string compositeShader;     // embedded path of the composite fragment shader
     std::string defaultWeights;      // embedded path of the shipped weights (JSON)
+    bool spatialByDefault = false;   // MethodOptions::spatial when unset
 };
 
 std::unique_ptr<OitMethod> createNeuralMethod(const NeuralMethodConfig& config, const SurfaceShader& surface,

@@ -1,9 +1,22 @@
 #include "methods/neural/neural_passes.hpp"
 
 namespace starnt {
+namespace {
+
+// Restricts clears and rasterisation to the lower-left rectangle a reduced pass renders into.
+void useRectangle(Size2 size) {
+    glViewport(0, 0, size.width, size.height);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, 0, size.width, size.height);
+}
+
+}  // namespace
 
 NeuralPasses::NeuralPasses(const gl::Program& pass1, const gl::Program& pass2, const gl::Program& pass3)
-    : pass1_(pass1), pass2_(pass2), pass3_(pass3) {}
+    : pass1_(pass1),
+      pass2_(pass2),
+      pass3_(pass3),
+      depthDownsample_(gl::buildComputeProgram("depth_downsample", "#include \"methods/neural/depth_downsample.comp.glsl\"\n")) {}
 
 void NeuralPasses::resize(int width, int height) {
     if (width == width_ && height == height_) return;
@@ -11,6 +24,7 @@ void NeuralPasses::resize(int width, int height) {
     height_ = height;
     nearest_ = gl::Texture2D(GL_RGBA32F, width, height);
     nearestDepth_ = gl::Texture2D(GL_DEPTH_COMPONENT32F, width, height);
+    reducedDepth_ = gl::Texture2D(GL_R32F, width, height);
     second_ = gl::Texture2D(GL_RGBA32F, width, height);
     secondDepth_ = gl::Texture2D(GL_DEPTH_COMPONENT32F, width, height);
     alphaColor_ = gl::Texture2D(GL_RGBA32F, width, height);
@@ -22,17 +36,21 @@ void NeuralPasses::resize(int width, int height) {
 }
 
 size_t NeuralPasses::gpuMemoryBytes() const {
-    return nearest_.bytes() + nearestDepth_.bytes() + second_.bytes() + secondDepth_.bytes() + alphaColor_.bytes() +
-           colorCount_.bytes() + transmittance_.bytes();
+    return nearest_.bytes() + nearestDepth_.bytes() + reducedDepth_.bytes() + second_.bytes() + secondDepth_.bytes() +
+           alphaColor_.bytes() + colorCount_.bytes() + transmittance_.bytes();
 }
 
-void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float peelEpsilon) {
+void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float peelEpsilon, Size2 pass2Size,
+                       Size2 pass3Size) {
     resize(frame.width, frame.height);
+    const Size2 full{width_, height_};
+    pass2Size_ = pass2Size;
+    pass3Size_ = pass3Size;
     const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1}, farDepth = 1.0f;
     resetPassState();
-    glViewport(0, 0, width_, height_);
     {
         gl::ScopedPass timing(frame.timer, "pass1");
+        useRectangle(full);
         glBindFramebuffer(GL_FRAMEBUFFER, pass1Fb_.id());
         glClearBufferfv(GL_COLOR, 0, zero);
         glClearBufferfv(GL_DEPTH, 0, &farDepth);
@@ -41,8 +59,20 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
         MethodBase::runGeometryPass("pass1", pass1_, frame, draw);
         resetPassState();
     }
+    const bool reduced2 = !(pass2Size == full);
+    if (reduced2) {
+        gl::ScopedPass timing(frame.timer, "depth_downsample");
+        glUseProgram(depthDownsample_.id());
+        glBindTextureUnit(0, nearestDepth_.id());
+        glBindImageTexture(0, reducedDepth_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+        glUniform2i(depthDownsample_.uniform("u_fullSize"), full.width, full.height);
+        glUniform2i(depthDownsample_.uniform("u_reducedSize"), pass2Size.width, pass2Size.height);
+        glDispatchCompute(GLuint((pass2Size.width + 7) / 8), GLuint((pass2Size.height + 7) / 8), 1);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    }
     {
         gl::ScopedPass timing(frame.timer, "pass2");
+        useRectangle(pass2Size);
         glBindFramebuffer(GL_FRAMEBUFFER, pass2Fb_.id());
         glClearBufferfv(GL_COLOR, 0, zero);
         glClearBufferfv(GL_DEPTH, 0, &farDepth);
@@ -50,12 +80,13 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
         glDepthFunc(GL_LESS);
         glUseProgram(pass2_.id());
         glUniform1f(pass2_.uniform("u_peelEpsilon"), peelEpsilon);
-        glBindTextureUnit(0, nearestDepth_.id());
+        glBindTextureUnit(0, reduced2 ? reducedDepth_.id() : nearestDepth_.id());
         MethodBase::runGeometryPass("pass2", pass2_, frame, draw);
         resetPassState();
     }
     {
         gl::ScopedPass timing(frame.timer, "pass3");
+        useRectangle(pass3Size);
         glBindFramebuffer(GL_FRAMEBUFFER, pass3Fb_.id());
         glClearBufferfv(GL_COLOR, 0, zero);
         glClearBufferfv(GL_COLOR, 1, zero);
@@ -68,15 +99,19 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
         MethodBase::runGeometryPass("pass3", pass3_, frame, draw);
         resetPassState();
     }
+    glViewport(0, 0, width_, height_);
 }
 
-void NeuralPasses::bindInputs() const {
+void NeuralPasses::bindInputs(const gl::Program& program) const {
     glBindTextureUnit(kUnitNearest, nearest_.id());
     glBindTextureUnit(kUnitSecond, second_.id());
     glBindTextureUnit(kUnitAlphaColor, alphaColor_.id());
     glBindTextureUnit(kUnitColorCount, colorCount_.id());
     glBindTextureUnit(kUnitTransmittance, transmittance_.id());
     glBindTextureUnit(kUnitNearestDepth, nearestDepth_.id());
+    glUniform2i(program.uniform("u_fullSize"), width_, height_);
+    glUniform2i(program.uniform("u_pass2Size"), pass2Size_.width, pass2Size_.height);
+    glUniform2i(program.uniform("u_pass3Size"), pass3Size_.width, pass3Size_.height);
 }
 
 }  // namespace starnt

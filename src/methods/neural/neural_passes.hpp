@@ -1,13 +1,17 @@
 // The three geometry passes of the low-end neural OIT pipeline (no interlock, no per-pixel
 // lists), shared by `starnt` and `dfaoit` (SPEC section 2):
 //   pass 1: nearest fragment (colour+alpha, depth)        full resolution
-//   pass 2: second-nearest by peeling against pass 1      scale s2 (1 in this version)
-//   pass 3: sums over all fragments                       scale s3 (1 in this version)
+//   pass 2: second-nearest by peeling against pass 1      scale s2 (against a max-downsampled depth)
+//   pass 3: sums over all fragments                       scale s3
+// Passes 2 and 3 render into the lower-left ceil(W s) x ceil(H s) rectangle of full-size targets,
+// so a change of scale from frame to frame never reallocates; the inference reads them back at
+// full resolution through upsample.glsl.
 // Target formats (chosen for precision; memory is reported per method):
-//   nearest / second colour RGBA32F, their depths DEPTH_COMPONENT32F,
+//   nearest / second colour RGBA32F, their depths DEPTH_COMPONENT32F, reduced depth R32F,
 //   sum aC + sum a RGBA32F, sum C + N RGBA32F, transmittance R32F.
 #pragma once
 #include "methods/common/method_base.hpp"
+#include "methods/neural/upsample_cpu.hpp"
 
 namespace starnt {
 
@@ -32,17 +36,31 @@ public:
     NeuralPasses(const gl::Program& pass1, const gl::Program& pass2, const gl::Program& pass3);
 
     void resize(int width, int height);
-    void run(const FrameDesc& frame, const DrawCallback& draw, float peelEpsilon);
-    void bindInputs() const;  // binds the pass outputs to the NeuralInputUnit units
+    // Renders the three passes; pass2Size / pass3Size are the reduced sizes (the full size for s = 1).
+    void run(const FrameDesc& frame, const DrawCallback& draw, float peelEpsilon, Size2 pass2Size, Size2 pass3Size);
+    // Binds the pass outputs to the NeuralInputUnit units and sets the upsample uniforms of
+    // `program` (which includes neural_inputs.glsl).
+    void bindInputs(const gl::Program& program) const;
     size_t gpuMemoryBytes() const;
+    const gl::Texture2D& nearest() const { return nearest_; }
     const gl::Texture2D& nearestDepth() const { return nearestDepth_; }
+    // The depth pass 2 peeled against in the last frame (the full pass-1 depth at s2 = 1).
+    const gl::Texture2D& peelDepth() const { return pass2Size_ == Size2{width_, height_} ? nearestDepth_ : reducedDepth_; }
+    const gl::Texture2D& second() const { return second_; }
+    const gl::Texture2D& alphaColor() const { return alphaColor_; }
+    const gl::Texture2D& colorCount() const { return colorCount_; }
+    const gl::Texture2D& transmittance() const { return transmittance_; }
+    Size2 pass2Size() const { return pass2Size_; }
+    Size2 pass3Size() const { return pass3Size_; }
 
 private:
     const gl::Program& pass1_;
     const gl::Program& pass2_;
     const gl::Program& pass3_;
+    gl::Program depthDownsample_;
     int width_ = 0, height_ = 0;
-    gl::Texture2D nearest_, nearestDepth_, second_, secondDepth_, alphaColor_, colorCount_, transmittance_;
+    Size2 pass2Size_, pass3Size_;
+    gl::Texture2D nearest_, nearestDepth_, reducedDepth_, second_, secondDepth_, alphaColor_, colorCount_, transmittance_;
     gl::FramebufferHandle pass1Fb_, pass2Fb_, pass3Fb_;
 };
 

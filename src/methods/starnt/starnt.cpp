@@ -6,7 +6,7 @@ namespace starnt {
 
 const NeuralMethodConfig& starntConfig() {
     static const NeuralMethodConfig config{"starnt", nn::NetworkKind::StarNT, "methods/starnt/starnt_composite.frag.glsl",
-                                           "methods/starnt/starnt_weights.json"};
+                                           "methods/starnt/starnt_weights.json", true};
     return config;
 }
 

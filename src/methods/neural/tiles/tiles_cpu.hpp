@@ -1,0 +1,72 @@
+// CPU reference of the adaptive tiles (SPEC sections 4-5): mask evaluation with hysteresis, the
+// one-level-per-frame limit, neighbour balance, the occupied-tile histogram, w_bar and the pass
+// scales. The GPU passes (tiles_gpu.*) implement the same rules; tests compare them mask for mask.
+//
+// Coordinates are GL window coordinates: pixel (0, 0) is bottom-left, tile (0, 0) covers pixels
+// 0..15 x 0..15, tiles are stored row-major (index = ty * tilesX + tx). Edge tiles may be partial.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace starnt::tiles {
+
+struct TileGrid {
+    int width = 0, height = 0;    // image size in pixels
+    int tilesX = 0, tilesY = 0;   // ceil(size / 16)
+    static TileGrid forImage(int width, int height);
+    int count() const { return tilesX * tilesY; }
+};
+
+// Levels 0..3 and the masks that go with them.
+int maskLevel(uint32_t mask);
+// Every bit of the levels below `level`: the uniform split to that level (0 -> 0, 3 -> 21 bits).
+uint32_t uniformMask(int level);
+// True when no bit is set without its parent bit.
+bool maskIsConsistent(uint32_t mask);
+
+// Composited linear RGB of the image, rows bottom-first (GL order), as the tiles see it.
+struct ColorImage {
+    int width = 0, height = 0;
+    std::vector<glm::vec3> rgb;  // width * height
+    const glm::vec3& at(int x, int y) const { return rgb[size_t(y) * size_t(width) + size_t(x)]; }
+};
+
+// D of the node with lower-left pixel (x0, y0) and edge `size`: mean of the 6 pairwise distances of
+// its 4 corner colours; corners x0 and x0 + size - 1 (same in y), clamped to the image.
+float nodeVariation(const ColorImage& image, int x0, int y0, int size);
+
+// Top-down evaluation of one tile with hysteresis against the previous mask.
+uint32_t evaluateTileMask(const ColorImage& image, int tx, int ty, uint32_t previousMask);
+// Limits the level change against the previous level to one: prunes the bits below prev + 1 or
+// adds the uniform split to prev - 1.
+uint32_t limitLevelChange(uint32_t mask, int previousLevel);
+// One Jacobi iteration: a tile whose finest 4-neighbour is more than one level finer is split
+// uniformly (added to its mask) to that neighbour's level minus one.
+std::vector<uint32_t> balanceOnce(const std::vector<uint32_t>& masks, const TileGrid& grid);
+
+// N_0..N_3 over occupied tiles (occupiedTiles[i] != 0).
+std::array<uint32_t, 4> levelHistogram(const std::vector<uint32_t>& masks, const std::vector<uint8_t>& occupiedTiles);
+// sum l N_l / sum N_l; 0 when no tile is occupied.
+double meanLevel(const std::array<uint32_t, 4>& histogram);
+// s = clamp(2^(w_bar - delta), 0.25, 1).
+float passScale(double wBar, double delta);
+// ceil(size * scale), at least 1.
+int scaledSize(int size, float scale);
+
+// Per tile: 1 when any pixel of it has a transparent fragment (pass-1 alpha > 0).
+std::vector<uint8_t> occupiedTiles(const TileGrid& grid, const std::vector<float>& nearestAlpha);
+
+struct TileUpdate {
+    std::vector<uint32_t> masks;
+    std::array<uint32_t, 4> histogram{};
+    double wBar = 0.0;
+};
+// The whole per-frame update: evaluate -> limit -> balance (2 iterations) -> histogram -> w_bar.
+// `previousMasks` empty means all zero (first frame).
+TileUpdate updateTiles(const ColorImage& image, const std::vector<float>& nearestAlpha,
+                       const std::vector<uint32_t>& previousMasks);
+
+}  // namespace starnt::tiles

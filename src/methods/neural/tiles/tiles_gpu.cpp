@@ -1,0 +1,173 @@
+#include "methods/neural/tiles/tiles_gpu.hpp"
+
+#include "methods/neural/tiles/tile_constants.h"
+#include "methods/neural/tiles/tiles_cpu.hpp"
+#include "shaders/shared_constants.h"
+
+namespace starnt::tiles {
+namespace {
+
+GLuint groups(int n, int size) { return GLuint((n + size - 1) / size); }
+
+gl::Program compute(const char* label, const char* file) {
+    return gl::buildComputeProgram(label, "#include \"" + std::string(file) + "\"\n");
+}
+
+}  // namespace
+
+GpuTiles::GpuTiles()
+    : evaluate_(compute("tile_evaluate", "methods/neural/tiles/tile_evaluate.comp.glsl")),
+      balance_(compute("tile_balance", "methods/neural/tiles/tile_balance.comp.glsl")),
+      histogramProgram_(compute("tile_histogram", "methods/neural/tiles/tile_histogram.comp.glsl")),
+      overlay_(compute("tile_overlay", "methods/neural/tiles/tile_overlay.comp.glsl")) {
+    for (auto& r : readbacks_) r.buffer = gl::Buffer(4 * sizeof(uint32_t));
+    histogramBuffer_ = gl::Buffer(4 * sizeof(uint32_t));
+}
+
+GpuTiles::~GpuTiles() { clearReadbacks(); }
+
+void GpuTiles::clearReadbacks() {
+    for (auto& r : readbacks_) {
+        if (r.fence) glDeleteSync(r.fence);
+        r.fence = nullptr;
+    }
+    readbackSequence_ = {};
+}
+
+void GpuTiles::resize(int width, int height) {
+    if (width == width_ && height == height_) return;
+    width_ = width;
+    height_ = height;
+    const TileGrid grid = TileGrid::forImage(width, height);
+    tilesX_ = grid.tilesX;
+    tilesY_ = grid.tilesY;
+    const size_t bytes = size_t(grid.count()) * sizeof(uint32_t);
+    for (auto& m : masks_) m = gl::Buffer(bytes);
+    occupancy_ = gl::Buffer(bytes);
+    reset();
+}
+
+void GpuTiles::reset() {
+    const uint32_t zero = 0;
+    for (auto& m : masks_) glClearNamedBufferData(m.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferData(occupancy_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    clearReadbacks();
+    hasHistogram_ = false;
+    histogram_ = {};
+    wBar_ = 0.0;
+    updates_ = 0;
+}
+
+void GpuTiles::update(GLuint composite, GLuint nearest) {
+    const int other = 1 - current_;
+    // Evaluate: current -> other. Balance twice: other -> current -> other. Result in `other`.
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(evaluate_.id());
+    glBindTextureUnit(0, composite);
+    glBindTextureUnit(1, nearest);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STARNT_SSBO_TILE_MASKS_IN, masks_[current_].id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STARNT_SSBO_TILE_MASKS_OUT, masks_[other].id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STARNT_SSBO_TILE_OCCUPANCY, occupancy_.id());
+    glUniform2i(evaluate_.uniform("u_size"), width_, height_);
+    glUniform2i(evaluate_.uniform("u_tiles"), tilesX_, tilesY_);
+    glDispatchCompute(groups(tilesX_, 8), groups(tilesY_, 8), 1);
+
+    glUseProgram(balance_.id());
+    glUniform2i(balance_.uniform("u_tiles"), tilesX_, tilesY_);
+    int source = other;
+    for (int k = 0; k < STARNT_TILE_BALANCE_ITERATIONS; ++k) {
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STARNT_SSBO_TILE_MASKS_IN, masks_[source].id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STARNT_SSBO_TILE_MASKS_OUT, masks_[1 - source].id());
+        glDispatchCompute(groups(tilesX_, 8), groups(tilesY_, 8), 1);
+        source = 1 - source;
+    }
+    current_ = source;
+
+    const uint32_t zero = 0;
+    glClearNamedBufferData(histogramBuffer_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(histogramProgram_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STARNT_SSBO_TILE_MASKS_IN, masks_[current_].id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STARNT_SSBO_TILE_HISTOGRAM, histogramBuffer_.id());
+    glUniform1ui(histogramProgram_.uniform("u_tileCount"), GLuint(tilesX_ * tilesY_));
+    glDispatchCompute(groups(tilesX_ * tilesY_, 64), 1, 1);
+
+    // Copy into the next readback slot and fence it; pollHistogram picks it up once finished.
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    Readback& slot = readbacks_[size_t(nextReadback_)];
+    if (slot.fence) glDeleteSync(slot.fence);  // the GPU is 3 frames behind: drop the oldest
+    glCopyNamedBufferSubData(histogramBuffer_.id(), slot.buffer.id(), 0, 0, 4 * sizeof(uint32_t));
+    slot.fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    readbackSequence_[size_t(nextReadback_)] = ++submitted_;
+    nextReadback_ = (nextReadback_ + 1) % int(readbacks_.size());
+    glFlush();  // submit the fence so polling can see it complete
+    ++updates_;
+}
+
+bool GpuTiles::pollHistogram() {
+    int newest = -1;
+    for (int i = 0; i < int(readbacks_.size()); ++i) {
+        Readback& r = readbacks_[size_t(i)];
+        if (!r.fence) continue;
+        const GLenum state = glClientWaitSync(r.fence, 0, 0);
+        if (state != GL_ALREADY_SIGNALED && state != GL_CONDITION_SATISFIED) continue;
+        if (newest < 0 || readbackSequence_[size_t(i)] > readbackSequence_[size_t(newest)]) newest = i;
+    }
+    if (newest < 0 || readbackSequence_[size_t(newest)] <= consumedSequence_) return false;
+    Readback& r = readbacks_[size_t(newest)];
+    uint32_t counts[4];
+    glGetNamedBufferSubData(r.buffer.id(), 0, sizeof counts, counts);
+    // Older finished slots are superseded by this one.
+    for (int i = 0; i < int(readbacks_.size()); ++i) {
+        Readback& old = readbacks_[size_t(i)];
+        if (old.fence && readbackSequence_[size_t(i)] <= readbackSequence_[size_t(newest)]) {
+            glDeleteSync(old.fence);
+            old.fence = nullptr;
+        }
+    }
+    consumedSequence_ = readbackSequence_[size_t(newest)];
+    for (int l = 0; l < 4; ++l) histogram_[size_t(l)] = counts[l];
+    wBar_ = meanLevel(histogram_);
+    hasHistogram_ = true;
+    return true;
+}
+
+void GpuTiles::bindMasks() const {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STARNT_SSBO_TILE_MASKS_IN, masks_[current_].id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STARNT_SSBO_TILE_OCCUPANCY, occupancy_.id());
+}
+
+std::vector<uint32_t> GpuTiles::readMasks() const {
+    std::vector<uint32_t> out(size_t(tilesX_ * tilesY_));
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(masks_[current_].id(), 0, GLsizeiptr(out.size() * sizeof(uint32_t)), out.data());
+    return out;
+}
+
+std::vector<uint32_t> GpuTiles::readOccupancy() const {
+    std::vector<uint32_t> out(size_t(tilesX_ * tilesY_));
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(occupancy_.id(), 0, GLsizeiptr(out.size() * sizeof(uint32_t)), out.data());
+    return out;
+}
+
+void GpuTiles::renderOverlay(GLuint composite, GLuint overlay) const {
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(overlay_.id());
+    glBindTextureUnit(0, composite);
+    glBindImageTexture(0, overlay, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    bindMasks();
+    glUniform2i(overlay_.uniform("u_size"), width_, height_);
+    glUniform2i(overlay_.uniform("u_tiles"), tilesX_, tilesY_);
+    glDispatchCompute(groups(width_, 8), groups(height_, 8), 1);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+size_t GpuTiles::gpuMemoryBytes() const {
+    size_t bytes = masks_[0].bytes() + masks_[1].bytes() + occupancy_.bytes() + histogramBuffer_.bytes();
+    for (const auto& r : readbacks_) bytes += r.buffer.bytes();
+    return bytes;
+}
+
+}  // namespace starnt::tiles

@@ -1,0 +1,75 @@
+// GPU adaptive tiles (SPEC 4): evaluation, one-level limit, neighbour balance and the occupied-tile
+// histogram, run after each real frame's composite. The histogram is copied into a small ring of
+// readback buffers guarded by fences and picked up without waiting (pollHistogram), so the next
+// frame's passes never stall on it; the scales then lag by one real frame more only when the GPU
+// has not finished the previous frame yet.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/gl_util.hpp"
+#include "core/gpu_timer.hpp"
+#include "core/shader.hpp"
+
+namespace starnt::tiles {
+
+class GpuTiles {
+public:
+    GpuTiles();
+    ~GpuTiles();
+    GpuTiles(const GpuTiles&) = delete;
+    GpuTiles& operator=(const GpuTiles&) = delete;
+
+    // New image size: all masks back to level 0 and no histogram.
+    void resize(int width, int height);
+    // Forget the history (masks to 0, histogram unknown).
+    void reset();
+
+    // Updates the masks from a real frame: `composite` is the method's full-resolution output,
+    // `nearest` the pass-1 colour (alpha > 0 marks occupied pixels).
+    void update(GLuint composite, GLuint nearest);
+    // Takes the newest finished histogram readback, without waiting. True when one arrived.
+    bool pollHistogram();
+    bool hasHistogram() const { return hasHistogram_; }
+    const std::array<uint32_t, 4>& histogram() const { return histogram_; }
+    double wBar() const { return wBar_; }
+    // Number of updates run since the last reset (0: the masks are all level 0 from the start).
+    int updates() const { return updates_; }
+
+    // The current masks, bound to STARNT_SSBO_TILE_MASKS_IN (and the occupancy to its binding) for
+    // the passes that read them (corner inference, overlay).
+    void bindMasks() const;
+    // Blocking readbacks for tests and debugging.
+    std::vector<uint32_t> readMasks() const;
+    std::vector<uint32_t> readOccupancy() const;
+    // Writes the level overlay of the current masks over `composite` into `overlay` (RGBA32F).
+    void renderOverlay(GLuint composite, GLuint overlay) const;
+
+    int tilesX() const { return tilesX_; }
+    int tilesY() const { return tilesY_; }
+    size_t gpuMemoryBytes() const;
+
+private:
+    struct Readback {
+        gl::Buffer buffer;
+        GLsync fence = nullptr;
+    };
+    void clearReadbacks();
+
+    gl::Program evaluate_, balance_, histogramProgram_, overlay_;
+    int width_ = 0, height_ = 0, tilesX_ = 0, tilesY_ = 0;
+    gl::Buffer masks_[2], occupancy_, histogramBuffer_;
+    int current_ = 0;  // masks_[current_] holds the latest masks
+    std::array<Readback, 3> readbacks_;
+    int nextReadback_ = 0;
+    uint64_t submitted_ = 0;  // sequence numbers to pick the newest finished readback
+    std::array<uint64_t, 3> readbackSequence_{};
+    uint64_t consumedSequence_ = 0;
+    bool hasHistogram_ = false;
+    std::array<uint32_t, 4> histogram_{};
+    double wBar_ = 0.0;
+    int updates_ = 0;
+};
+
+}  // namespace starnt::tiles
