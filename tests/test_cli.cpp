@@ -16,40 +16,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct CliRun {
-    int exitCode = -1;
-    std::string out, err;
-};
-
-CliRun run(const std::string& args) {
-    fs::path dir = starnt::test::makeTempDir("cli_io");
-    std::string cmd = std::string(STARNT_CLI) + " " + args + " >" + (dir / "out").string() + " 2>" + (dir / "err").string();
-    int status = std::system(cmd.c_str());
-    CliRun r;
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    auto slurp = [](const fs::path& p) {
-        std::ifstream f(p);
-        return std::string(std::istreambuf_iterator<char>(f), {});
-    };
-    r.out = slurp(dir / "out");
-    r.err = slurp(dir / "err");
-    fs::remove_all(dir);
-    return r;
-}
-
-// A bad invocation: non-zero exit, a message on stderr, and no output file left behind.
-void expectCleanFailure(const std::string& args, const fs::path& mustNotExist, const std::string& mentions) {
-    CliRun r = run(args);
-    EXPECT_NE(r.exitCode, 0) << args;
-    EXPECT_NE(r.exitCode, -1) << "crashed: " << args;
-    EXPECT_FALSE(r.err.empty()) << args;
-    EXPECT_NE(r.err.find(mentions), std::string::npos) << "stderr of `" << args << "` was: " << r.err;
-    EXPECT_FALSE(fs::exists(mustNotExist)) << args;
-    // No leftover temporary files either.
-    for (const auto& e : fs::directory_iterator(mustNotExist.parent_path())) {
-        EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
-    }
-}
+using starnt::test::CliRun;
+using starnt::test::expectCleanFailure;
+using starnt::test::run;
 
 }  // namespace
 

@@ -1,6 +1,11 @@
 #include "test_support.hpp"
 
 #include <atomic>
+#include <cstdlib>
+#include <fstream>
+#include <sys/wait.h>
+
+#include <gtest/gtest.h>
 #include <unistd.h>
 
 namespace starnt::test {
@@ -68,6 +73,39 @@ CapturedFrame TestScene::capture(const SurfaceOptions& surface) const {
     FragmentCapture capturer(SceneGpu::surfaceShader());
     const FrameDesc f = frame();
     return capturer.capture(f, gpu->callback(f.view, f.projection, surface));
+}
+
+}  // namespace starnt::test
+
+namespace starnt::test {
+
+CliRun run(const std::string& args) {
+    namespace fs = std::filesystem;
+    fs::path dir = makeTempDir("cli_io");
+    std::string cmd = std::string(STARNT_CLI) + " " + args + " >" + (dir / "out").string() + " 2>" + (dir / "err").string();
+    int status = std::system(cmd.c_str());
+    CliRun r;
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    auto slurp = [](const fs::path& p) {
+        std::ifstream f(p);
+        return std::string(std::istreambuf_iterator<char>(f), {});
+    };
+    r.out = slurp(dir / "out");
+    r.err = slurp(dir / "err");
+    fs::remove_all(dir);
+    return r;
+}
+
+void expectCleanFailure(const std::string& args, const std::filesystem::path& mustNotExist, const std::string& mentions) {
+    CliRun r = run(args);
+    EXPECT_NE(r.exitCode, 0) << args;
+    EXPECT_NE(r.exitCode, -1) << "crashed: " << args;
+    EXPECT_FALSE(r.err.empty()) << args;
+    EXPECT_NE(r.err.find(mentions), std::string::npos) << "stderr of `" << args << "` was: " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(mustNotExist)) << args;
+    for (const auto& e : std::filesystem::directory_iterator(mustNotExist.parent_path())) {
+        EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+    }
 }
 
 }  // namespace starnt::test

@@ -48,3 +48,18 @@ struct TestScene {
 };
 
 }  // namespace starnt::test
+
+namespace starnt::test {
+
+// One run of the starnt binary (STARNT_CLI) with its exit code and captured output.
+struct CliRun {
+    int exitCode = -1;  // -1: did not exit normally (crash)
+    std::string out, err;
+};
+CliRun run(const std::string& args);
+
+// A bad invocation: non-zero exit (no crash), `mentions` on stderr, `mustNotExist` not written and
+// no temporary file left in its folder.
+void expectCleanFailure(const std::string& args, const std::filesystem::path& mustNotExist, const std::string& mentions);
+
+}  // namespace starnt::test

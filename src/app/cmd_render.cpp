@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "app/commands.hpp"
+#include "methods/registry.hpp"
 #include "render/method_options.hpp"
 #include "render/offscreen_renderer.hpp"
 #include "starnt/error.hpp"
@@ -128,6 +129,10 @@ void addRenderCommand(CLI::App& app) {
         if (isFramePattern(a->exr)) checkFramePattern(a->exr, "--exr");
         checkOutputPath(numbered ? framePath(a->out, 0) : a->out, ".png", "--out");
         checkOutputPath(a->tilesImage, ".png", "--tiles-image");
+        if (!a->tilesImage.empty() && !methodUsesTiles(a->method, options)) {
+            throw Error("--tiles-image: method " + a->method +
+                        " runs no tiles with these options (use starnt, or dfaoit with --spatial on or --inference corners)");
+        }
         checkOutputPath(a->frameStats, ".jsonl", "--frame-stats");
         if (!a->referenceMethod.empty()) {
             const auto names = methodNames();
@@ -172,7 +177,7 @@ void addRenderCommand(CLI::App& app) {
         };
         RenderOutput out = renderScene(sceneGpu, job);
         if (!a->tilesImage.empty()) {
-            if (!out.tileOverlay) throw Error("--tiles-image: method " + a->method + " has no tiles (use starnt with --spatial on or --inference corners)");
+            if (!out.tileOverlay) throw Error("--tiles-image: method " + a->method + " produced no tile overlay");
             saveImage(*out.tileOverlay, a->tilesImage);
         }
 

@@ -1,5 +1,6 @@
 #include "methods/registry.hpp"
 
+#include "methods/neural/neural_method.hpp"
 #include "starnt/error.hpp"
 
 namespace starnt {
@@ -39,6 +40,13 @@ std::unique_ptr<OitMethod> createMethod(const std::string& name, const SurfaceSh
     std::string valid;
     for (const Entry& e : entries()) valid += (valid.empty() ? "" : ", ") + std::string(e.name);
     throw Error("unknown method '" + name + "' (valid: " + valid + ")");
+}
+
+bool methodUsesTiles(const std::string& name, const MethodOptions& options) {
+    const bool corners = options.inference == MethodOptions::Inference::Corners;
+    if (name == starntConfig().name) return options.spatial.value_or(starntConfig().spatialByDefault) || corners;
+    if (name == dfaoitConfig().name) return options.spatial.value_or(dfaoitConfig().spatialByDefault) || corners;
+    return false;
 }
 
 }  // namespace starnt

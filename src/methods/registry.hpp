@@ -17,4 +17,8 @@ struct NeuralMethodConfig;
 const NeuralMethodConfig& starntConfig();
 const NeuralMethodConfig& dfaoitConfig();
 
+// True when `name` with `options` runs the adaptive tiles (a neural method with spatial on, by
+// option or by default, or with corner inference): the methods with a tile overlay.
+bool methodUsesTiles(const std::string& name, const MethodOptions& options);
+
 }  // namespace starnt

@@ -153,6 +153,49 @@ std::vector<uint8_t> occupiedTiles(const TileGrid& grid, const std::vector<float
     return occupied;
 }
 
+Leaf leafOf(uint32_t mask, int x, int y) {
+    Leaf leaf{x / STARNT_TILE_SIZE * STARNT_TILE_SIZE, y / STARNT_TILE_SIZE * STARNT_TILE_SIZE, 16};
+    if (!(mask & 1u)) return leaf;
+    const int qx = (x - leaf.x0) / 8, qy = (y - leaf.y0) / 8;
+    const uint32_t q = uint32_t(qy * 2 + qx);
+    leaf = {leaf.x0 + 8 * qx, leaf.y0 + 8 * qy, 8};
+    if (!(mask & (1u << (STARNT_TILE_BIT_QUADRANT0 + q)))) return leaf;
+    const int cx = (x - leaf.x0) / 4, cy = (y - leaf.y0) / 4;
+    const uint32_t c = uint32_t(cy * 2 + cx);
+    leaf = {leaf.x0 + 4 * cx, leaf.y0 + 4 * cy, 4};
+    if (!(mask & (1u << (STARNT_TILE_BIT_CHILD0 + 4 * q + c)))) return leaf;
+    return {leaf.x0 + (x - leaf.x0) / 2 * 2, leaf.y0 + (y - leaf.y0) / 2 * 2, 2};
+}
+
+std::vector<glm::vec3> cornerInterpolatedNetwork(const TileGrid& grid, const std::vector<uint32_t>& masks,
+                                                 const std::function<bool(int, int)>& applies,
+                                                 const std::function<glm::vec3(int, int)>& evaluate) {
+    std::vector<glm::vec3> out(size_t(grid.width) * size_t(grid.height), glm::vec3(0.0f));
+    for (int y = 0; y < grid.height; ++y) {
+        for (int x = 0; x < grid.width; ++x) {
+            if (!applies(x, y)) continue;
+            const int tile = (y / STARNT_TILE_SIZE) * grid.tilesX + x / STARNT_TILE_SIZE;
+            const Leaf leaf = leafOf(masks[size_t(tile)], x, y);
+            const int x0 = leaf.x0, y0 = leaf.y0;
+            const int x1 = std::min(leaf.x0 + leaf.size - 1, grid.width - 1);
+            const int y1 = std::min(leaf.y0 + leaf.size - 1, grid.height - 1);
+            const float u = x1 > x0 ? float(x - x0) / float(x1 - x0) : 0.0f;
+            const float v = y1 > y0 ? float(y - y0) / float(y1 - y0) : 0.0f;
+            const int cx[4] = {x0, x1, x0, x1}, cy[4] = {y0, y0, y1, y1};
+            const float w[4] = {(1 - u) * (1 - v), u * (1 - v), (1 - u) * v, u * v};
+            glm::vec3 sum(0.0f);
+            float weight = 0.0f;
+            for (int k = 0; k < 4; ++k) {
+                if (!applies(cx[k], cy[k])) continue;
+                sum += w[k] * evaluate(cx[k], cy[k]);
+                weight += w[k];
+            }
+            out[size_t(y) * size_t(grid.width) + size_t(x)] = weight > 0.0f ? sum / weight : evaluate(x, y);
+        }
+    }
+    return out;
+}
+
 TileUpdate updateTiles(const ColorImage& image, const std::vector<float>& nearestAlpha,
                        const std::vector<uint32_t>& previousMasks) {
     const TileGrid grid = TileGrid::forImage(image.width, image.height);

@@ -7,6 +7,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -58,6 +59,20 @@ int scaledSize(int size, float scale);
 
 // Per tile: 1 when any pixel of it has a transparent fragment (pass-1 alpha > 0).
 std::vector<uint8_t> occupiedTiles(const TileGrid& grid, const std::vector<float>& nearestAlpha);
+
+// The quadtree leaf containing pixel (x, y) of a tile with `mask` (lower-left pixel and edge).
+struct Leaf {
+    int x0 = 0, y0 = 0, size = 16;
+};
+Leaf leafOf(uint32_t mask, int x, int y);
+
+// CPU reference of spatially selective inference (infer_corners + infer_fill): where `applies`,
+// the network output is the bilinear interpolation of the outputs at the pixel's leaf corners
+// (x0 and min(x0 + size - 1, W - 1), same in y), weighted to the corners where the network
+// applies; without such a corner the pixel evaluates the network itself. Zero elsewhere.
+std::vector<glm::vec3> cornerInterpolatedNetwork(const TileGrid& grid, const std::vector<uint32_t>& masks,
+                                                 const std::function<bool(int, int)>& applies,
+                                                 const std::function<glm::vec3(int, int)>& evaluate);
 
 struct TileUpdate {
     std::vector<uint32_t> masks;

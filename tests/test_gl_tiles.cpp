@@ -1,0 +1,412 @@
+// Adaptive tiles, tile-guided resolution and corner inference on a real GL context, against the
+// CPU references (tiles_cpu.hpp, upsample_cpu.hpp) on real renders and on crafted images.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "core/gl_util.hpp"
+#include "core/shader.hpp"
+#include "methods/neural/neural_method.hpp"
+#include "methods/neural/tiles/tile_constants.h"
+#include "methods/neural/tiles/tiles_cpu.hpp"
+#include "methods/neural/tiles/tiles_gpu.hpp"
+#include "methods/neural/upsample_cpu.hpp"
+#include "methods/registry.hpp"
+#include "starnt/metrics.hpp"
+#include "starnt/nn.hpp"
+#include "test_support.hpp"
+
+using namespace starnt;
+using namespace starnt::tiles;
+
+namespace {
+
+const glm::vec3 kBackground(0.9f, 0.85f, 0.8f);
+
+// Uploads RGBA rows bottom-first (GL order) into a new RGBA32F texture.
+gl::Texture2D upload(const std::vector<glm::vec4>& pixels, int w, int h) {
+    gl::Texture2D t(GL_RGBA32F, w, h);
+    glTextureSubImage2D(t.id(), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, pixels.data());
+    return t;
+}
+
+std::vector<glm::vec4> glOrder(const Image& image) {
+    std::vector<glm::vec4> out(image.pixelCount());
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const float* p = image.pixel(x, image.height - 1 - y);
+            out[size_t(y) * size_t(image.width) + size_t(x)] = glm::vec4(p[0], p[1], p[2], p[3]);
+        }
+    return out;
+}
+
+ColorImage colorImage(const std::vector<glm::vec4>& pixels, int w, int h) {
+    ColorImage image{w, h, {}};
+    for (const auto& p : pixels) image.rgb.push_back(glm::vec3(p));
+    return image;
+}
+
+std::vector<float> alphaChannel(const std::vector<glm::vec4>& pixels) {
+    std::vector<float> a;
+    for (const auto& p : pixels) a.push_back(p.a);
+    return a;
+}
+
+// Occupancy of a captured frame as a pass-1-like texture: alpha 1 where a fragment survives the cut-off.
+std::vector<glm::vec4> occupancyFromCapture(const CapturedFrame& frags) {
+    std::vector<glm::vec4> out(size_t(frags.width) * size_t(frags.height), glm::vec4(0.0f));
+    for (int y = 0; y < frags.height; ++y)
+        for (int x = 0; x < frags.width; ++x)
+            if (nn::sumsFromFragments(frags.at(x, y)).count > 0.5f)
+                out[size_t(frags.height - 1 - y) * size_t(frags.width) + size_t(x)] = glm::vec4(1.0f);
+    return out;
+}
+
+std::vector<glm::vec4> checker(int w, int h, const std::function<bool(int, int)>& where) {
+    std::vector<glm::vec4> out(size_t(w) * size_t(h));
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const float v = where(x, y) ? float((x + y) % 2) : 0.5f;
+            out[size_t(y * w + x)] = glm::vec4(v, v, v, 1.0f);
+        }
+    return out;
+}
+
+// Runs one GPU update and the CPU reference from the same previous masks; expects equal masks
+// and histograms. Returns the masks.
+std::vector<uint32_t> updateBoth(GpuTiles& gpu, const std::vector<glm::vec4>& composite,
+                                 const std::vector<glm::vec4>& nearest, int w, int h) {
+    const std::vector<uint32_t> previous = gpu.readMasks();
+    const gl::Texture2D c = upload(composite, w, h), n = upload(nearest, w, h);
+    gpu.update(c.id(), n.id());
+    glFinish();
+    const TileUpdate want = updateTiles(colorImage(composite, w, h), alphaChannel(nearest), previous);
+    const std::vector<uint32_t> got = gpu.readMasks();
+    EXPECT_EQ(got, want.masks);
+    EXPECT_TRUE(gpu.pollHistogram());
+    EXPECT_EQ(gpu.histogram(), want.histogram);
+    EXPECT_DOUBLE_EQ(gpu.wBar(), want.wBar);
+    return got;
+}
+
+std::vector<int> levelsOf(const std::vector<uint32_t>& masks) {
+    std::vector<int> out;
+    for (uint32_t m : masks) out.push_back(maskLevel(m));
+    return out;
+}
+
+void expectBalanced(const std::vector<uint32_t>& masks, int tilesX, int tilesY) {
+    for (int ty = 0; ty < tilesY; ++ty)
+        for (int tx = 0; tx < tilesX; ++tx) {
+            const int l = maskLevel(masks[size_t(ty * tilesX + tx)]);
+            if (tx + 1 < tilesX) EXPECT_LE(std::abs(l - maskLevel(masks[size_t(ty * tilesX + tx + 1)])), 1);
+            if (ty + 1 < tilesY) EXPECT_LE(std::abs(l - maskLevel(masks[size_t((ty + 1) * tilesX + tx)])), 1);
+        }
+}
+
+struct MethodRunner {
+    test::TestScene& scene;
+    std::unique_ptr<OitMethod> method;
+    MethodRunner(test::TestScene& s, const std::string& name, const MethodOptions& options)
+        : scene(s), method(createMethod(name, SceneGpu::surfaceShader(), options)) {}
+    nlohmann::json frame() {
+        const FrameDesc f = scene.frame();
+        method->render(f, scene.gpu->callback(f.view, f.projection, {}));
+        glFinish();
+        return method->lastFrameStats();
+    }
+    Image image() const { return gl::readTexture(method->outputTexture(), scene.width, scene.height); }
+};
+
+MethodOptions spatialOptions(bool on) {
+    MethodOptions o;
+    o.spatial = on;
+    return o;
+}
+
+}  // namespace
+
+TEST(GlTiles, GpuMasksEqualCpuMasksOnRealRenders) {
+    // 200x120 is not a multiple of 16: the last tile column and row are partial.
+    constexpr int kW = 200, kH = 120;
+    test::glContext();
+    GpuTiles gpu;
+    gpu.resize(kW, kH);
+    size_t split = 0;
+    for (int frame = 0; frame < 4; ++frame) {
+        test::TestScene c(makeBuiltinScene(frame % 2 ? "smoke" : "tubes", 3), kW, kH, 25.0f * frame, 20.0f, kBackground);
+        MethodRunner run(c, "starnt", spatialOptions(false));
+        run.frame();
+        const auto masks = updateBoth(gpu, glOrder(run.image()), occupancyFromCapture(c.capture()), kW, kH);
+        expectBalanced(masks, gpu.tilesX(), gpu.tilesY());
+        for (uint32_t m : masks) split += m != 0u;
+    }
+    EXPECT_GT(split, 20u) << "the renders should refine some tiles";
+}
+
+TEST(GlTiles, FlatImageStaysAtLevelZero) {
+    test::glContext();
+    GpuTiles gpu;
+    gpu.resize(48, 32);
+    const auto flat = checker(48, 32, [](int, int) { return false; });
+    for (int frame = 0; frame < 2; ++frame) {
+        for (int l : levelsOf(updateBoth(gpu, flat, flat, 48, 32))) EXPECT_EQ(l, 0);
+    }
+    EXPECT_EQ(gpu.histogram()[0], 6u);
+    EXPECT_DOUBLE_EQ(gpu.wBar(), 0.0);
+}
+
+TEST(GlTiles, CheckerboardReachesLevelThreeOneLevelPerFrame) {
+    test::glContext();
+    GpuTiles gpu;
+    gpu.resize(48, 32);
+    const auto board = checker(48, 32, [](int, int) { return true; });
+    for (int frame = 1; frame <= 4; ++frame) {
+        for (int l : levelsOf(updateBoth(gpu, board, board, 48, 32))) EXPECT_EQ(l, std::min(frame, 3)) << frame;
+        EXPECT_DOUBLE_EQ(gpu.wBar(), std::min(frame, 3));
+    }
+}
+
+TEST(GlTiles, HysteresisKeepsANodeSplitBetweenMergeAndSplit) {
+    test::glContext();
+    // Root corner variation D = 0.0375, between merge (0.035) and split (0.04).
+    auto between = checker(16, 16, [](int, int) { return false; });
+    between[0] = glm::vec4(0.5f + 0.075f, 0.5f, 0.5f, 1.0f);
+    GpuTiles fresh;
+    fresh.resize(16, 16);
+    EXPECT_EQ(updateBoth(fresh, between, between, 16, 16)[0] & 1u, 0u) << "never split: stays whole";
+    GpuTiles refined;
+    refined.resize(16, 16);
+    const auto board = checker(16, 16, [](int, int) { return true; });
+    for (int i = 0; i < 3; ++i) updateBoth(refined, board, board, 16, 16);
+    EXPECT_EQ(updateBoth(refined, between, between, 16, 16)[0] & 1u, 1u) << "was split: stays split";
+}
+
+TEST(GlTiles, NeighbourBalanceSpreadsOneLevelPerTile) {
+    test::glContext();
+    // 7x5 tiles, flat except a checkerboard in the middle tile.
+    const int w = 7 * 16, h = 5 * 16;
+    const auto image = checker(w, h, [](int x, int y) { return x / 16 == 3 && y / 16 == 2; });
+    GpuTiles gpu;
+    gpu.resize(w, h);
+    std::vector<uint32_t> masks;
+    for (int frame = 0; frame < 4; ++frame) {
+        masks = updateBoth(gpu, image, image, w, h);
+        expectBalanced(masks, 7, 5);
+    }
+    for (int ty = 0; ty < 5; ++ty)
+        for (int tx = 0; tx < 7; ++tx) {
+            const int ring = std::abs(tx - 3) + std::abs(ty - 2);
+            EXPECT_EQ(maskLevel(masks[size_t(ty * 7 + tx)]), std::max(0, 3 - ring)) << tx << "," << ty;
+        }
+}
+
+TEST(GlTiles, UpsampleMatchesCpuBilinear) {
+    test::glContext();
+    const int fullW = 37, fullH = 23, w = 19, h = 8;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    // The full-size source holds the reduced image in its lower-left corner; the rest is poison.
+    std::vector<glm::vec4> source(size_t(fullW * fullH), glm::vec4(1e6f));
+    std::vector<glm::vec4> reduced;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            glm::vec4 v(u(rng), u(rng), u(rng), u(rng) < 0.3f ? 0.0f : u(rng));
+            source[size_t(y * fullW + x)] = v;
+            reduced.push_back(v);
+        }
+    const gl::Texture2D src = upload(source, fullW, fullH);
+    gl::Texture2D linear(GL_RGBA32F, fullW, fullH), weighted(GL_RGBA32F, fullW, fullH);
+    gl::Program program = gl::buildComputeProgram("upsample_test", R"(
+#include "methods/neural/upsample.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0) uniform sampler2D u_source;
+layout(binding = 0, rgba32f) writeonly uniform highp image2D u_linear;
+layout(binding = 1, rgba32f) writeonly uniform highp image2D u_weighted;
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (p.x >= u_fullSize.x || p.y >= u_fullSize.y) return;
+    imageStore(u_linear, p, upsampleLinear(u_source, p, u_pass2Size));
+    imageStore(u_weighted, p, upsampleAlphaWeighted(u_source, p, u_pass2Size));
+}
+)");
+    glUseProgram(program.id());
+    glUniform2i(program.uniform("u_fullSize"), fullW, fullH);
+    glUniform2i(program.uniform("u_pass2Size"), w, h);
+    glBindTextureUnit(0, src.id());
+    glBindImageTexture(0, linear.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(1, weighted.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glDispatchCompute((fullW + 7) / 8, (fullH + 7) / 8, 1);
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    for (bool alphaWeighted : {false, true}) {
+        const auto want = bilinearUpsample(reduced, {w, h}, {fullW, fullH}, alphaWeighted);
+        const auto got = glOrder(gl::readTexture(alphaWeighted ? weighted : linear));
+        for (size_t i = 0; i < want.size(); ++i)
+            for (int ch = 0; ch < 4; ++ch) ASSERT_NEAR(got[i][ch], want[i][ch], 2e-5f) << i << " weighted " << alphaWeighted;
+    }
+}
+
+TEST(GlTiles, DepthDownsampleMatchesCpuMax) {
+    test::glContext();
+    const int fullW = 41, fullH = 29, w = 11, h = 8;
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::vector<float> depth(size_t(fullW * fullH));
+    for (float& d : depth) d = u(rng);
+    gl::Texture2D src(GL_R32F, fullW, fullH), dst(GL_R32F, fullW, fullH);
+    glTextureSubImage2D(src.id(), 0, 0, 0, fullW, fullH, GL_RED, GL_FLOAT, depth.data());
+    gl::Program program = gl::buildComputeProgram("downsample_test", "#include \"methods/neural/depth_downsample.comp.glsl\"\n");
+    glUseProgram(program.id());
+    glUniform2i(program.uniform("u_fullSize"), fullW, fullH);
+    glUniform2i(program.uniform("u_reducedSize"), w, h);
+    glBindTextureUnit(0, src.id());
+    glBindImageTexture(0, dst.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glDispatchCompute((w + 7) / 8, (h + 7) / 8, 1);
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    std::vector<float> all(size_t(fullW * fullH));
+    glGetTextureImage(dst.id(), 0, GL_RED, GL_FLOAT, GLsizei(all.size() * sizeof(float)), all.data());
+    const auto want = maxDownsampleDepth(depth, {fullW, fullH}, {w, h});
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) EXPECT_EQ(all[size_t(y * fullW + x)], want[size_t(y * w + x)]) << x << "," << y;
+}
+
+TEST(GlTiles, ScalesOfTheNextFrameFollowWBar) {
+    test::TestScene c(makeBuiltinScene("tubes", 3), 160, 96, 30.0f, 20.0f, kBackground);
+    MethodRunner run(c, "starnt", {});  // spatial on by default
+    nlohmann::json previous = run.frame();
+    EXPECT_EQ(previous["scale_pass2"], 1.0) << "no tile history: full resolution";
+    size_t reducedFrames = 0;
+    for (int frame = 1; frame < 5; ++frame) {
+        const nlohmann::json stats = run.frame();
+        const double wBar = previous["w_bar"].get<double>();
+        EXPECT_FLOAT_EQ(stats["scale_pass2"].get<float>(), passScale(wBar, STARNT_SCALE_DELTA_PASS2));
+        EXPECT_FLOAT_EQ(stats["scale_pass3"].get<float>(), passScale(wBar, STARNT_SCALE_DELTA_PASS3));
+        EXPECT_EQ(stats["pass3_size"][0].get<int>(), scaledSize(160, passScale(wBar, STARNT_SCALE_DELTA_PASS3)));
+        EXPECT_EQ(stats["pass3_size"][1].get<int>(), scaledSize(96, passScale(wBar, STARNT_SCALE_DELTA_PASS3)));
+        reducedFrames += stats["scale_pass3"].get<double>() < 1.0;
+        previous = stats;
+    }
+    EXPECT_GT(reducedFrames, 0u) << "the first refinement frames have w_bar < 3: pass 3 must run reduced";
+    // The histogram counts exactly the tiles with a transparent fragment.
+    const CapturedFrame frags = c.capture();
+    const auto occupied = occupiedTiles(TileGrid::forImage(160, 96), alphaChannel(occupancyFromCapture(frags)));
+    uint32_t total = 0;
+    for (auto n : previous["tile_levels"]) total += n.get<uint32_t>();
+    EXPECT_EQ(total, uint32_t(std::count(occupied.begin(), occupied.end(), 1)));
+}
+
+TEST(GlTiles, NoTransparentPixelGivesWBarZeroAndMinimumScales) {
+    test::TestScene c(makeBuiltinScene("tubes", 3), 40, 24, 0.0f, 10.0f, kBackground);
+    MethodRunner run(c, "starnt", {});
+    const FrameDesc f = c.frame();
+    SurfaceOptions invisible;
+    invisible.alphaOverride = 0.01f;  // below the 0.03 cut-off: nothing is drawn
+    for (int frame = 0; frame < 2; ++frame) {
+        run.method->render(f, c.gpu->callback(f.view, f.projection, invisible));
+        glFinish();
+    }
+    const nlohmann::json stats = run.method->lastFrameStats();
+    EXPECT_EQ(stats["w_bar"], 0.0);
+    EXPECT_EQ(stats["tile_levels"], nlohmann::json::array({0, 0, 0, 0}));
+    EXPECT_EQ(stats["scale_pass2"], 0.25);
+    EXPECT_EQ(stats["scale_pass3"], 0.25);
+    const Image image = run.image();
+    for (size_t i = 0; i < image.pixelCount(); ++i)
+        for (int ch = 0; ch < 3; ++ch) ASSERT_FLOAT_EQ(image.rgba[i * 4 + size_t(ch)], kBackground[ch]);
+}
+
+TEST(GlTiles, OddSizesAndOnePixelRender) {
+    for (auto [w, h] : {std::pair{1, 1}, std::pair{17, 33}, std::pair{50, 3}}) {
+        test::TestScene c(makeBuiltinScene("tubes", 3), w, h, 10.0f, 20.0f, kBackground);
+        for (auto inference : {MethodOptions::Inference::Full, MethodOptions::Inference::Corners}) {
+            MethodOptions o;
+            o.inference = inference;
+            MethodRunner run(c, "starnt", o);
+            nlohmann::json stats;
+            for (int frame = 0; frame < 4; ++frame) stats = run.frame();
+            const Image image = run.image();
+            for (float v : image.rgba) ASSERT_TRUE(std::isfinite(v)) << w << "x" << h;
+            EXPECT_GE(stats["pass2_size"][0].get<int>(), 1);
+            EXPECT_LE(stats["pass2_size"][0].get<int>(), w);
+            // The result stays close to the exact composite (tolerance of a reduced-scale render).
+            EXPECT_LT(mseSrgb(c.render("abuffer").image, image), 5e-3) << w << "x" << h;
+        }
+    }
+}
+
+TEST(GlTiles, CornerInferenceMatchesCpuReference) {
+    constexpr int kW = 96, kH = 64;
+    test::TestScene c(makeBuiltinScene("tubes", 3), kW, kH, 40.0f, 20.0f, kBackground);
+    MethodOptions o;
+    o.inference = MethodOptions::Inference::Corners;
+    o.fixedScale2 = o.fixedScale3 = 1.0f;  // full-resolution passes: the CPU sums are exact
+    MethodRunner run(c, "starnt", o);
+    EXPECT_FALSE(run.frame()["corner_inference_used"].get<bool>()) << "first frame: no masks yet";
+    const std::vector<glm::vec4> first = glOrder(run.image());
+    EXPECT_TRUE(run.frame()["corner_inference_used"].get<bool>());
+    const Image second = run.image();
+
+    const CapturedFrame frags = c.capture();
+    const TileGrid grid = TileGrid::forImage(kW, kH);
+    const auto masks = updateTiles(colorImage(first, kW, kH), alphaChannel(occupancyFromCapture(frags)), {}).masks;
+    const nn::Network net = loadMethodNetwork(starntConfig(), {});
+    auto sums = [&](int x, int yGl) { return nn::sumsFromFragments(frags.at(x, kH - 1 - yGl)); };
+    int evaluations = 0, deep = 0;
+    const auto network = cornerInterpolatedNetwork(
+        grid, masks, [&](int x, int y) { return sums(x, y).count >= 3.5f; },
+        [&](int x, int y) {
+            ++evaluations;
+            const auto features = nn::starntFeatures(sums(x, y));
+            return net.forward(features.data());
+        });
+    size_t bad = 0;
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            const nn::PixelSums s = sums(x, y);
+            glm::vec3 want = nn::compositeStarnt(net, s, kBackground);
+            if (s.count >= 3.5f) {
+                ++deep;
+                const float t2 = (1 - s.a1) * (1 - s.a2);
+                want = s.a1 * s.c1 + (1 - s.a1) * s.a2 * s.c2 + t2 * network[size_t(y * kW + x)] + s.transmittance * kBackground;
+            }
+            const float* got = second.pixel(x, kH - 1 - y);
+            for (int ch = 0; ch < 3; ++ch)
+                if (!(std::abs(got[ch] - want[ch]) <= 1e-3f) && ++bad <= 5)
+                    ADD_FAILURE() << x << "," << y << " ch " << ch << " gpu " << got[ch] << " cpu " << want[ch];
+        }
+    EXPECT_EQ(bad, 0u);
+    EXPECT_GT(deep, 500);
+    EXPECT_LT(evaluations, 4 * deep) << "corner inference should evaluate far fewer than 4 per pixel";
+}
+
+TEST(GlTiles, ReducedScalesRenderReducedPasses) {
+    test::TestScene c(makeBuiltinScene("tubes", 3), 160, 90, 30.0f, 20.0f, kBackground);
+    MethodOptions o;
+    o.fixedScale2 = 0.5f;
+    o.fixedScale3 = 0.25f;
+    const RenderOutput reduced = c.render("starnt", o);
+    EXPECT_EQ(reduced.stats["method_stats"]["pass2_size"], nlohmann::json::array({80, 45}));
+    EXPECT_EQ(reduced.stats["method_stats"]["pass3_size"], nlohmann::json::array({40, 23}));
+    const Image exact = c.render("abuffer").image;
+    const Image full = c.render("starnt", spatialOptions(false)).image;
+    const double mseFull = mseSrgb(exact, full), mseReduced = mseSrgb(exact, reduced.image);
+    EXPECT_GT(mseReduced, mseFull) << "reduced passes lose detail";
+    EXPECT_LT(mseReduced, 20 * mseFull + 1e-3) << "but stay a usable approximation";
+}
+
+TEST(GlTiles, TileOverlayMarksLevels) {
+    test::TestScene c(makeBuiltinScene("tubes", 3), 64, 48, 30.0f, 20.0f, kBackground);
+    MethodRunner run(c, "starnt", {});
+    for (int i = 0; i < 3; ++i) run.frame();
+    const GLuint overlay = run.method->tileOverlayTexture();
+    ASSERT_NE(overlay, 0u);
+    const Image tinted = gl::readTexture(overlay, 64, 48), plain = run.image();
+    EXPECT_GT(mseSrgb(plain, tinted), 1e-3) << "occupied tiles are tinted";
+    MethodRunner wboit(c, "wboit", {});
+    wboit.frame();
+    EXPECT_EQ(wboit.method->tileOverlayTexture(), 0u);
+    MethodRunner off(c, "starnt", spatialOptions(false));
+    off.frame();
+    EXPECT_EQ(off.method->tileOverlayTexture(), 0u);
+}
