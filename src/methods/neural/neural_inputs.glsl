@@ -25,6 +25,15 @@ struct PixelSums {
 PixelSums readPixelSums(ivec2 p) {
     PixelSums s;
     vec4 f1 = texelFetch(u_nearest, p, 0);
+    if (f1.a == 0.0) {
+        // Pass 1 runs at full resolution: no nearest fragment means no fragment at all. Without
+        // this, reduced passes 2/3 would leak their neighbours' sums into background pixels
+        // (halos at every silhouette).
+        s.c1 = s.c2 = s.sumAlphaColor = s.sumColor = vec3(0.0);
+        s.a1 = s.a2 = s.count = s.sumAlpha = 0.0;
+        s.transmittance = 1.0;
+        return s;
+    }
     vec4 f2 = upsampleAlphaWeighted(u_second, p, u_pass2Size);
     vec4 ac = upsampleLinear(u_alphaColor, p, u_pass3Size);
     vec4 cn = upsampleLinear(u_colorCount, p, u_pass3Size);
