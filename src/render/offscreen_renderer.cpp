@@ -44,6 +44,14 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
     auto method = createMethod(job.method, surface, job.methodOptions);
     std::unique_ptr<OitMethod> reference;
     if (!job.referenceMethod.empty()) reference = createMethod(job.referenceMethod, surface, {});
+    if (job.referenceImages) {
+        if (reference) throw Error("internal: referenceMethod and referenceImages exclude each other");
+        if (job.referenceImages->size() < size_t(job.frames)) throw Error("internal: fewer reference images than frames");
+        for (const Image& ref : *job.referenceImages) {
+            if (ref.width != job.width || ref.height != job.height) throw Error("internal: reference image size differs from the job's");
+        }
+    }
+    const bool compared = reference || job.referenceImages;
 
     const float aspect = float(job.width) / float(job.height);
     FrameDesc frame;
@@ -87,22 +95,28 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
             if (methodStats.contains(key)) record.stats[key] = methodStats[key];
         }
         const bool last = i + 1 == job.frames;
-        if (job.readEveryFrame || reference || last) image = gl::readTexture(method->outputTexture(), job.width, job.height);
+        if (job.readEveryFrame || compared || last) image = gl::readTexture(method->outputTexture(), job.width, job.height);
+        const Image* referenceOfFrame = nullptr;
         if (reference) {
             FrameDesc untimed = frame;
             untimed.timer = nullptr;
             reference->render(untimed, draw);
             referenceImage = gl::readTexture(reference->outputTexture(), job.width, job.height);
-            const double mse = mseSrgb(referenceImage, image);
-            const double flipMean = flip(referenceImage, image, job.flipPixelsPerDegree).mean;
+            referenceOfFrame = &referenceImage;
+        } else if (job.referenceImages) {
+            referenceOfFrame = &(*job.referenceImages)[size_t(i)];
+        }
+        if (referenceOfFrame) {
+            const double mse = mseSrgb(*referenceOfFrame, image);
+            const double flipMean = flip(*referenceOfFrame, image, job.flipPixelsPerDegree).mean;
             record.stats["mse"] = mse;
             record.stats["flip"] = flipMean;
             (interpolated ? mseInterp : mseReal).push_back(mse);
             (interpolated ? flipInterp : flipReal).push_back(flipMean);
         }
         if (job.onFrame) {
-            record.image = (job.readEveryFrame || reference) ? &image : nullptr;
-            record.reference = reference ? &referenceImage : nullptr;
+            record.image = (job.readEveryFrame || compared) ? &image : nullptr;
+            record.reference = referenceOfFrame;
             job.onFrame(record);
         }
         if (i == 0 && job.frames > 1) continue;
@@ -152,8 +166,8 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
     for (auto& [key, value] : methodStats.items()) {
         if (out.stats.contains(key) && key != "max_fragments" && key != "frames") out.stats[key] = value;
     }
-    if (reference) {
-        out.stats["reference_method"] = job.referenceMethod;
+    if (compared) {
+        out.stats["reference_method"] = reference ? job.referenceMethod : std::string("precomputed images");
         out.stats["error"] = {
             {"real", {{"frames", mseReal.size()}, {"mse_mean", nullableMean(mseReal)}, {"flip_mean", nullableMean(flipReal)}}},
             {"interpolated",

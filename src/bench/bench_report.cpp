@@ -1,0 +1,277 @@
+#include "bench/bench_report.hpp"
+
+#include <cmath>
+#include <functional>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "render/method_options.hpp"
+
+namespace starnt::bench {
+namespace {
+
+using nlohmann::json;
+constexpr const char* kMissing = "–";
+
+std::string fixed(double v, int decimals) {
+    if (!std::isfinite(v)) return kMissing;
+    char text[64];
+    std::snprintf(text, sizeof text, "%.*f", decimals, v);
+    return text;
+}
+
+// Milliseconds with three significant-ish digits: 0.123, 1.23, 12.3, 123.
+std::string ms(double v) {
+    if (!std::isfinite(v)) return kMissing;
+    return fixed(v, v < 1.0 ? 3 : v < 10.0 ? 2 : v < 100.0 ? 1 : 0);
+}
+
+std::string percent(const std::optional<double>& v) { return v ? fixed(*v, 1) + "%" : kMissing; }
+
+std::optional<double> passMs(const CaseResult* c, const std::string& pass) {
+    if (!c || !c->ok || !c->stats.contains("pass_ms") || !c->stats["pass_ms"].contains(pass)) return std::nullopt;
+    return c->stats["pass_ms"][pass].get<double>();
+}
+
+// Passes that are neither a geometry pass nor inference: tile evaluation, upsampling, reprojection.
+std::optional<double> computeMs(const CaseResult* c) {
+    if (!c || !c->ok || !c->stats.contains("pass_ms")) return std::nullopt;
+    double sum = 0.0;
+    bool any = false;
+    for (auto& [name, value] : c->stats["pass_ms"].items()) {
+        if (name == "pass1" || name == "pass2" || name == "pass3" || name == "inference") continue;
+        sum += value.get<double>();
+        any = true;
+    }
+    return any ? std::optional(sum) : std::nullopt;
+}
+
+std::string optMs(const std::optional<double>& v) { return v ? ms(*v) : kMissing; }
+
+double meanOf(const std::vector<double>& values) {
+    if (values.empty()) return NAN;
+    double s = 0.0;
+    for (double v : values) s += v;
+    return s / double(values.size());
+}
+
+std::string sceneLabel(const SceneResult& s) {
+    std::string label = s.spec.name + " (D " + std::to_string(s.maxFragments);
+    if (s.spec.paperDepth) label += "; paper " + std::to_string(s.spec.paperDepth);
+    return label + ")";
+}
+
+// A table with one row per scene and one column per variant, cells from `cell` (failed cases say
+// so), and an optional average row over the scenes where `value` exists.
+void sceneByVariantTable(std::ostringstream& md, const Results& r, const std::function<std::string(const CaseResult&)>& cell,
+                         const std::function<std::optional<double>(const CaseResult&)>& value = nullptr,
+                         const std::function<std::string(double)>& formatAverage = nullptr) {
+    md << "| scene |";
+    for (const auto& v : r.plan.variants) md << ' ' << v.name << " |";
+    md << "\n|---|";
+    for (size_t i = 0; i < r.plan.variants.size(); ++i) md << "---|";
+    md << '\n';
+    std::vector<std::vector<double>> columns(r.plan.variants.size());
+    for (const auto& s : r.scenes) {
+        md << "| " << sceneLabel(s) << " |";
+        for (size_t i = 0; i < r.plan.variants.size(); ++i) {
+            const CaseResult* c = s.find(r.plan.variants[i].name);
+            if (!s.loaded) md << " not loaded |";
+            else if (!c || !c->ok) md << " failed |";
+            else {
+                md << ' ' << cell(*c) << " |";
+                if (value) {
+                    if (auto v = value(*c)) columns[i].push_back(*v);
+                }
+            }
+        }
+        md << '\n';
+    }
+    if (value && formatAverage) {
+        md << "| **average** |";
+        for (const auto& column : columns) md << ' ' << (column.empty() ? kMissing : formatAverage(meanOf(column))) << " |";
+        md << '\n';
+    }
+    md << '\n';
+}
+
+void header(std::ostringstream& md, const Results& r) {
+    const auto& m = r.machine;
+    md << "# STAR-NT benchmark\n\n";
+    md << "| | |\n|---|---|\n";
+    md << "| date (UTC) | " << r.date << " |\n";
+    md << "| GL renderer | " << m.gl.renderer << " (" << m.gl.version << ")" << (m.gl.software ? ", software rasteriser" : "") << " |\n";
+    md << "| CPU | " << m.cpuModel << ", " << m.cpuThreads << " threads"
+       << (m.lpNumThreads.empty() ? "" : ", LP_NUM_THREADS=" + m.lpNumThreads) << " |\n";
+    md << "| build | " << m.buildType << ", commit " << m.commit << ", " << m.compiler << " |\n";
+    md << "| preset | " << r.plan.preset << ": " << r.plan.width << "x" << r.plan.height << ", " << r.plan.frames
+       << " frames along `" << r.plan.cameraPath << "` |\n";
+    md << "| scenes | " << r.plan.suiteNote << " |\n";
+    md << "| command | `" << r.commandLine << "` |\n";
+    md << "| wall time | " << fixed(r.wallSeconds, 1) << " s |\n\n";
+    md << "Frame times are medians over frames 2..N (frame 1 compiles shaders), glFinish + wall clock"
+       << (m.gl.software ? "; on a CPU rasteriser they rank methods by work done, not by GPU speed" : "")
+       << ". Errors are means over every frame against the A-buffer at the same camera. D is the largest "
+          "number of fragments on one pixel at the last camera.\n\n";
+}
+
+void frameTimeTable(std::ostringstream& md, const Results& r) {
+    md << "## Frame time (ms)\n\n";
+    sceneByVariantTable(
+        md, r, [](const CaseResult& c) { return ms(c.frameMs()); },
+        [](const CaseResult& c) { return std::optional(c.frameMs()); }, [](double v) { return ms(v); });
+}
+
+void passBreakdownTable(std::ostringstream& md, const Results& r) {
+    md << "## Per-pass breakdown (ms)\n\n"
+          "As the paper's ablation table: passes 1-3 and inference of DFAOIT (full resolution), Pass N↓ and "
+          "inference of STAR-NT with tiles on (scales chosen by the tiles; P2/P3 % are the last frame's), "
+          "Compute = every other STAR-NT pass (tiles, upsampling). Totals are whole-frame medians.\n\n";
+    md << "| scene (P2%, P3%, D) | Pass 1 | Pass 2 | Pass 2↓ | Pass 3 | Pass 3↓ | Compute | Inf. DFAOIT | Inf. STAR | "
+          "Total DFAOIT | Total STAR-NT w/o temporal | Total STAR | Speed-up |\n";
+    md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const auto& s : r.scenes) {
+        const CaseResult* dfa = s.find("dfaoit");
+        const CaseResult* star = s.find("starnt");
+        const CaseResult* total = s.find("starnt-total");
+        auto okFrame = [](const CaseResult* c) { return c && c->ok ? std::optional(c->frameMs()) : std::nullopt; };
+        std::string p2 = kMissing, p3 = kMissing;
+        if (star && star->ok) {
+            p2 = fixed(star->stats.value("scale_pass2", NAN) * 100.0, 0);
+            p3 = fixed(star->stats.value("scale_pass3", NAN) * 100.0, 0);
+        }
+        std::optional<double> speedup;
+        if (okFrame(dfa) && okFrame(total) && *okFrame(dfa) > 0.0) speedup = (*okFrame(dfa) - *okFrame(total)) / *okFrame(dfa) * 100.0;
+        md << "| " << s.spec.name << " (100, " << p2 << ", " << p3 << ", " << s.maxFragments << ") | "
+           << optMs(passMs(dfa, "pass1")) << " | " << optMs(passMs(dfa, "pass2")) << " | " << optMs(passMs(star, "pass2")) << " | "
+           << optMs(passMs(dfa, "pass3")) << " | " << optMs(passMs(star, "pass3")) << " | " << optMs(computeMs(star)) << " | "
+           << optMs(passMs(dfa, "inference")) << " | " << optMs(passMs(star, "inference")) << " | " << optMs(okFrame(dfa))
+           << " | " << optMs(okFrame(star)) << " | " << optMs(okFrame(total)) << " | " << percent(speedup) << " |\n";
+    }
+    md << "\nEvery pass of every method (median ms):\n\n| scene | method | passes |\n|---|---|---|\n";
+    for (const auto& s : r.scenes) {
+        for (const auto& c : s.cases) {
+            if (!c.ok || !c.stats.contains("pass_ms")) continue;
+            std::string passes;
+            for (auto& [name, value] : c.stats["pass_ms"].items()) passes += (passes.empty() ? "" : ", ") + name + " " + ms(value.get<double>());
+            md << "| " << s.spec.name << " | " << c.variant << " | " << (passes.empty() ? kMissing : passes) << " |\n";
+        }
+    }
+    md << '\n';
+}
+
+void speedupTable(std::ostringstream& md, const Results& r) {
+    md << "## Speed-up over DFAOIT\n\n"
+          "Percent of DFAOIT's frame time saved (positive = faster than DFAOIT), per method.\n\n";
+    sceneByVariantTable(
+        md, r, [](const CaseResult& c) { return percent(c.speedupVsDfaoit); },
+        [](const CaseResult& c) { return c.speedupVsDfaoit; }, [](double v) { return fixed(v, 1) + "%"; });
+}
+
+void qualityTables(std::ostringstream& md, const Results& r) {
+    md << "## Quality against the A-buffer\n\n### MSE x10^2\n\n";
+    sceneByVariantTable(
+        md, r, [](const CaseResult& c) { return c.quality ? fixed(c.quality->mse * 100.0, 4) : std::string(kMissing); },
+        [](const CaseResult& c) { return c.quality ? std::optional(c.quality->mse * 100.0) : std::nullopt; },
+        [](double v) { return fixed(v, 4); });
+    md << "### FLIP\n\n";
+    sceneByVariantTable(
+        md, r, [](const CaseResult& c) { return c.quality ? fixed(c.quality->flip, 4) : std::string(kMissing); },
+        [](const CaseResult& c) { return c.quality ? std::optional(c.quality->flip) : std::nullopt; },
+        [](double v) { return fixed(v, 4); });
+    md << "### MSE reduction against WBOIT (positive = lower error than WBOIT)\n\n";
+    sceneByVariantTable(
+        md, r, [](const CaseResult& c) { return percent(c.mseReductionVsWboit); },
+        [](const CaseResult& c) { return c.mseReductionVsWboit; }, [](double v) { return fixed(v, 1) + "%"; });
+    md << "### FLIP reduction against WBOIT\n\n";
+    sceneByVariantTable(
+        md, r, [](const CaseResult& c) { return percent(c.flipReductionVsWboit); },
+        [](const CaseResult& c) { return c.flipReductionVsWboit; }, [](double v) { return fixed(v, 1) + "%"; });
+}
+
+void memoryTable(std::ostringstream& md, const Results& r) {
+    md << "## GPU memory per method (MiB)\n\nEvery buffer and texture the method holds (scene geometry excluded).\n\n";
+    auto mib = [](const CaseResult& c) { return c.stats.value("memory_bytes", 0.0) / (1024.0 * 1024.0); };
+    sceneByVariantTable(md, r, [&](const CaseResult& c) { return fixed(mib(c), 1); });
+}
+
+void qTable(std::ostringstream& md, const Results& r) {
+    md << "## Q metric (% per ms)\n\n"
+          "The paper's Q with frame time standing in for energy per frame (no power counter here):\n"
+          "`Q = (MSE_unsorted - MSE_method) / (frame_ms * MSE_unsorted) * 100`, the percentage of the unsorted "
+          "blend's error removed per millisecond of frame time (higher is better).\n\n";
+    sceneByVariantTable(
+        md, r, [](const CaseResult& c) { return c.q ? fixed(*c.q, 3) : std::string(kMissing); }, [](const CaseResult& c) { return c.q; },
+        [](double v) { return fixed(v, 3); });
+}
+
+void imagesSection(std::ostringstream& md, const Results& r) {
+    md << "## Images and plots\n\n";
+    if (r.plots.made) {
+        for (const auto& f : r.plots.files) md << "![" << f << "](" << f << ")\n\n";
+    } else {
+        md << "Plots were skipped: " << r.plots.reason << "\n\n";
+    }
+    md << "| scene | method | image | FLIP map | tiles |\n|---|---|---|---|---|\n";
+    auto link = [](const std::string& label, const std::string& path) { return path.empty() ? std::string(kMissing) : "[" + label + "](" + path + ")"; };
+    for (const auto& s : r.scenes) {
+        md << "| " << s.spec.name << " | ground truth (abuffer) | " << link("png", s.groundTruthImage) << " | | |\n";
+        for (const auto& c : s.cases) {
+            md << "| " << s.spec.name << " | " << c.variant << " | " << link("png", c.image) << " | " << link("png", c.flipMap) << " | "
+               << link("png", c.tileOverlay) << " |\n";
+        }
+    }
+    md << '\n';
+}
+
+void failuresSection(std::ostringstream& md, const Results& r) {
+    md << "## Failures\n\n";
+    if (r.failureCount() == 0) {
+        md << "None.\n\n";
+        return;
+    }
+    for (const auto& s : r.scenes) {
+        if (!s.loaded) md << "- " << s.spec.name << ": scene not loaded: " << s.loadError << "\n";
+        if (s.loaded && !s.groundTruthOk) md << "- " << s.spec.name << ": ground truth failed (no errors measured): " << s.groundTruthError << "\n";
+        for (const auto& c : s.cases) {
+            if (!c.ok) md << "- " << s.spec.name << " / " << c.variant << ": " << c.error << "\n";
+        }
+    }
+    md << '\n';
+}
+
+void settingsSection(std::ostringstream& md, const Results& r) {
+    md << "## Settings\n\n| method | base | spatial | scales | inference | temporal | what |\n|---|---|---|---|---|---|---|\n";
+    for (const auto& v : r.plan.variants) {
+        md << "| " << v.name << " | " << v.method << " | " << spatialText(v.options) << " | " << scalesText(v.options) << " | "
+           << (v.options.inference == MethodOptions::Inference::Corners ? "corners" : "full") << " | " << temporalText(v.options)
+           << " | " << v.description << " |\n";
+    }
+    md << "\n| scene | source | triangles | alpha | alpha cut-off | note |\n|---|---|---|---|---|---|\n";
+    for (const auto& s : r.scenes) {
+        md << "| " << s.spec.name << " | " << s.spec.source << " | " << s.triangles << " | "
+           << (s.spec.alphaOverride ? fixed(*s.spec.alphaOverride, 2) : std::string("file")) << " | " << s.spec.alphaCutoff << " | "
+           << (s.spec.note.empty() ? kMissing : s.spec.note) << " |\n";
+    }
+    md << '\n';
+}
+
+}  // namespace
+
+std::string reportMarkdown(const Results& results) {
+    std::ostringstream md;
+    header(md, results);
+    frameTimeTable(md, results);
+    passBreakdownTable(md, results);
+    speedupTable(md, results);
+    qualityTables(md, results);
+    memoryTable(md, results);
+    qTable(md, results);
+    imagesSection(md, results);
+    failuresSection(md, results);
+    settingsSection(md, results);
+    return md.str();
+}
+
+}  // namespace starnt::bench

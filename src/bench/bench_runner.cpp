@@ -1,0 +1,194 @@
+#include "bench/bench_runner.hpp"
+
+#include <chrono>
+#include <filesystem>
+
+#include "bench/progress.hpp"
+#include "render/offscreen_renderer.hpp"
+#include "starnt/error.hpp"
+#include "starnt/gl_context.hpp"
+#include "starnt/metrics.hpp"
+#include "starnt/scene.hpp"
+
+namespace starnt::bench {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Scene names come from suite names or file stems; keep file names portable.
+std::string fileSafe(const std::string& name) {
+    std::string safe = name;
+    for (char& ch : safe) {
+        const bool ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '-' || ch == '_';
+        if (!ok) ch = '_';
+    }
+    return safe;
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Everything a scene's jobs share: size, path, background, surface settings.
+RenderJob baseJob(const Plan& plan, const SceneSpec& spec, const Scene& scene) {
+    RenderJob job;
+    job.width = plan.width;
+    job.height = plan.height;
+    job.frames = plan.frames;
+    job.background = glm::vec3(1.0f);  // SPEC 9 default: white
+    job.alphaCutoff = spec.alphaCutoff;
+    job.surface = surfaceOptionsFor(spec);
+    job.path = parseCameraPathSpec(plan.cameraPath, scene.bounds(), float(plan.width) / float(plan.height));
+    return job;
+}
+
+class SceneBench {
+public:
+    SceneBench(const Plan& plan, const SceneSpec& spec, const fs::path& outDir, Progress& progress, const std::string& label)
+        : plan_(plan), spec_(spec), outDir_(outDir), progress_(progress), label_(label),
+          imageDir_(fs::path("images") / fileSafe(spec.name)) {}
+
+    SceneResult run() {
+        SceneResult result;
+        result.spec = spec_;
+        std::optional<Scene> scene;
+        try {
+            scene = loadScene(spec_.source);
+        } catch (const std::exception& e) {
+            result.loadError = e.what();
+            progress_.skip(size_t(plan_.frames) * (1 + plan_.variants.size()));
+            return result;
+        }
+        result.loaded = true;
+        result.triangles = scene->triangleCount();
+        fs::create_directories(outDir_ / imageDir_);
+        SceneGpu gpu(*scene);
+        renderGroundTruth(*scene, gpu, result);
+        for (const auto& variant : plan_.variants) result.cases.push_back(runVariant(*scene, gpu, variant, result));
+        return result;
+    }
+
+private:
+    // A-buffer at every camera of the path; its frames stay in memory as the reference of every method.
+    void renderGroundTruth(const Scene& scene, const SceneGpu& gpu, SceneResult& result) {
+        progress_.begin(label_ + ": ground truth (abuffer)");
+        RenderJob job = baseJob(plan_, spec_, scene);
+        job.method = "abuffer";
+        job.methodOptions.abufferMemoryCapBytes = plan_.abufferCapBytes;
+        job.readEveryFrame = true;
+        groundTruth_.clear();
+        job.onFrame = [&](const FrameRecord& record) {
+            groundTruth_.push_back(*record.image);
+            progress_.step("frame " + std::to_string(record.index + 1) + "/" + std::to_string(plan_.frames));
+        };
+        try {
+            RenderOutput out = renderScene(gpu, job);
+            result.groundTruthStats = out.stats;
+            result.maxFragments = out.stats.value("max_fragments", 0u);
+            result.groundTruthImage = (imageDir_ / "ground_truth.png").string();
+            saveImage(out.image, (outDir_ / result.groundTruthImage).string());
+            result.groundTruthOk = true;
+        } catch (const std::exception& e) {
+            result.groundTruthError = e.what();
+            progress_.skip(size_t(plan_.frames) - groundTruth_.size());
+            groundTruth_.clear();
+        }
+    }
+
+    CaseResult runVariant(const Scene& scene, const SceneGpu& gpu, const Variant& variant, const SceneResult& sceneResult) {
+        CaseResult c;
+        c.variant = variant.name;
+        c.method = variant.method;
+        c.frames = nlohmann::json::array();
+        progress_.begin(label_ + ": " + variant.name);
+        const auto start = std::chrono::steady_clock::now();
+        RenderJob job = baseJob(plan_, spec_, scene);
+        job.method = variant.method;
+        job.methodOptions = variant.options;
+        job.readTileOverlay = true;
+        if (sceneResult.groundTruthOk) job.referenceImages = &groundTruth_;
+        size_t framesDone = 0;
+        job.onFrame = [&](const FrameRecord& record) {
+            c.frames.push_back(record.stats);
+            ++framesDone;
+            progress_.step("frame " + std::to_string(record.index + 1) + "/" + std::to_string(plan_.frames));
+        };
+        try {
+            RenderOutput out = renderScene(gpu, job);
+            c.stats = out.stats;
+            c.image = (imageDir_ / (fileSafe(variant.name) + ".png")).string();
+            saveImage(out.image, (outDir_ / c.image).string());
+            if (out.tileOverlay) {
+                c.tileOverlay = (imageDir_ / (fileSafe(variant.name) + "_tiles.png")).string();
+                saveImage(*out.tileOverlay, (outDir_ / c.tileOverlay).string());
+            }
+            c.ok = true;
+            if (sceneResult.groundTruthOk) {
+                c.quality = measureQuality(c, sceneResult, variant);
+            } else {
+                c.qualityMissingReason = "ground truth failed: " + sceneResult.groundTruthError;
+            }
+        } catch (const std::exception& e) {
+            c.ok = false;
+            c.error = e.what();
+            progress_.skip(size_t(plan_.frames) - framesDone);
+        }
+        c.wallSeconds = secondsSince(start);
+        return c;
+    }
+
+    // Means over every frame, plus the last frame measured on the PNG files exactly as
+    // `starnt compare` reads them (and the FLIP map from the same pair).
+    Quality measureQuality(CaseResult& c, const SceneResult& sceneResult, const Variant& variant) {
+        Quality q;
+        double mseSum = 0.0, flipSum = 0.0;
+        for (const auto& frame : c.frames) {
+            mseSum += frame.at("mse").get<double>();
+            flipSum += frame.at("flip").get<double>();
+        }
+        q.mse = mseSum / double(c.frames.size());
+        q.flip = flipSum / double(c.frames.size());
+        q.byFrameKind = c.stats.value("error", nlohmann::json(nullptr));
+        const Image reference = loadImage((outDir_ / sceneResult.groundTruthImage).string());
+        const Image test = loadImage((outDir_ / c.image).string());
+        q.pngMse = mseSrgb(reference, test);
+        FlipResult flipResult = flip(reference, test);
+        q.pngFlip = flipResult.mean;
+        c.flipMap = (imageDir_ / (fileSafe(variant.name) + "_flip.png")).string();
+        saveImage(flipHeatmap(flipResult.errorMap), (outDir_ / c.flipMap).string());
+        return q;
+    }
+
+    const Plan& plan_;
+    const SceneSpec& spec_;
+    const fs::path outDir_;
+    Progress& progress_;
+    const std::string label_;
+    const fs::path imageDir_;  // relative to outDir_
+    std::vector<Image> groundTruth_;
+};
+
+}  // namespace
+
+size_t totalFrames(const Plan& plan) { return plan.scenes.size() * size_t(plan.frames) * (1 + plan.variants.size()); }
+
+Results runBench(const Plan& plan, const std::string& outDir, std::FILE* progressOut) {
+    const auto start = std::chrono::steady_clock::now();
+    Results results;
+    results.plan = plan;
+    results.date = isoUtcNow();
+    HeadlessGlContext context;
+    results.machine = collectMachineInfo(context.info());
+    fs::create_directories(outDir);
+    Progress progress(progressOut, totalFrames(plan));
+    for (size_t i = 0; i < plan.scenes.size(); ++i) {
+        const std::string label = plan.scenes[i].name + " (" + std::to_string(i + 1) + "/" + std::to_string(plan.scenes.size()) + ")";
+        results.scenes.push_back(SceneBench(plan, plan.scenes[i], outDir, progress, label).run());
+    }
+    progress.finish();
+    computeDerivedFigures(results);
+    results.wallSeconds = secondsSince(start);
+    return results;
+}
+
+}  // namespace starnt::bench

@@ -1,0 +1,325 @@
+// `starnt bench` (issue 6): the plan (variants, scenes, presets), the Q formula, and real runs of the
+// CLI at a tiny size checking every output file, every JSON field, agreement with `starnt compare`,
+// determinism, and that failures are recorded while the run goes on.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sys/wait.h>
+
+#include <nlohmann/json.hpp>
+
+#include "bench/bench_plan.hpp"
+#include "bench/bench_results.hpp"
+#include "starnt/error.hpp"
+#include "test_support.hpp"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using namespace starnt;
+
+namespace {
+
+struct CliRun {
+    int exitCode = -1;
+    std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+    std::ifstream f(p);
+    return std::string(std::istreambuf_iterator<char>(f), {});
+}
+
+CliRun runCli(const std::string& args) {
+    fs::path dir = test::makeTempDir("bench_io");
+    std::string cmd = std::string(STARNT_CLI) + " " + args + " >" + (dir / "out").string() + " 2>" + (dir / "err").string();
+    const int status = std::system(cmd.c_str());
+    CliRun r;
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(dir / "out");
+    r.err = slurp(dir / "err");
+    fs::remove_all(dir);
+    return r;
+}
+
+bool systemPythonHasMatplotlib() { return std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") == 0; }
+
+// The tiny run of the issue: built-in scenes, 128x72, 3 frames, every default method.
+const std::string kTinyArgs = "bench --preset quick --suite-dir /nonexistent/suite --scenes builtin:panes,builtin:smoke "
+                              "--width 128 --height 72 --frames 3";
+
+
+json readJson(const fs::path& p) {
+    std::ifstream f(p);
+    return json::parse(f);
+}
+
+}  // namespace
+
+TEST(BenchPlan, VariantsCarryTheirOptions) {
+    EXPECT_EQ(bench::defaultVariantNames().size(), 7u);
+    EXPECT_EQ(bench::findVariant("starnt-full").options.spatial, std::optional<bool>(false));
+    EXPECT_EQ(bench::findVariant("starnt").options.spatial, std::optional<bool>(true));
+    EXPECT_EQ(bench::findVariant("starnt").options.temporalInterval, 1);
+    const auto& total = bench::findVariant("starnt-total");
+    EXPECT_EQ(total.method, "starnt");
+    EXPECT_EQ(total.options.spatial, std::optional<bool>(true));
+    EXPECT_EQ(total.options.temporalInterval, 2);
+    EXPECT_EQ(bench::findVariant("starnt-corners").options.inference, MethodOptions::Inference::Corners);
+    EXPECT_EQ(bench::findVariant("dfaoit").options.spatial, std::nullopt);  // the method's default: off
+    try {
+        bench::findVariant("fancy");
+        FAIL() << "unknown variant accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("fancy"), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("starnt-total"), std::string::npos);  // lists the valid names
+    }
+}
+
+TEST(BenchPlan, BuiltinScenesStandInWhenTheSuiteIsAbsent) {
+    bench::Request request;
+    request.suiteDir = "/nonexistent/suite";
+    bench::Plan plan = bench::makePlan(request);
+    EXPECT_EQ(plan.width, 640);
+    EXPECT_EQ(plan.height, 360);
+    ASSERT_EQ(plan.scenes.size(), 3u);
+    for (const auto& s : plan.scenes) EXPECT_EQ(s.source.rfind("builtin:", 0), 0u) << s.source;
+    EXPECT_NE(plan.suiteNote.find("not found"), std::string::npos);
+    EXPECT_TRUE(plan.suiteDir.empty());
+    // A suite scene cannot be asked for without the suite.
+    request.scenes = {"tree"};
+    EXPECT_THROW(bench::makePlan(request), Error);
+}
+
+TEST(BenchPlan, SuiteScenesHaveTheirSettings) {
+    const fs::path suite = test::sharedScenesDir();
+    if (suite.empty()) GTEST_SKIP() << "../shared/scenes not present";
+    bench::Request request;
+    request.suiteDir = suite.string();
+    bench::Plan quick = bench::makePlan(request);
+    ASSERT_EQ(quick.scenes.size(), 3u);
+    for (const auto& s : quick.scenes) EXPECT_TRUE(fs::exists(s.source)) << s.source;
+    request.preset = "paper";
+    bench::Plan paper = bench::makePlan(request);
+    EXPECT_EQ(paper.width, 1920);
+    EXPECT_EQ(paper.scenes.size(), bench::suiteScenes().size());
+    for (const auto& s : paper.scenes) {
+        EXPECT_TRUE(fs::exists(s.source)) << s.source;
+        if (s.name == "smoke") EXPECT_LT(s.alphaCutoff, 0.012f);  // its alphas are 0.012..0.03
+        if (s.name == "engine") EXPECT_EQ(s.alphaOverride, std::optional<float>(0.3f));
+    }
+}
+
+TEST(BenchPlan, RejectsBadRequests) {
+    bench::Request request;
+    request.suiteDir = "/nonexistent/suite";
+    request.preset = "slow";
+    EXPECT_THROW(bench::makePlan(request), Error);
+    request.preset = "quick";
+    request.methods = {"wboit", "wboit"};
+    EXPECT_THROW(bench::makePlan(request), Error);
+    request.methods = {};
+    request.scenes = {"builtin:nope"};
+    EXPECT_THROW(bench::makePlan(request), Error);
+    request.scenes = {};
+    request.cameraPath = "spiral:1";
+    EXPECT_THROW(bench::makePlan(request), Error);
+}
+
+TEST(BenchResults, QMetricIsImprovementOverUnsortedPerMillisecond) {
+    // Half the unsorted error removed (50 %) at 5 ms per frame: 10 % per ms.
+    EXPECT_DOUBLE_EQ(*bench::qMetric(0.02, 0.01, 5.0), 10.0);
+    EXPECT_DOUBLE_EQ(*bench::qMetric(0.02, 0.02, 5.0), 0.0);  // no better than unsorted
+    EXPECT_LT(*bench::qMetric(0.02, 0.03, 5.0), 0.0);         // worse than unsorted
+    EXPECT_FALSE(bench::qMetric(0.0, 0.0, 5.0));               // unsorted exact: undefined
+    EXPECT_FALSE(bench::qMetric(0.02, 0.01, 0.0));
+}
+
+namespace {
+
+void expectEveryFile(const fs::path& dir) {
+    for (const char* f : {"results.json", "results.csv", "report.md"}) EXPECT_TRUE(fs::exists(dir / f)) << f;
+    json results = readJson(dir / "results.json");
+    ASSERT_EQ(results["scenes"].size(), 2u);
+    for (const auto& scene : results["scenes"]) {
+        EXPECT_TRUE(fs::exists(dir / scene["ground_truth"]["image"].get<std::string>()));
+        ASSERT_EQ(scene["methods"].size(), 7u);
+        for (const auto& c : scene["methods"]) {
+            ASSERT_EQ(c["status"], "ok") << c["variant"] << ": " << c["error"];
+            EXPECT_TRUE(fs::exists(dir / c["images"]["image"].get<std::string>())) << c["variant"];
+            EXPECT_TRUE(fs::exists(dir / c["images"]["flip_map"].get<std::string>())) << c["variant"];
+            const std::string tiles = c["images"]["tile_overlay"];
+            if (!tiles.empty()) EXPECT_TRUE(fs::exists(dir / tiles)) << tiles;
+        }
+    }
+    // One CSV row per scene and method, each with as many fields as the header.
+    std::istringstream csv(slurp(dir / "results.csv"));
+    std::string line;
+    std::vector<std::string> lines;
+    while (std::getline(csv, line)) lines.push_back(line);
+    ASSERT_EQ(lines.size(), 1u + 2u * 7u);
+    auto fields = [](const std::string& l) { return std::count(l.begin(), l.end(), ',') + 1; };
+    for (const auto& l : lines) EXPECT_EQ(fields(l), fields(lines[0])) << l;
+
+    const std::string report = slurp(dir / "report.md");
+    for (const char* heading : {"## Frame time", "## Per-pass breakdown", "## Speed-up over DFAOIT", "### MSE x10^2", "### FLIP",
+                                "reduction against WBOIT", "## GPU memory", "## Q metric", "## Failures"}) {
+        EXPECT_NE(report.find(heading), std::string::npos) << heading;
+    }
+    for (const auto& name : bench::defaultVariantNames()) EXPECT_NE(report.find(name), std::string::npos) << name;
+
+    if (systemPythonHasMatplotlib()) {
+        EXPECT_TRUE(results["plots"]["made"].get<bool>()) << results["plots"]["reason"];
+        for (const char* plot : {"plots/frame_time.png", "plots/error.png", "plots/quality_vs_time.png"}) {
+            EXPECT_TRUE(fs::exists(dir / plot)) << plot;
+            EXPECT_NE(report.find(plot), std::string::npos) << plot;
+        }
+    } else {
+        EXPECT_FALSE(results["plots"]["made"].get<bool>());
+        EXPECT_FALSE(results["plots"]["reason"].get<std::string>().empty());
+    }
+}
+
+void expectEveryJsonField(const fs::path& dir) {
+    json r = readJson(dir / "results.json");
+    for (const char* key : {"date", "command_line", "machine", "settings", "variants", "scenes", "plots", "failures", "wall_seconds"}) {
+        EXPECT_TRUE(r.contains(key)) << key;
+    }
+    for (const char* key : {"cpu_model", "cpu_threads", "gl_renderer", "gl_version", "build_type", "commit", "compiler"}) {
+        EXPECT_TRUE(r["machine"].contains(key)) << key;
+    }
+    EXPECT_FALSE(r["machine"]["gl_renderer"].get<std::string>().empty());
+    EXPECT_FALSE(r["machine"]["commit"].get<std::string>().empty());  // a hash, or "unknown" outside git
+    EXPECT_EQ(r["date"].get<std::string>().size(), 20u);              // 2025-01-31T12:34:56Z
+    EXPECT_EQ(r["settings"]["width"], 128);
+    EXPECT_EQ(r["settings"]["frames"], 3);
+    EXPECT_TRUE(r["settings"]["suite_dir"].is_null());
+    EXPECT_EQ(r["failures"], 0);
+    for (const auto& scene : r["scenes"]) {
+        EXPECT_EQ(scene["ground_truth"]["status"], "ok");
+        EXPECT_GE(scene["max_fragments"].get<int>(), 2);
+        const json* unsorted = nullptr;
+        for (const auto& c : scene["methods"]) {
+            if (c["variant"] == "unsorted") unsorted = &c;
+        }
+        ASSERT_NE(unsorted, nullptr);
+        for (const auto& c : scene["methods"]) {
+            for (const char* key : {"variant", "method", "status", "error", "stats", "frames", "quality", "images", "q_percent_per_ms",
+                                    "mse_reduction_vs_wboit_percent", "flip_reduction_vs_wboit_percent", "speedup_vs_dfaoit_percent"}) {
+                EXPECT_TRUE(c.contains(key)) << key;
+            }
+            for (const char* key : {"frame_ms", "pass_ms", "scale_pass2", "scale_pass3", "w_bar", "tile_levels", "max_fragments",
+                                    "memory_bytes", "frames", "interpolated_frames"}) {
+                EXPECT_TRUE(c["stats"].contains(key)) << key;
+            }
+            EXPECT_GT(c["stats"]["frame_ms"].get<double>(), 0.0);
+            EXPECT_GT(c["stats"]["memory_bytes"].get<double>(), 0.0);
+            EXPECT_EQ(c["frames"].size(), 3u);  // one record per frame, each with its error
+            for (const auto& f : c["frames"]) EXPECT_TRUE(f.contains("mse") && f.contains("flip"));
+            // The mean error is the mean of the per-frame errors.
+            double mseSum = 0.0;
+            for (const auto& f : c["frames"]) mseSum += f["mse"].get<double>();
+            EXPECT_NEAR(c["quality"]["mse"].get<double>(), mseSum / 3.0, 1e-15);
+            // Q recomputed from the figures beside it.
+            const double uMse = (*unsorted)["quality"]["mse"], mse = c["quality"]["mse"], ms = c["stats"]["frame_ms"];
+            if (uMse > 0.0) EXPECT_NEAR(c["q_percent_per_ms"].get<double>(), (uMse - mse) / (ms * uMse) * 100.0, 1e-9);
+        }
+    }
+}
+
+// The bench's last-frame figures are computed on the PNG files it wrote, read back exactly as
+// `starnt compare` reads them, so the two must agree to the last printed digit (only the JSON
+// double round trip separates them). The per-frame figures are computed on the float images before
+// 8-bit quantisation: RMSE is a norm, so the two RMSEs differ by at most the RMS of the
+// quantisation difference, under 1/255 (each image is off by at most half a step per channel).
+void expectAgreementWithCompare(const fs::path& dir) {
+    json r = readJson(dir / "results.json");
+    for (const auto& scene : r["scenes"]) {
+        const std::string gt = (dir / scene["ground_truth"]["image"].get<std::string>()).string();
+        for (const auto& c : scene["methods"]) {
+            const std::string image = (dir / c["images"]["image"].get<std::string>()).string();
+            CliRun cmp = runCli("compare --reference " + gt + " --test " + image + " --json");
+            ASSERT_EQ(cmp.exitCode, 0) << cmp.err;
+            json j = json::parse(cmp.out);
+            const json& png = c["quality"]["last_frame_png"];
+            EXPECT_NEAR(png["mse"].get<double>(), j["mse"].get<double>(), 1e-12) << c["variant"];
+            EXPECT_NEAR(png["flip"].get<double>(), j["flip"].get<double>(), 1e-12) << c["variant"];
+            const double lastFloatMse = c["frames"].back()["mse"];
+            EXPECT_LE(std::abs(std::sqrt(png["mse"].get<double>()) - std::sqrt(lastFloatMse)), 1.0 / 255.0) << c["variant"];
+        }
+    }
+}
+
+void expectSameQuality(const fs::path& dir, const fs::path& again) {
+    json first = readJson(dir / "results.json"), second = readJson(again / "results.json");
+    EXPECT_FALSE(second["plots"]["made"].get<bool>());
+    for (size_t s = 0; s < first["scenes"].size(); ++s) {
+        for (size_t m = 0; m < first["scenes"][s]["methods"].size(); ++m) {
+            const json& a = first["scenes"][s]["methods"][m];
+            const json& b = second["scenes"][s]["methods"][m];
+            EXPECT_EQ(a["quality"]["mse"], b["quality"]["mse"]) << a["variant"];
+            EXPECT_EQ(a["quality"]["flip"], b["quality"]["flip"]) << a["variant"];
+        }
+    }
+}
+
+}  // namespace
+
+// The issue's tiny run (built-in scenes, 128x72, 3 frames, every default method), checked file by
+// file, then run again: renders are deterministic, so the quality figures repeat exactly. One test
+// (ctest runs each test in its own process, so separate tests would each render the run again).
+TEST(BenchCli, TinyRunProducesEveryFileAndFieldAndRepeats) {
+    fs::path dir = test::makeTempDir("bench_tiny");
+    CliRun r = runCli(kTinyArgs + " --out " + dir.string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("left ~"), std::string::npos) << "no progress estimate on stderr: " << r.err;
+    expectEveryFile(dir);
+    expectEveryJsonField(dir);
+    expectAgreementWithCompare(dir);
+    fs::path again = test::makeTempDir("bench_again");
+    r = runCli(kTinyArgs + " --no-plots --out " + again.string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    expectSameQuality(dir, again);
+    fs::remove_all(again);
+    fs::remove_all(dir);
+}
+
+TEST(BenchCli, FailuresAreRecordedAndTheRunGoesOn) {
+    fs::path dir = test::makeTempDir("bench_fail");
+    // A 0.01 MiB cap cannot hold even the per-pixel heads at 128x72: the ground truth and the
+    // abuffer method fail; unsorted still runs and is timed, without quality figures. A missing
+    // Python skips the plots with the reason recorded.
+    CliRun r = runCli("bench --suite-dir /nonexistent/suite --scenes builtin:panes --methods unsorted,abuffer --width 128 --height 72 "
+                      "--frames 2 --abuffer-cap-mib 0.01 --python /nonexistent/python3 --out " + dir.string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    json j = readJson(dir / "results.json");
+    EXPECT_EQ(j["failures"], 2);
+    const json& scene = j["scenes"][0];
+    EXPECT_EQ(scene["ground_truth"]["status"], "failed");
+    EXPECT_NE(scene["ground_truth"]["error"].get<std::string>().find("memory cap"), std::string::npos);
+    const json& unsorted = scene["methods"][0];
+    const json& abuffer = scene["methods"][1];
+    EXPECT_EQ(unsorted["status"], "ok");
+    EXPECT_GT(unsorted["stats"]["frame_ms"].get<double>(), 0.0);
+    EXPECT_TRUE(unsorted["quality"].is_null());
+    EXPECT_NE(unsorted["quality_missing_reason"].get<std::string>().find("ground truth failed"), std::string::npos);
+    EXPECT_EQ(abuffer["status"], "failed");
+    EXPECT_NE(abuffer["error"].get<std::string>().find("memory cap"), std::string::npos);
+    EXPECT_FALSE(j["plots"]["made"].get<bool>());
+    EXPECT_NE(j["plots"]["reason"].get<std::string>().find("/nonexistent/python3"), std::string::npos);
+    const std::string report = slurp(dir / "report.md");
+    EXPECT_NE(report.find("ground truth failed"), std::string::npos);
+    EXPECT_NE(report.find("Plots were skipped"), std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST(BenchCli, BadArgumentsFailBeforeRendering) {
+    fs::path dir = test::makeTempDir("bench_bad") / "out";
+    CliRun r = runCli("bench --suite-dir /nonexistent/suite --methods wboit,magic --out " + dir.string());
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.err.find("magic"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir));
+    r = runCli("bench --suite-dir /nonexistent/suite --scenes tree --out " + dir.string());
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.err.find("suite"), std::string::npos) << r.err;
+}
