@@ -9,18 +9,19 @@
 //              M = newViewProj * inverse(oldViewProj). Dropped when clip.w <= 0 (behind the new
 //              camera) or when the window position falls outside the image. Otherwise it targets
 //              pixel t = floor(window position) with key = the float bits of its new view depth
-//              (positive floats order like their bits), and the nearest key per target wins
-//              (atomicMin). The new view depth is clip.w / h with h = row 3 of inverse(oldViewProj)
-//              . ndc_old: M maps a point to clip coordinates scaled by 1 / (old view depth), which
-//              differs per source, so clip.w alone does not order them. (New NDC z would also
-//              order them, and would suit orthographic cameras, but in float it misordered far
-//              points by ~1e-4 from cancellation; the project's cameras are perspective.)
+//              (positive floats order like their bits); the nearest key per target wins
+//              (atomicMin). M yields clip coordinates scaled by 1 / (old view depth), which differs
+//              per source, so the depth is clip.w / dot(sourceScale, ndc_old) with sourceScale =
+//              row 3 of inverse(oldViewProj). (New NDC z also orders points, and would suit
+//              orthographic cameras, but in float it picked points up to ~3e-5 farther near the
+//              far plane, from cancellation; the project's cameras are perspective.)
 //   B  pick:   among the sources with the winning key, the lowest source index wins (deterministic).
 //   C  gather: a target with a winner shows the winner's colour. A target without one (a crack
 //              between splats, or a disocclusion) takes the colour of the FARTHEST winner within
-//              STARNT_TEMPORAL_FILL_RADIUS = 2 pixels (a 5x5 window; what was behind shows through),
-//              first in row-major order on equal keys. With no winner in the neighbourhood either (e.g. content entering at the image
-//              border), the fallback is the real frame's colour at the same pixel.
+//              STARNT_TEMPORAL_FILL_RADIUS = 2 pixels (a 5x5 window), so what was behind shows
+//              through; the first in row-major order wins on equal keys. With no winner in the
+//              window either (content entering at the border, wide disocclusions), the fallback
+//              is the real frame's colour at the same pixel.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -34,14 +35,14 @@ constexpr uint32_t kNoSplat = 0xFFFFFFFFu;
 
 // What the splat step needs from the two cameras, computed in double and rounded once.
 struct Reprojection {
-    glm::mat4 matrix{1.0f};        // newViewProj * inverse(oldViewProj)
-    glm::vec4 sourceScale{0, 0, 0, 1};  // row 3 of inverse(oldViewProj): dot with ndc_old = 1 / old view depth
+    glm::mat4 matrix{1.0f};             // newViewProj * inverse(oldViewProj)
+    glm::vec4 sourceScale{0, 0, 0, 1};  // row 3 of inverse(oldViewProj): . ndc_old = 1 / old view depth
 };
 Reprojection makeReprojection(const glm::mat4& oldViewProj, const glm::mat4& newViewProj);
 
 struct SplatTarget {
     bool valid = false;
-    int x = 0, y = 0;      // target pixel (GL order)
+    int x = 0, y = 0;         // target pixel (GL order)
     uint32_t key = kNoSplat;  // bits of the new view depth (> 0); smaller = nearer
 };
 

@@ -3,8 +3,8 @@
 // u_reprojection = newViewProj * inverse(oldViewProj), and competes for the pixel it lands in with
 // its new view depth: the nearest key wins by atomicMin. The product gives clip coordinates scaled
 // by 1 / (old view depth) = dot(u_sourceScale, ndc) (row 3 of inverse(oldViewProj)), so the
-// depth is clip.w divided by that. The (target, key) pair is stored so that step B
-// compares the very same bits instead of recomputing them in another program.
+// depth is clip.w divided by that. The (target, key) pair is stored so that step B compares the
+// very same bits instead of recomputing them in another program.
 #include "methods/neural/temporal/reprojection_bindings.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
