@@ -1,0 +1,47 @@
+#include "methods/neural/temporal/temporal_frames.hpp"
+
+#include "starnt/error.hpp"
+
+namespace starnt {
+
+TemporalFrames::TemporalFrames(const MethodOptions& options)
+    : schedule_(options), clock_(gl::currentContextIsSoftware()) {}
+
+bool TemporalFrames::beginFrame(int width, int height) {
+    if (auto ms = clock_.take()) schedule_.recordRealFrameMs(*ms);
+    // A frame of another size cannot be reprojected from the kept one.
+    if (reprojector_.hasFrame() && (width != reprojector_.width() || height != reprojector_.height())) reset();
+    bool real = schedule_.nextFrameIsReal();
+    // The schedule cannot know whether the kept frame exists (e.g. a real frame that threw).
+    if (!real && !reprojector_.hasFrame()) {
+        schedule_.reset();
+        real = schedule_.nextFrameIsReal();
+    }
+    lastInterpolated_ = !real;
+    // Only the fixed schedule needs no timing; measuring costs a glFinish on software.
+    if (real && schedule_.isAuto()) clock_.start();
+    return real;
+}
+
+void TemporalFrames::endRealFrame(GLuint compositeTexture, GLuint nearestDepthTexture, const glm::mat4& viewProj,
+                                  int width, int height) {
+    if (lastInterpolated_) throw Error("internal: TemporalFrames::endRealFrame on an interpolated frame");
+    if (!interpolates()) return;  // every frame is real: nothing to keep
+    reprojector_.capture(compositeTexture, nearestDepthTexture, width, height, viewProj);
+    clock_.stop();
+}
+
+void TemporalFrames::interpolate(const glm::mat4& viewProj, GLuint outputTexture, gl::GpuPassTimer* timer) {
+    if (!lastInterpolated_) throw Error("internal: TemporalFrames::interpolate on a real frame");
+    gl::ScopedPass timing(timer, "reproject");
+    reprojector_.reproject(viewProj, outputTexture);
+}
+
+void TemporalFrames::reset() {
+    schedule_.reset();
+    reprojector_.reset();
+    clock_.take();  // a measurement of before the reset no longer applies
+    lastInterpolated_ = false;
+}
+
+}  // namespace starnt

@@ -1,0 +1,59 @@
+// The temporal part of a neural method (SPEC section 6) behind one small interface: which frames
+// are real, a copy of the last real frame, its reprojection on interpolated frames, and the
+// real-frame timing that `--temporal auto` needs.
+//
+//   TemporalFrames temporal(options);                    // with a current GL context
+//   if (temporal.beginFrame(w, h)) {                     // real frame: full pipeline
+//       ... passes, inference, composite into output, tiles ...
+//       temporal.endRealFrame(output, nearestDepth, proj * view, w, h);
+//   } else {
+//       temporal.interpolate(proj * view, output, frame.timer);   // no geometry, no inference
+//   }
+#pragma once
+#include <glm/glm.hpp>
+
+#include "core/gpu_timer.hpp"
+#include "methods/neural/temporal/real_frame_clock.hpp"
+#include "methods/neural/temporal/reprojector.hpp"
+#include "methods/neural/temporal/temporal_schedule.hpp"
+
+namespace starnt {
+
+class TemporalFrames {
+public:
+    // Throws starnt::Error for an interval outside 1..4 or a bad target rate. Needs a current GL
+    // context (builds the reprojection programs; picks the timing source from the renderer).
+    explicit TemporalFrames(const MethodOptions& options);
+
+    // Starts a frame of the given size; true = render it for real. Always true for the first frame,
+    // after reset(), and when the size differs from the kept real frame's.
+    bool beginFrame(int width, int height);
+    // After a real frame: keeps copies of its composite (RGBA32F) and pass-1 depth
+    // (DEPTH_COMPONENT32F, 1 = far plane where no transparent fragment) with the view-projection it
+    // used, and ends the real-frame time measurement (which includes this copy).
+    void endRealFrame(GLuint compositeTexture, GLuint nearestDepthTexture, const glm::mat4& viewProj, int width,
+                      int height);
+    // An interpolated frame: the kept real frame reprojected to `viewProj`, written into
+    // `outputTexture` (immutable RGBA32F of the frame size) with image stores. Timed as pass
+    // "reproject" when a timer is given.
+    void interpolate(const glm::mat4& viewProj, GLuint outputTexture, gl::GpuPassTimer* timer = nullptr);
+
+    // False for a fixed interval of 1: then nothing is kept (no copy, no memory).
+    bool interpolates() const { return schedule_.isAuto() || schedule_.interval() > 1; }
+    bool lastWasInterpolated() const { return lastInterpolated_; }
+    // The interval of the current group (1 real + interval-1 interpolated frames).
+    int interval() const { return schedule_.groupInterval(); }
+    // Mean of the recent real-frame times auto mode uses (0 before the first measurement).
+    double averageRealFrameMs() const { return schedule_.averageRealFrameMs(); }
+    // Forgets the kept frame and the timing; the next frame is real.
+    void reset();
+    size_t gpuMemoryBytes() const { return reprojector_.gpuMemoryBytes(); }
+
+private:
+    TemporalSchedule schedule_;
+    temporal::Reprojector reprojector_;
+    temporal::RealFrameClock clock_;
+    bool lastInterpolated_ = false;
+};
+
+}  // namespace starnt

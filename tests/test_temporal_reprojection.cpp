@@ -1,0 +1,500 @@
+// Temporal reprojection (SPEC section 6) on a real GL context: the compute passes against their CPU
+// reference and against analytic expectations, and the TemporalFrames facade.
+//
+// Pixel grids are in GL order (row 0 at the bottom), as the reprojector sees its textures.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cmath>
+#include <cstdlib>
+#include <random>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "methods/neural/temporal/reprojection_reference.hpp"
+#include "methods/neural/temporal/reprojector.hpp"
+#include "methods/neural/temporal/temporal_frames.hpp"
+#include "starnt/error.hpp"
+#include "starnt/metrics.hpp"
+#include "test_support.hpp"
+
+using namespace starnt;
+using temporal::ReprojectionFrame;
+
+namespace {
+
+constexpr float kFovDeg = 60.0f, kNear = 0.1f, kFar = 10.0f;
+
+glm::mat4 projection(int w, int h) { return glm::perspective(glm::radians(kFovDeg), float(w) / float(h), kNear, kFar); }
+
+// A camera at `eye` looking along `yawDeg` (about +Y, 0 = -Z) and `pitchDeg`.
+glm::mat4 viewProj(int w, int h, glm::vec3 eye, float yawDeg, float pitchDeg = 0.0f) {
+    const float yaw = glm::radians(yawDeg), pitch = glm::radians(pitchDeg);
+    const glm::vec3 dir(-std::sin(yaw) * std::cos(pitch), std::sin(pitch), -std::cos(yaw) * std::cos(pitch));
+    return projection(w, h) * glm::lookAt(eye, eye + dir, glm::vec3(0, 1, 0));
+}
+
+gl::Texture2D uploadColor(const ReprojectionFrame& f) {
+    gl::Texture2D t(GL_RGBA32F, f.width, f.height);
+    glTextureSubImage2D(t.id(), 0, 0, 0, f.width, f.height, GL_RGBA, GL_FLOAT, f.color.data());
+    return t;
+}
+
+gl::Texture2D uploadDepth(const ReprojectionFrame& f) {
+    gl::Texture2D t(GL_DEPTH_COMPONENT32F, f.width, f.height);
+    glTextureSubImage2D(t.id(), 0, 0, 0, f.width, f.height, GL_DEPTH_COMPONENT, GL_FLOAT, f.depth.data());
+    return t;
+}
+
+std::vector<glm::vec4> download(GLuint texture, int w, int h) {
+    std::vector<glm::vec4> out(size_t(w) * size_t(h));
+    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(out.size() * sizeof(glm::vec4)), out.data());
+    return out;
+}
+
+std::vector<glm::vec4> reprojectOnGpu(const ReprojectionFrame& f, const glm::mat4& oldVP, const glm::mat4& newVP) {
+    test::glContext();
+    static temporal::Reprojector reprojector;  // programs built once per process
+    gl::Texture2D color = uploadColor(f), depth = uploadDepth(f), out(GL_RGBA32F, f.width, f.height);
+    reprojector.capture(color.id(), depth.id(), f.width, f.height, oldVP);
+    reprojector.reproject(newVP, out.id());
+    return download(out.id(), f.width, f.height);
+}
+
+ReprojectionFrame randomFrame(int w, int h, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    ReprojectionFrame f{w, h, {}, {}};
+    for (int i = 0; i < w * h; ++i) {
+        f.color.emplace_back(unit(rng), unit(rng), unit(rng), 1.0f);
+        f.depth.push_back(i % 5 == 0 ? 1.0f : unit(rng));  // some "nothing drawn" pixels
+    }
+    return f;
+}
+
+// Pixels (GL order) where two grids differ in any channel by more than `tolerance`.
+size_t countDifferent(const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b, float tolerance = 0.0f) {
+    size_t n = 0;
+    for (size_t i = 0; i < a.size(); ++i) {
+        const glm::vec4 d = glm::abs(a[i] - b[i]);
+        if (!(std::max(std::max(d.x, d.y), std::max(d.z, d.w)) <= tolerance)) ++n;
+    }
+    return n;
+}
+
+// The same point as the shader, in double: where source pixel (x, y) at `depth` lands.
+struct Analytic {
+    bool inFront = false;
+    glm::dvec2 window{0.0};
+    double w = 0.0;  // clip w: view depth along the new camera's axis
+};
+
+Analytic analytic(int x, int y, double depth, int w, int h, const glm::mat4& oldVP, const glm::mat4& newVP) {
+    const glm::dvec4 ndc((x + 0.5) / w * 2.0 - 1.0, (y + 0.5) / h * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+    glm::dvec4 world = glm::inverse(glm::dmat4(oldVP)) * ndc;
+    world /= world.w;
+    const glm::dvec4 clip = glm::dmat4(newVP) * world;
+    Analytic a;
+    a.inFront = clip.w > 0.0;
+    a.window = (glm::dvec2(clip) / clip.w * 0.5 + 0.5) * glm::dvec2(w, h);
+    a.w = clip.w;
+    return a;
+}
+
+// Colours that name their pixel: (x, y, 0.5, 1), exact in float, so an output pixel tells which
+// source it took.
+std::vector<glm::vec4> positionColors(int w, int h) {
+    std::vector<glm::vec4> c;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) c.emplace_back(float(x), float(y), 0.5f, 1.0f);
+    return c;
+}
+
+struct AnalyticCounts {
+    size_t splats = 0, holes = 0, fallbacks = 0;
+    size_t contested = 0;  // splat pixels that two or more sources surely land in
+};
+
+// Checks a reprojection of a positionColors() frame against the mapping computed in double.
+// "Exactly" means: every pixel that some source centre lands in by more than 1e-3 pixel shows, bit
+// for bit, the colour of a source landing in it (within 1e-3), and of the nearest one (new view
+// depth within 1e-5, relative, of the nearest source surely landing there); a pixel no source lands
+// in (crack, disocclusion) shows a source that lands within the fill radius (2); a pixel with no
+// source landing anywhere near shows the fallback, its own old colour.
+void checkAgainstAnalytic(const ReprojectionFrame& f, const glm::mat4& oldVP, const glm::mat4& newVP,
+                          const std::vector<glm::vec4>& out, AnalyticCounts& counts) {
+    const int w = f.width, h = f.height;
+    const double eps = 1e-3;
+    // Sources per target pixel: surely inside (1e-3 margin) and possibly inside (1e-3 slack).
+    std::vector<std::vector<int>> sure(size_t(w * h)), near(size_t(w * h));
+    std::vector<Analytic> where(size_t(w * h));
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const Analytic a = where[size_t(y * w + x)] = analytic(x, y, f.depth[size_t(y * w + x)], w, h, oldVP, newVP);
+            if (!a.inFront) continue;
+            for (int ty = int(std::floor(a.window.y - eps)); ty <= int(std::floor(a.window.y + eps)); ++ty) {
+                for (int tx = int(std::floor(a.window.x - eps)); tx <= int(std::floor(a.window.x + eps)); ++tx) {
+                    if (tx >= 0 && ty >= 0 && tx < w && ty < h) near[size_t(ty * w + tx)].push_back(y * w + x);
+                }
+            }
+            const int tx = int(std::floor(a.window.x)), ty = int(std::floor(a.window.y));
+            const bool clear = a.window.x - tx > eps && tx + 1 - a.window.x > eps && a.window.y - ty > eps &&
+                               ty + 1 - a.window.y > eps;
+            if (clear && tx >= 0 && ty >= 0 && tx < w && ty < h) sure[size_t(ty * w + tx)].push_back(y * w + x);
+        }
+    }
+    size_t failures = 0;
+    auto fail = [&]() -> bool { return ++failures <= 8; };  // report the first few only
+    for (int ty = 0; ty < h; ++ty) {
+        for (int tx = 0; tx < w; ++tx) {
+            const size_t t = size_t(ty * w + tx);
+            const glm::vec4 c = out[t];
+            const int sx = int(c.x), sy = int(c.y), s = sy * w + sx;
+            if (!(c.z == 0.5f && float(sx) == c.x && float(sy) == c.y && sx >= 0 && sy >= 0 && sx < w && sy < h)) {
+                if (fail()) ADD_FAILURE() << "pixel " << tx << "," << ty << " is no source colour: " << c.x << "," << c.y;
+                continue;
+            }
+            const Analytic& lands = where[size_t(s)];
+            if (!sure[t].empty()) {
+                ++counts.splats;
+                counts.contested += sure[t].size() > 1 ? 1 : 0;
+                bool in = false;
+                for (int candidate : near[t]) in = in || candidate == s;
+                double nearest = 1e300;  // sources near an edge may have landed next door in float
+                for (int candidate : sure[t]) nearest = std::min(nearest, where[size_t(candidate)].w);
+                if (!in && fail()) {
+                    ADD_FAILURE() << "pixel " << tx << "," << ty << " took source " << sx << "," << sy << " landing at "
+                                  << lands.window.x << "," << lands.window.y;
+                }
+                if (in && !(lands.w <= nearest * (1.0 + 1e-5)) && fail()) {
+                    ADD_FAILURE() << "pixel " << tx << "," << ty << " took depth " << lands.w << ", nearest " << nearest;
+                }
+                continue;
+            }
+            bool anyNear = false;
+            for (int dy = -2; dy <= 2; ++dy)
+                for (int dx = -2; dx <= 2; ++dx) {
+                    const int qx = tx + dx, qy = ty + dy;
+                    if (qx >= 0 && qy >= 0 && qx < w && qy < h && !near[size_t(qy * w + qx)].empty()) anyNear = true;
+                }
+            if (anyNear) {
+                ++counts.holes;
+                const glm::dvec2 p = lands.window;
+                if (!(lands.inFront && p.x > tx - 2 - eps && p.x < tx + 3 + eps && p.y > ty - 2 - eps && p.y < ty + 3 + eps) &&
+                    fail()) {
+                    ADD_FAILURE() << "hole " << tx << "," << ty << " filled from " << p.x << "," << p.y;
+                }
+            } else {
+                ++counts.fallbacks;
+                if (s != int(t) && fail()) ADD_FAILURE() << "fallback at " << tx << "," << ty << " is not the same pixel";
+            }
+        }
+    }
+    EXPECT_EQ(failures, 0u);
+}
+
+}  // namespace
+
+TEST(TemporalReprojection, IdenticalCameraReturnsTheInput) {
+    // 1x1, odd sizes that are not multiples of the 8x8 work groups, and a regular one.
+    for (auto [w, h] : {std::pair{1, 1}, std::pair{1, 7}, std::pair{37, 23}, std::pair{64, 48}}) {
+        const ReprojectionFrame f = randomFrame(w, h, 11);
+        const glm::mat4 vp = viewProj(w, h, {0.3f, -0.2f, 1.0f}, 25.0f, -10.0f);
+        const std::vector<glm::vec4> gpu = reprojectOnGpu(f, vp, vp);
+        EXPECT_EQ(countDifferent(gpu, f.color), 0u) << w << "x" << h;
+        EXPECT_EQ(countDifferent(temporal::reprojectOnCpu(f, temporal::makeReprojection(vp, vp)), f.color), 0u);
+    }
+}
+
+// Everything on the far plane and a camera that only turns: every source moves by the homography
+// of the rotation, checked "exactly" as checkAgainstAnalytic says.
+TEST(TemporalReprojection, PureRotationOfTheFarPlaneFollowsTheHomography) {
+    const int w = 90, h = 60;
+    const ReprojectionFrame f{w, h, positionColors(w, h), std::vector<float>(size_t(w * h), 1.0f)};
+    const glm::vec3 eye(0.5f, 0.2f, -0.3f);
+    const glm::mat4 oldVP = viewProj(w, h, eye, 0.0f), newVP = viewProj(w, h, eye, 6.0f, 2.0f);
+    const std::vector<glm::vec4> gpu = reprojectOnGpu(f, oldVP, newVP);
+    AnalyticCounts counts;
+    checkAgainstAnalytic(f, oldVP, newVP, gpu, counts);
+    // Turning left by 6 degrees (~5.4 px) brings in new content at the left border: beyond the fill
+    // radius it is the fallback. Most pixels are plain splats, holes are the border band and cracks.
+    EXPECT_GT(counts.fallbacks, size_t(h));
+    EXPECT_GT(counts.splats, size_t(w * h) * 8 / 10);
+    EXPECT_LT(counts.holes, size_t(w * h) / 8);
+    // The CPU reference agrees (a source lying on a pixel edge may land on either side in float).
+    EXPECT_LE(countDifferent(gpu, temporal::reprojectOnCpu(f, temporal::makeReprojection(oldVP, newVP))),
+              size_t(w * h) / 200);
+}
+
+// Random depths, a camera that moves and turns: many sources compete for each pixel, and the
+// nearest must win (the key is the NEW view depth, not a per-source scaled clip w).
+TEST(TemporalReprojection, NearestSourceWinsUnderMotion) {
+    const int w = 64, h = 48;
+    ReprojectionFrame f = randomFrame(w, h, 21);
+    f.color = positionColors(w, h);
+    for (float& d : f.depth) d = 0.9f + 0.1f * d;  // view depths ~1..10 with these planes
+    const glm::mat4 oldVP = viewProj(w, h, glm::vec3(0.0f), 0.0f);
+    // Stepping back: with the buggy key (clip.w scaled by 1 / old depth) near points would lose.
+    const glm::mat4 newVP = viewProj(w, h, glm::vec3(0.3f, 0.1f, 0.3f), -8.0f, 3.0f);
+    const std::vector<glm::vec4> gpu = reprojectOnGpu(f, oldVP, newVP);
+    AnalyticCounts counts;
+    checkAgainstAnalytic(f, oldVP, newVP, gpu, counts);
+    EXPECT_GT(counts.splats, size_t(w * h) / 3);
+    EXPECT_GT(counts.contested, size_t(w * h) / 10) << "the nearest rule should decide many pixels";
+    EXPECT_LE(countDifferent(gpu, temporal::reprojectOnCpu(f, temporal::makeReprojection(oldVP, newVP))),
+              size_t(w * h) / 200);
+}
+
+// Points behind the new camera (w <= 0) and points that land off-screen are dropped; with nothing
+// landing anywhere, every pixel falls back to its own old colour. Without the w test the points
+// behind would project mirrored onto the screen.
+TEST(TemporalReprojection, BehindAndOffScreenSourcesAreDropped) {
+    const int w = 40, h = 30;
+    const ReprojectionFrame f = randomFrame(w, h, 5);
+    const glm::vec3 eye(0.0f);
+    const glm::mat4 oldVP = viewProj(w, h, eye, 0.0f);
+    for (float yaw : {180.0f, 90.0f, -90.0f}) {  // 180: all behind; 90: some behind, the rest off-screen
+        const glm::mat4 newVP = viewProj(w, h, eye, yaw);
+        const temporal::Reprojection m = temporal::makeReprojection(oldVP, newVP);
+        int behind = 0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                EXPECT_FALSE(temporal::splatTarget(x, y, f.depth[size_t(y * w + x)], w, h, m).valid);
+                behind += analytic(x, y, f.depth[size_t(y * w + x)], w, h, oldVP, newVP).inFront ? 0 : 1;
+            }
+        if (yaw == 180.0f) EXPECT_EQ(behind, w * h);
+        else EXPECT_GT(behind, 0);
+        EXPECT_EQ(countDifferent(reprojectOnGpu(f, oldVP, newVP), f.color), 0u) << yaw;
+    }
+}
+
+// A near red square over a far blue background; the camera slides left so the square moves 2 px
+// right (and the far plane 0.2 px). The two uncovered columns are disoccluded: they must show the
+// background (the farthest splat within the fill radius), not the square's stale colour.
+TEST(TemporalReprojection, DisocclusionShowsTheBackground) {
+    const int w = 64, h = 48;
+    const glm::vec4 red(1, 0, 0, 1), blue(0, 0, 1, 1);
+    const glm::mat4 oldVP = viewProj(w, h, glm::vec3(0.0f), 0.0f);
+    const glm::vec4 squareClip = oldVP * glm::vec4(0, 0, -1, 1);  // view depth 1
+    const float squareDepth = squareClip.z / squareClip.w * 0.5f + 0.5f;
+    auto inSquare = [](int x, int y, int shift) { return x >= 24 + shift && x < 40 + shift && y >= 16 && y < 32; };
+    ReprojectionFrame f{w, h, {}, {}};
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            f.color.push_back(inSquare(x, y, 0) ? red : blue);
+            f.depth.push_back(inSquare(x, y, 0) ? squareDepth : 1.0f);
+        }
+    // Pixels per unit at view depth 1: (h / 2) / tan(fov / 2).
+    const float slide = 2.0f / (0.5f * float(h) / std::tan(glm::radians(kFovDeg) * 0.5f));
+    const glm::mat4 newVP = viewProj(w, h, glm::vec3(-slide, 0.0f, 0.0f), 0.0f);
+    const std::vector<glm::vec4> gpu = reprojectOnGpu(f, oldVP, newVP);
+    size_t wrong = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const glm::vec4 want = inSquare(x, y, 2) ? red : blue;
+            if (gpu[size_t(y * w + x)] != want && ++wrong <= 5) ADD_FAILURE() << "pixel " << x << "," << y;
+        }
+    EXPECT_EQ(wrong, 0u);
+    EXPECT_EQ(countDifferent(temporal::reprojectOnCpu(f, temporal::makeReprojection(oldVP, newVP)), gpu), 0u);
+}
+
+TEST(TemporalReprojection, GpuMatchesCpuAtOddSizesAndMotions) {
+    for (auto [w, h] : {std::pair{1, 1}, std::pair{17, 1}, std::pair{37, 23}}) {
+        const ReprojectionFrame f = randomFrame(w, h, 7);
+        const glm::mat4 oldVP = viewProj(w, h, {0, 0, 0}, 0.0f);
+        for (const glm::mat4& newVP : {viewProj(w, h, {0.05f, 0.0f, 0.0f}, 3.0f), viewProj(w, h, {0, 0.1f, 0.2f}, -6.0f, 4.0f)}) {
+            const std::vector<glm::vec4> gpu = reprojectOnGpu(f, oldVP, newVP);
+            const std::vector<glm::vec4> cpu = temporal::reprojectOnCpu(f, temporal::makeReprojection(oldVP, newVP));
+            EXPECT_LE(countDifferent(gpu, cpu), size_t(w * h) / 100) << w << "x" << h;
+        }
+    }
+}
+
+namespace {
+
+// A builtin scene's WBOIT composite and its nearest transparent depth (1 where none), GL order.
+ReprojectionFrame renderedFrame(const test::TestScene& scene) {
+    const Image image = scene.render("wboit").image;
+    const CapturedFrame fragments = scene.capture();
+    const int w = scene.width, h = scene.height;
+    ReprojectionFrame f{w, h, std::vector<glm::vec4>(size_t(w * h)), std::vector<float>(size_t(w * h), 1.0f)};
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const size_t gl = size_t((h - 1 - y) * w + x);  // Image and capture are top-first
+            const float* p = image.pixel(x, y);
+            f.color[gl] = glm::vec4(p[0], p[1], p[2], p[3]);
+            for (const Fragment& frag : fragments.at(x, y)) f.depth[gl] = std::min(f.depth[gl], frag.depth);
+        }
+    }
+    return f;
+}
+
+Image toImage(const std::vector<glm::vec4>& grid, int w, int h) {
+    Image image(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const glm::vec4 c = grid[size_t((h - 1 - y) * w + x)];
+            std::copy(&c.x, &c.x + 4, image.pixel(x, y));
+        }
+    return image;
+}
+
+}  // namespace
+
+// A real render reprojected by a 10-degree orbit step (translation and rotation): GPU equals the CPU
+// reference, and the result is clearly closer to a real render at the new camera than the stale
+// frame is.
+TEST(TemporalReprojection, RenderedSceneMatchesCpuAndBeatsTheStaleFrame) {
+    const int w = 96, h = 72;
+    const glm::vec3 background(0.9f, 0.85f, 0.8f);
+    test::TestScene before(makeBuiltinScene("panes", 1), w, h, 20.0f, 15.0f, background);
+    test::TestScene after(makeBuiltinScene("panes", 1), w, h, 30.0f, 15.0f, background);
+    const ReprojectionFrame f = renderedFrame(before);
+    auto vp = [](const test::TestScene& s) { return s.camera.projection(s.aspect()) * s.camera.view(); };
+    const std::vector<glm::vec4> gpu = reprojectOnGpu(f, vp(before), vp(after));
+    const std::vector<glm::vec4> cpu = temporal::reprojectOnCpu(f, temporal::makeReprojection(vp(before), vp(after)));
+    EXPECT_LE(countDifferent(gpu, cpu, 1e-6f), size_t(w * h) / 200);
+
+    const Image truth = after.render("wboit").image;
+    const double stale = mseSrgb(truth, toImage(f.color, w, h));
+    const double reprojected = mseSrgb(truth, toImage(gpu, w, h));
+    EXPECT_GT(stale, 1e-4) << "the camera step should change the image";
+    // Measured 0.59: the edges move right; what remains is the parallax between the layers behind
+    // the nearest one, which a single-depth reprojection cannot follow.
+    EXPECT_LT(reprojected, 0.7 * stale) << "stale " << stale << " reprojected " << reprojected;
+}
+
+// ---- TemporalFrames: the facade the neural method calls ----
+
+TEST(TemporalFrames, FixedTwoAlternatesAndKeepsItsOwnCopy) {
+    test::glContext();
+    const int w = 21, h = 13;
+    MethodOptions options;
+    options.temporalInterval = 2;
+    TemporalFrames temporal(options);
+    const ReprojectionFrame first = randomFrame(w, h, 1), second = randomFrame(w, h, 2);
+    gl::Texture2D composite = uploadColor(first), depth = uploadDepth(first), output(GL_RGBA32F, w, h);
+    const glm::mat4 vp = viewProj(w, h, {0, 0, 0}, 10.0f);
+
+    ASSERT_TRUE(temporal.beginFrame(w, h));
+    EXPECT_FALSE(temporal.lastWasInterpolated());
+    EXPECT_THROW(temporal.interpolate(vp, output.id()), Error);  // a real frame is not interpolated
+    temporal.endRealFrame(composite.id(), depth.id(), vp, w, h);
+    EXPECT_EQ(temporal.interval(), 2);
+    // The method overwrites its targets: the kept copy must not change.
+    glTextureSubImage2D(composite.id(), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, second.color.data());
+
+    ASSERT_FALSE(temporal.beginFrame(w, h));
+    EXPECT_TRUE(temporal.lastWasInterpolated());
+    EXPECT_THROW(temporal.endRealFrame(composite.id(), depth.id(), vp, w, h), Error);
+    gl::GpuPassTimer timer(true);
+    temporal.interpolate(vp, output.id(), &timer);
+    EXPECT_EQ(countDifferent(download(output.id(), w, h), first.color), 0u);
+    EXPECT_EQ(timer.collect().count("reproject"), 1u);
+
+    EXPECT_TRUE(temporal.beginFrame(w, h));
+    // 16 (colour) + 4 (depth) + 8 (splat) + 4 (key) + 4 (source) bytes per pixel.
+    EXPECT_EQ(temporal.gpuMemoryBytes(), size_t(w * h) * 36);
+}
+
+TEST(TemporalFrames, SizeChangeAndResetForceARealFrame) {
+    test::glContext();
+    MethodOptions options;
+    options.temporalInterval = 4;
+    TemporalFrames temporal(options);
+    const ReprojectionFrame f = randomFrame(8, 8, 3);
+    gl::Texture2D composite = uploadColor(f), depth = uploadDepth(f);
+    ASSERT_TRUE(temporal.beginFrame(8, 8));
+    temporal.endRealFrame(composite.id(), depth.id(), glm::mat4(1.0f), 8, 8);
+    EXPECT_FALSE(temporal.beginFrame(8, 8));
+    EXPECT_TRUE(temporal.beginFrame(9, 8)) << "a resized frame cannot be reprojected";
+    // That real frame never ended (e.g. it threw): nothing is kept, so the next one is real too.
+    EXPECT_TRUE(temporal.beginFrame(8, 8));
+    temporal.endRealFrame(composite.id(), depth.id(), glm::mat4(1.0f), 8, 8);
+    EXPECT_FALSE(temporal.beginFrame(8, 8));
+    temporal.reset();
+    EXPECT_TRUE(temporal.beginFrame(8, 8));
+    EXPECT_TRUE(temporal.beginFrame(8, 8)) << "nothing kept since the reset";
+}
+
+TEST(TemporalFrames, IntervalOneKeepsNothing) {
+    test::glContext();
+    TemporalFrames temporal(MethodOptions{});
+    const ReprojectionFrame f = randomFrame(8, 8, 6);
+    gl::Texture2D composite = uploadColor(f), depth = uploadDepth(f);
+    EXPECT_FALSE(temporal.interpolates());
+    for (int i = 0; i < 3; ++i) {
+        ASSERT_TRUE(temporal.beginFrame(8, 8));
+        temporal.endRealFrame(composite.id(), depth.id(), glm::mat4(1.0f), 8, 8);
+    }
+    EXPECT_EQ(temporal.gpuMemoryBytes(), 0u);
+    MethodOptions bad;
+    bad.temporalInterval = 5;
+    EXPECT_THROW(TemporalFrames{bad}, Error);
+}
+
+TEST(TemporalFrames, AutoMeasuresRealFramesAndRaisesTheInterval) {
+    test::glContext();
+    const ReprojectionFrame f = randomFrame(16, 16, 4);
+    gl::Texture2D composite = uploadColor(f), depth = uploadDepth(f), output(GL_RGBA32F, 16, 16);
+    auto run = [&](double targetFps) {
+        MethodOptions options;
+        options.temporalAuto = true;
+        options.targetFps = targetFps;
+        TemporalFrames temporal(options);
+        std::string pattern;
+        for (int i = 0; i < 7; ++i) {
+            const bool real = temporal.beginFrame(16, 16);
+            pattern += real ? 'R' : 'i';
+            if (real) temporal.endRealFrame(composite.id(), depth.id(), glm::mat4(1.0f), 16, 16);
+            else temporal.interpolate(glm::mat4(1.0f), output.id());
+        }
+        EXPECT_GT(temporal.averageRealFrameMs(), 0.0);
+        return pattern;
+    };
+    // Any real frame beats one frame per 1000 s: 4 after the first measurement (taken at frame 2).
+    EXPECT_EQ(run(1e-3), "RRiiiRi");
+    // No frame reaches 10^9 fps: plain rendering.
+    EXPECT_EQ(run(1e9), "RRRRRRR");
+}
+
+// Reprojection time at 1280x720 (not a check; run with STARNT_TEMPORAL_TIMING=1). Two frames: a
+// plausible one (far background above, a smooth slanted surface below, the camera moving a little
+// per frame) and a worst case (random depth per pixel: a point cloud, holes everywhere).
+TEST(TemporalFrames, TimingAt720p) {
+    if (!std::getenv("STARNT_TEMPORAL_TIMING")) GTEST_SKIP() << "set STARNT_TEMPORAL_TIMING=1 to measure";
+    test::glContext();
+    const int w = 1280, h = 720;
+    ReprojectionFrame smooth = randomFrame(w, h, 9);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) smooth.depth[size_t(y * w + x)] = y < h / 2 ? 0.9f + 0.09f * float(y) / float(h) : 1.0f;
+    for (const auto& [name, frame] : {std::pair<const char*, const ReprojectionFrame*>{"smooth", &smooth}, {"random depth", nullptr}}) {
+        const ReprojectionFrame f = frame ? *frame : randomFrame(w, h, 9);
+        gl::Texture2D composite = uploadColor(f), depth = uploadDepth(f), output(GL_RGBA32F, w, h);
+        MethodOptions options;
+        options.temporalInterval = 4;
+        TemporalFrames temporal(options);
+        gl::GpuPassTimer timer(gl::currentContextIsSoftware());
+        std::vector<double> capture, reproject;
+        for (int i = 0; i < 12; ++i) {
+            const glm::mat4 vp = viewProj(w, h, {0.01f * float(i), 0.0f, 0.0f}, 0.25f * float(i));
+            if (temporal.beginFrame(w, h)) {
+                glFinish();
+                const auto t0 = std::chrono::steady_clock::now();
+                temporal.endRealFrame(composite.id(), depth.id(), vp, w, h);
+                glFinish();
+                capture.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+            } else {
+                temporal.interpolate(vp, output.id(), &timer);
+                reproject.push_back(timer.collect()["reproject"]);
+            }
+        }
+        std::sort(capture.begin(), capture.end());
+        std::sort(reproject.begin(), reproject.end());
+        std::printf("1280x720 %s: capture median %.1f ms, reproject median %.1f ms (min %.1f, max %.1f) over %zu frames\n",
+                    name, capture[capture.size() / 2], reproject[reproject.size() / 2], reproject.front(),
+                    reproject.back(), reproject.size());
+    }
+}

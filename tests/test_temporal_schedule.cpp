@@ -1,0 +1,162 @@
+// TemporalSchedule (SPEC section 6): which frames are real, fixed and auto intervals. No GL.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "methods/neural/temporal/temporal_schedule.hpp"
+#include "starnt/error.hpp"
+
+using starnt::MethodOptions;
+using starnt::TemporalSchedule;
+
+namespace {
+
+MethodOptions fixedInterval(int k) {
+    MethodOptions o;
+    o.temporalInterval = k;
+    return o;
+}
+
+MethodOptions autoInterval(double targetFps = 60.0) {
+    MethodOptions o;
+    o.temporalAuto = true;
+    o.targetFps = targetFps;
+    return o;
+}
+
+// "R" for a real frame, "i" for an interpolated one.
+std::string pattern(TemporalSchedule& s, int frames) {
+    std::string out;
+    for (int i = 0; i < frames; ++i) out += s.nextFrameIsReal() ? 'R' : 'i';
+    return out;
+}
+
+}  // namespace
+
+TEST(TemporalSchedule, FixedIntervalPatternIsExact) {
+    TemporalSchedule one(fixedInterval(1));
+    EXPECT_EQ(pattern(one, 5), "RRRRR");
+    TemporalSchedule two(fixedInterval(2));
+    EXPECT_EQ(pattern(two, 7), "RiRiRiR");
+    TemporalSchedule three(fixedInterval(3));
+    EXPECT_EQ(pattern(three, 8), "RiiRiiRi");
+    TemporalSchedule four(fixedInterval(4));
+    EXPECT_EQ(pattern(four, 9), "RiiiRiiiR");
+    EXPECT_EQ(four.groupInterval(), 4);
+}
+
+TEST(TemporalSchedule, FixedIgnoresMeasurements) {
+    TemporalSchedule s(fixedInterval(3));
+    s.recordRealFrameMs(100.0);  // far below any target: auto would say 1
+    EXPECT_EQ(s.interval(), 3);
+    EXPECT_EQ(pattern(s, 4), "RiiR");
+}
+
+TEST(TemporalSchedule, FirstFrameAfterResetIsReal) {
+    TemporalSchedule s(fixedInterval(3));
+    EXPECT_EQ(pattern(s, 2), "Ri");
+    s.reset();
+    EXPECT_EQ(s.groupInterval(), 0);
+    EXPECT_EQ(pattern(s, 4), "RiiR");
+}
+
+TEST(TemporalSchedule, AutoIsPlainRenderingWithoutMeasurementOrBelowTarget) {
+    TemporalSchedule s(autoInterval(60.0));
+    EXPECT_EQ(s.interval(), 1);
+    EXPECT_EQ(pattern(s, 3), "RRR");
+    s.recordRealFrameMs(20.0);  // 50 fps < 60
+    EXPECT_EQ(s.interval(), 1);
+    s.recordRealFrameMs(17.0);  // mean 18.5 ms = 54 fps: still below
+    EXPECT_EQ(s.interval(), 1);
+    EXPECT_EQ(pattern(s, 3), "RRR");
+}
+
+TEST(TemporalSchedule, AutoIsFloorOfRateOverTarget) {
+    struct Case {
+        double ms, target;
+        int want;
+    };
+    // 125/60 = 2.08, 200/60 = 3.33, 100/60 = 1.67, 100/30 = 3.33, 100/25 = 4, 62.5/30 = 2.08.
+    for (Case c : {Case{8.0, 60.0, 2}, Case{5.0, 60.0, 3}, Case{10.0, 60.0, 1}, Case{10.0, 30.0, 3},
+                   Case{10.0, 25.0, 4}, Case{16.0, 30.0, 2}}) {
+        TemporalSchedule s(autoInterval(c.target));
+        s.recordRealFrameMs(c.ms);
+        EXPECT_EQ(s.interval(), c.want) << c.ms << " ms at target " << c.target;
+    }
+}
+
+TEST(TemporalSchedule, AutoNeverExceedsFour) {
+    for (double ms : {4.0, 1.0, 0.01, 1e-300, 0.0}) {
+        TemporalSchedule s(autoInterval(60.0));
+        s.recordRealFrameMs(ms);
+        EXPECT_EQ(s.interval(), 4) << ms;
+        EXPECT_EQ(pattern(s, 10), "RiiiRiiiRi") << ms;  // groups of 4, never 5
+    }
+}
+
+TEST(TemporalSchedule, AutoIgnoresInvalidSamples) {
+    TemporalSchedule s(autoInterval(60.0));
+    s.recordRealFrameMs(-1.0);
+    s.recordRealFrameMs(std::numeric_limits<double>::quiet_NaN());
+    s.recordRealFrameMs(std::numeric_limits<double>::infinity());
+    EXPECT_EQ(s.averageRealFrameMs(), 0.0);
+    EXPECT_EQ(s.interval(), 1);
+}
+
+TEST(TemporalSchedule, AutoAveragesTheLastEightRealFrames) {
+    TemporalSchedule s(autoInterval(60.0));
+    for (int i = 0; i < 8; ++i) s.recordRealFrameMs(4.0);
+    EXPECT_DOUBLE_EQ(s.averageRealFrameMs(), 4.0);
+    EXPECT_EQ(s.interval(), 4);  // 250 fps
+    s.recordRealFrameMs(20.0);   // evicts one 4: (7 * 4 + 20) / 8 = 6 ms
+    EXPECT_DOUBLE_EQ(s.averageRealFrameMs(), 6.0);
+    EXPECT_EQ(s.interval(), 2);  // 166.7 / 60 = 2.78
+    for (int i = 0; i < 7; ++i) s.recordRealFrameMs(20.0);  // all eight are 20 now
+    EXPECT_DOUBLE_EQ(s.averageRealFrameMs(), 20.0);
+    EXPECT_EQ(s.interval(), 1);
+}
+
+TEST(TemporalSchedule, AutoIntervalChangesOnlyAtRealFrames) {
+    TemporalSchedule s(autoInterval(60.0));
+    EXPECT_TRUE(s.nextFrameIsReal());
+    EXPECT_EQ(s.groupInterval(), 1);
+    s.recordRealFrameMs(5.0);  // now 3, but the running group keeps 1
+    EXPECT_EQ(s.interval(), 3);
+    EXPECT_EQ(s.groupInterval(), 1);
+    EXPECT_TRUE(s.nextFrameIsReal());  // new group latches 3
+    EXPECT_EQ(s.groupInterval(), 3);
+    s.recordRealFrameMs(45.0);         // mean 25 ms: 1 from the next group on
+    EXPECT_EQ(s.interval(), 1);
+    EXPECT_FALSE(s.nextFrameIsReal());  // the group of 3 runs to its end
+    EXPECT_FALSE(s.nextFrameIsReal());
+    EXPECT_EQ(s.groupInterval(), 3);
+    EXPECT_TRUE(s.nextFrameIsReal());
+    EXPECT_EQ(s.groupInterval(), 1);
+    EXPECT_TRUE(s.nextFrameIsReal());
+}
+
+TEST(TemporalSchedule, ResetForgetsMeasurements) {
+    TemporalSchedule s(autoInterval(60.0));
+    s.recordRealFrameMs(2.0);
+    EXPECT_EQ(s.interval(), 4);
+    s.reset();
+    EXPECT_EQ(s.interval(), 1);
+    EXPECT_EQ(s.averageRealFrameMs(), 0.0);
+}
+
+TEST(TemporalSchedule, RejectsBadOptionsClearly) {
+    for (int k : {0, 5, -1, 100}) {
+        try {
+            TemporalSchedule s(fixedInterval(k));
+            ADD_FAILURE() << "interval " << k << " accepted";
+        } catch (const starnt::Error& e) {
+            EXPECT_NE(std::string(e.what()).find("1..4"), std::string::npos) << e.what();
+        }
+    }
+    for (double fps : {0.0, -30.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+        EXPECT_THROW(TemporalSchedule s(autoInterval(fps)), starnt::Error) << fps;
+    }
+    EXPECT_NO_THROW(TemporalSchedule s(fixedInterval(4)));
+}
