@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
-#include <sys/wait.h>
 
 #include <nlohmann/json.hpp>
 
@@ -17,22 +16,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct CliRun {
-    int exitCode = -1;
-    std::string err;
-};
-
-CliRun run(const std::string& args) {
-    const fs::path dir = starnt::test::makeTempDir("seq_cli_io");
-    const std::string cmd = std::string(STARNT_CLI) + " " + args + " >/dev/null 2>" + (dir / "err").string();
-    const int status = std::system(cmd.c_str());
-    CliRun r;
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream f(dir / "err");
-    r.err.assign(std::istreambuf_iterator<char>(f), {});
-    fs::remove_all(dir);
-    return r;
-}
+using starnt::test::CliRun;
+using starnt::test::run;
 
 // The JSON objects of a .jsonl file, one per line.
 std::vector<nlohmann::json> readLines(const fs::path& path) {
@@ -49,7 +34,7 @@ std::string sequence(const fs::path& dir, const std::string& extra) {
 }
 
 // Non-zero exit (not a crash), a message naming the problem, and an empty output folder.
-void expectCleanFailure(const std::string& args, const fs::path& dir, const std::string& mentions) {
+void expectFailureWritingNothing(const std::string& args, const fs::path& dir, const std::string& mentions) {
     const CliRun r = run(args);
     EXPECT_NE(r.exitCode, 0) << args;
     EXPECT_NE(r.exitCode, -1) << "crashed: " << args;
@@ -95,7 +80,7 @@ TEST(SequenceCli, KeyframeFileDrivesTheCamera) {
 TEST(SequenceCli, BadPatternsWriteNothing) {
     const fs::path dir = starnt::test::makeTempDir("seq_cli_bad");
     for (const char* pattern : {"f_%s.png", "f_%d_%d.png", "f_%.png", "f_%04x.png"}) {
-        expectCleanFailure("render --scene builtin:panes --width 32 --height 24 --frames 2 --out " +
+        expectFailureWritingNothing("render --scene builtin:panes --width 32 --height 24 --frames 2 --out " +
                                (dir / pattern).string() + " --frame-stats " + (dir / "s.jsonl").string(),
                            dir, "frame pattern");
     }
@@ -103,19 +88,19 @@ TEST(SequenceCli, BadPatternsWriteNothing) {
 
 TEST(SequenceCli, BadTemporalFramesAndPathsFailClearly) {
     const fs::path dir = starnt::test::makeTempDir("seq_cli_bad");
-    expectCleanFailure(sequence(dir, "--method starnt --frames 2 --temporal 5"), dir, "--temporal '5'");
-    expectCleanFailure(sequence(dir, "--method starnt --frames 2 --temporal 0"), dir, "--temporal '0'");
-    expectCleanFailure(sequence(dir, "--method starnt --frames 2 --temporal x"), dir, "--temporal 'x'");
-    expectCleanFailure(sequence(dir, "--method starnt --frames 2 --temporal auto --target-fps 0"), dir, "--target-fps");
-    expectCleanFailure(sequence(dir, "--frames 0"), dir, "--frames");
-    expectCleanFailure(sequence(dir, "--frames 2 --camera-path /nonexistent/path.json"), dir, "/nonexistent/path.json");
-    expectCleanFailure(sequence(dir, "--frames 2 --camera-path orbit:0"), dir, "orbit:START,END");
+    expectFailureWritingNothing(sequence(dir, "--method starnt --frames 2 --temporal 5"), dir, "--temporal '5'");
+    expectFailureWritingNothing(sequence(dir, "--method starnt --frames 2 --temporal 0"), dir, "--temporal '0'");
+    expectFailureWritingNothing(sequence(dir, "--method starnt --frames 2 --temporal x"), dir, "--temporal 'x'");
+    expectFailureWritingNothing(sequence(dir, "--method starnt --frames 2 --temporal auto --target-fps 0"), dir, "--target-fps");
+    expectFailureWritingNothing(sequence(dir, "--frames 0"), dir, "--frames");
+    expectFailureWritingNothing(sequence(dir, "--frames 2 --camera-path /nonexistent/path.json"), dir, "/nonexistent/path.json");
+    expectFailureWritingNothing(sequence(dir, "--frames 2 --camera-path orbit:0"), dir, "orbit:START,END");
     const fs::path keys = starnt::test::makeTempDir("seq_cli_keys");
     std::ofstream(keys / "one.json") << R"({"keys": [{"position": [0, 1, 6], "target": [0, 0, 0]}]})";
-    expectCleanFailure(sequence(dir, "--frames 2 --camera-path " + (keys / "one.json").string()), dir, "at least two keys");
+    expectFailureWritingNothing(sequence(dir, "--frames 2 --camera-path " + (keys / "one.json").string()), dir, "at least two keys");
     std::ofstream(keys / "bad.json") << R"({"keys": [)";
-    expectCleanFailure(sequence(dir, "--frames 2 --camera-path " + (keys / "bad.json").string()), dir, "not valid JSON");
-    expectCleanFailure(sequence(dir, "--frames 2 --camera orbit:10 --camera-path orbit:0,30"), dir, "exclude");
+    expectFailureWritingNothing(sequence(dir, "--frames 2 --camera-path " + (keys / "bad.json").string()), dir, "not valid JSON");
+    expectFailureWritingNothing(sequence(dir, "--frames 2 --camera orbit:10 --camera-path orbit:0,30"), dir, "exclude");
 }
 
 // EXPECTED TO FAIL until TemporalFrames is wired into the neural method (issue 5 integration):

@@ -5,6 +5,7 @@
 #include "core/shader.hpp"
 #include "methods/common/method_base.hpp"
 #include "methods/neural/neural_passes.hpp"
+#include "methods/neural/temporal/temporal_frames.hpp"
 #include "methods/neural/tiles/tile_constants.h"
 #include "methods/neural/tiles/tiles_cpu.hpp"
 #include "methods/neural/tiles/tiles_gpu.hpp"
@@ -36,7 +37,8 @@ public:
           pass2_(buildGeometryProgram("neural_pass2", "methods/neural/pass2_second.frag.glsl")),
           pass3_(buildGeometryProgram("neural_pass3", "methods/neural/pass3_accumulate.frag.glsl")),
           inferFull_(buildInference("infer_full")),
-          passes_(pass1_, pass2_, pass3_) {
+          passes_(pass1_, pass2_, pass3_),
+          temporal_(options_) {
         if (spatial_ || corners_) tiles_ = std::make_unique<tiles::GpuTiles>();
         if (corners_) {
             inferCorners_ = buildInference("infer_corners");
@@ -47,7 +49,7 @@ public:
     std::string name() const override { return config_.name; }
     size_t gpuMemoryBytes() const override {
         return outputBytes() + passes_.gpuMemoryBytes() + cornerNetwork_.bytes() + overlay_.bytes() +
-               (tiles_ ? tiles_->gpuMemoryBytes() : 0);
+               (tiles_ ? tiles_->gpuMemoryBytes() : 0) + temporal_.gpuMemoryBytes();
     }
 
     nlohmann::json lastFrameStats() const override {
@@ -57,7 +59,9 @@ public:
                                 {"spatial", spatial_},
                                 {"inference", corners_ ? "corners" : "full"},
                                 {"corner_inference_used", cornersUsed_},
-                                {"interpolated", false},
+                                {"interpolated", temporal_.lastWasInterpolated()},
+                                {"temporal_interval", temporal_.interval()},
+                                {"real_frame_ms_average", temporal_.averageRealFrameMs()},
                                 {"scale_pass2", scale2_},
                                 {"scale_pass3", scale3_},
                                 {"pass2_size", {passes_.pass2Size().width, passes_.pass2Size().height}},
@@ -80,10 +84,28 @@ public:
 
     void resetHistory() override {
         if (tiles_) tiles_->reset();
+        temporal_.reset();
     }
 
+    // One displayed frame: real (passes -> upsample -> infer -> tiles) or, with temporal
+    // reprojection, interpolated from the last real frame (no geometry, no inference; the tiles
+    // and scales keep the last real frame's state).
     void render(const FrameDesc& frame, const DrawCallback& draw) override {
         if (resizeOutput(frame.width, frame.height) && tiles_) tiles_->resize(frame.width, frame.height);
+        const glm::mat4 viewProjection = frame.projection * frame.view;
+        if (!temporal_.beginFrame(frame.width, frame.height)) {
+            temporal_.interpolate(viewProjection, output_.id(), frame.timer);
+            return;
+        }
+        renderReal(frame, draw);
+        if (temporal_.interpolates()) {
+            gl::ScopedPass timing(frame.timer, "temporal_capture");
+            temporal_.endRealFrame(output_.id(), passes_.nearestDepth().id(), viewProjection, frame.width, frame.height);
+        }
+    }
+
+private:
+    void renderReal(const FrameDesc& frame, const DrawCallback& draw) {
         chooseScales();
         const Size2 full{frame.width, frame.height};
         passes_.run(frame, draw, NeuralPasses::kDefaultPeelEpsilon,
@@ -96,7 +118,6 @@ public:
         }
     }
 
-private:
     static const MethodOptions& validated(const MethodOptions& o) {
         auto scaleOk = [](float s) { return s == 0.0f || (s >= float(STARNT_SCALE_MIN) && s <= 1.0f); };
         if (!scaleOk(o.fixedScale2) || !scaleOk(o.fixedScale3) || ((o.fixedScale2 == 0.0f) != (o.fixedScale3 == 0.0f))) {
@@ -170,6 +191,7 @@ private:
     nn::Network network_;
     gl::Program pass1_, pass2_, pass3_, inferFull_, inferCorners_, inferFill_;
     NeuralPasses passes_;
+    TemporalFrames temporal_;
     std::unique_ptr<tiles::GpuTiles> tiles_;
     gl::Texture2D cornerNetwork_, overlay_;
     gl::FramebufferHandle cornerFb_;
