@@ -21,8 +21,11 @@ summary="$out/summary.md"
   echo "|---|---|---|---|---|"
 } >"$summary.tmp"
 for m in $methods; do
-  [ "$m" = abuffer ] || $starnt render --scene "$scene" --method "$m" "${size[@]}" --frames 3 \
-    --out "$out/$m.png" --stats "$out/$m.json"
+  extra=()
+  # starnt runs its adaptive tiles: 5 frames let them settle (one level per frame) before the last.
+  [ "$m" = starnt ] && extra=(--tiles-image "$out/starnt_tiles.png")
+  [ "$m" = abuffer ] || $starnt render --scene "$scene" --method "$m" "${size[@]}" --frames 5 \
+    --out "$out/$m.png" --stats "$out/$m.json" "${extra[@]}"
   cmp=$($starnt compare --reference "$out/abuffer.png" --test "$out/$m.png" --json --flip-map "$out/${m}_flip.png")
   python3 - "$out/$m.json" "$cmp" "$m" >>"$summary.tmp" <<'PY'
 import json, sys
