@@ -85,12 +85,13 @@ private:
         if (!renderMethods(camera, size)) return;
         if (std::exchange(computeErrorRequested_, false)) computeError(camera, size);
         display(camera, size);
-        if (screenshotPath_) saveScreenshot(*std::exchange(screenshotPath_, std::nullopt), camera, size);
+        if (screenshotPath_ && !screenshotWithUi_) saveScreenshot(*std::exchange(screenshotPath_, std::nullopt), camera, size);
         if (showUi_) {
             imgui_.beginFrame();
             pendingUi_ = drawUi(uiModel(camera, size));
             imgui_.endFrame();
         }
+        if (screenshotPath_) saveScreenshot(*std::exchange(screenshotPath_, std::nullopt), camera, size);
         window_.swapBuffers();
         updateTitle();
     }
@@ -143,7 +144,12 @@ private:
         if (req.cameraMode) camera_.setMode(*req.cameraMode);
         if (req.resetCamera) resetCamera();
         if (req.computeError) computeErrorRequested_ = true;
-        if (req.screenshot) screenshotPath_ = timestampedScreenshotName();
+        if (req.screenshot) requestScreenshot(timestampedScreenshotName());
+    }
+
+    void requestScreenshot(const std::string& path) {
+        screenshotPath_ = path;
+        screenshotWithUi_ = false;
     }
 
     void resetCamera() {
@@ -198,6 +204,7 @@ private:
             computeErrorRequested_ = true;
         } else if (cmd.verb == "screenshot") {
             screenshotPath_ = cmd.args[0];
+            screenshotWithUi_ = cmd.args.size() == 2;
         } else if (cmd.verb == "quit") {
             quit_ = true;
         } else {
@@ -233,7 +240,7 @@ private:
             if (key == GLFW_KEY_TAB) camera_.setMode(camera_.mode() == CameraMode::Orbit ? CameraMode::Fly : CameraMode::Orbit);
             else if (key == GLFW_KEY_R) resetCamera();
             else if (key == GLFW_KEY_H) showUi_ = !showUi_;
-            else if (key == GLFW_KEY_P) screenshotPath_ = timestampedScreenshotName();
+            else if (key == GLFW_KEY_P) requestScreenshot(timestampedScreenshotName());
         }
         if (camera_.mode() == CameraMode::Fly && !uiKeyboard) {
             auto held = [w](int key) { return glfwGetKey(w, key) == GLFW_PRESS ? 1.0f : 0.0f; };
@@ -421,6 +428,7 @@ private:
     size_t scriptPos_ = 0;
     int waitFrames_ = 0;
     std::optional<std::string> screenshotPath_;
+    bool screenshotWithUi_ = false;  // taken after the panels are drawn
     bool computeErrorRequested_ = false;
     bool quit_ = false;
     bool showUi_ = true;

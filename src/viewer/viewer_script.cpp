@@ -85,7 +85,8 @@ std::vector<ScriptCommand> parseScript(const std::string& text) {
         } else if (cmd.verb == "scene" || cmd.verb == "drop") {
             expectArgs(1, "a scene (builtin:NAME or a file path without spaces)");
         } else if (cmd.verb == "screenshot") {
-            expectArgs(1, "screenshot FILE.png");
+            if (cmd.args.size() == 2 && cmd.args[1] != "ui") throw Error("script command '" + cmd.source + "': expected screenshot FILE.png [ui]");
+            if (cmd.args.size() != 2) expectArgs(1, "screenshot FILE.png [ui]");
             const std::string& p = cmd.args[0];
             if (p.size() < 5 || p.substr(p.size() - 4) != ".png") throw Error("script command '" + cmd.source + "': the screenshot must be a .png file");
         } else if (cmd.verb == "flip" || cmd.verb == "quit") {

@@ -13,7 +13,8 @@
 //   scene SPEC | drop PATH   load a scene (builtin:NAME or a file) as if chosen or dropped; a
 //                            failure is shown in the UI and the previous scene stays
 //   flip                     compute the FLIP error against the A-buffer for the current camera
-//   screenshot FILE.png      after this frame: the displayed image (no UI) and FILE.json with stats
+//   screenshot FILE.png [ui] after this frame: the displayed image and FILE.json with stats; the
+//                            panels are left out unless `ui` is given
 //   quit                     close the viewer after this frame
 //   KEY VALUE                a live setting, KEY one of: method, split, view, alpha, background,
 //                            spatial, scales, inference, temporal, target-fps (see ViewerSettings)

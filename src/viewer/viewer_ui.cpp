@@ -196,12 +196,29 @@ void timingPanel(const UiModel& m) {
     ImGui::End();
 }
 
+// Names the two halves of the split screen at the bottom of each.
+void splitLabels(const UiModel& m) {
+    const ViewerSettings& s = *m.settings;
+    if (s.splitMethod.empty() || (s.view == ViewMode::Error && m.errorMapCurrent)) return;
+    const ImVec2 size = ImGui::GetIO().DisplaySize;
+    ImDrawList* draw = ImGui::GetForegroundDrawList();
+    const float y = size.y - ImGui::GetFontSize() - 8.0f;
+    auto label = [&](float x, const std::string& text) {
+        const ImVec2 extent = ImGui::CalcTextSize(text.c_str());
+        draw->AddRectFilled(ImVec2(x - 4, y - 2), ImVec2(x + extent.x + 4, y + extent.y + 2), IM_COL32(0, 0, 0, 160));
+        draw->AddText(ImVec2(x, y), IM_COL32(255, 255, 255, 255), text.c_str());
+    };
+    label(8.0f, s.method);
+    label(size.x * 0.5f + 8.0f, s.splitMethod);
+}
+
 }  // namespace
 
 UiRequests drawUi(const UiModel& model) {
     UiRequests requests;
     controlPanel(model, requests);
     timingPanel(model);
+    splitLabels(model);
     return requests;
 }
 
