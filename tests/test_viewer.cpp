@@ -166,6 +166,7 @@ TEST(Viewer, ScriptedScreenshotMatchesHeadlessRender) {
     EXPECT_EQ(stats["method"], "abuffer");
     EXPECT_EQ(stats["width"], kWidth);
     EXPECT_GT(stats["frame_ms"].get<double>(), 0.0);
+    EXPECT_GT(stats["display_frame_ms"].get<double>(), 0.0);
     EXPECT_GT(stats["pass_ms"].size(), 0u);
     EXPECT_GE(stats["real_frames"].get<int>(), 5);
 

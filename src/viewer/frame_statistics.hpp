@@ -29,8 +29,11 @@ public:
 
     // One displayed frame: its total time, per-pass times and whether it was interpolated.
     void addFrame(double frameMs, const std::map<std::string, double>& passMs, bool interpolated);
+    // Time of a whole displayed frame (method, display, UI, swap), measured between frame starts.
+    void addDisplayFrame(double ms) { display_.add(ms); }
     // Drops the history (new scene or method: old timings would mix two workloads).
     void clear();
+    double displayFrameMedianMs() const { return display_.median(); }
 
     double frameMedianMs() const { return frame_.median(); }
     std::map<std::string, double> passMedianMs() const;
@@ -39,7 +42,7 @@ public:
     int interpolatedFrames() const { return interpolatedFrames_; }
 
 private:
-    RunningMedian frame_;
+    RunningMedian frame_, display_;
     std::map<std::string, RunningMedian> passes_;
     std::vector<float> graph_;
     int realFrames_ = 0, interpolatedFrames_ = 0;

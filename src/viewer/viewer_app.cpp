@@ -62,6 +62,7 @@ public:
             const auto now = std::chrono::steady_clock::now();
             const float seconds = std::chrono::duration<float>(now - last).count();
             last = now;
+            if (framesShown_ > 0) stats_.addDisplayFrame(seconds * 1000.0);
             frame(seconds);
             ++framesShown_;
             if (config_.framesLimit > 0 && framesShown_ >= config_.framesLimit) break;
@@ -327,6 +328,7 @@ private:
             {"width", size.x},
             {"height", size.y},
             {"frame_ms", stats_.frameMedianMs()},
+            {"display_frame_ms", stats_.displayFrameMedianMs()},
             {"pass_ms", stats_.passMedianMs()},
             {"pass_timing", methods_.timingMode()},
             {"scale_pass2", ms.value("scale_pass2", 1.0)},

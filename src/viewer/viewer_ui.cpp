@@ -161,6 +161,7 @@ void timingPanel(const UiModel& m) {
     const FrameStatistics& s = *m.stats;
     ImGui::Text("%dx%d  %s", m.width, m.height, m.renderer.c_str());
     ImGui::Text("method frame %.2f ms (median), %.1f FPS", s.frameMedianMs(), s.frameMedianMs() > 0 ? 1000.0 / s.frameMedianMs() : 0.0);
+    ImGui::Text("whole frame %.2f ms (with display, UI, swap)", s.displayFrameMedianMs());
     const auto& graph = s.frameGraphMs();
     if (!graph.empty()) {
         const float top = *std::max_element(graph.begin(), graph.end()) * 1.1f;
