@@ -39,6 +39,15 @@ void setOrReport(ViewerSettings& next, const char* key, const std::string& value
     }
 }
 
+// The two panels together need about 900x450 pixels; in a smaller window they would hide the
+// scene, so they start collapsed to their title bars there (a click opens them).
+bool startCollapsedInSmallWindows() {
+    const ImVec2 size = ImGui::GetIO().DisplaySize;
+    const bool small = size.x < 900.0f || size.y < 450.0f;
+    if (small) ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);
+    return small;
+}
+
 void sceneSection(const UiModel& m, UiRequests& req) {
     ImGui::Text("Scene: %s (%zu triangles)", m.sceneLabel.c_str(), m.sceneTriangles);
     if (ImGui::BeginCombo("scene", m.sceneLabel.c_str())) {
@@ -122,6 +131,7 @@ void cameraSection(const UiModel& m, UiRequests& req) {
 
 void controlPanel(const UiModel& m, UiRequests& req) {
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+    startCollapsedInSmallWindows();
     ImGui::SetNextWindowBgAlpha(0.85f);
     ImGui::Begin("STAR-NT", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
     ViewerSettings next = *m.settings;
@@ -155,7 +165,8 @@ void controlPanel(const UiModel& m, UiRequests& req) {
 
 void timingPanel(const UiModel& m) {
     const ImGuiIO& io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - 8, 8), ImGuiCond_FirstUseEver, ImVec2(1, 0));
+    if (startCollapsedInSmallWindows()) ImGui::SetNextWindowPos(ImVec2(8, 34), ImGuiCond_FirstUseEver);  // under the other title
+    else ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - 8, 8), ImGuiCond_FirstUseEver, ImVec2(1, 0));
     ImGui::SetNextWindowBgAlpha(0.85f);
     ImGui::Begin("Timing", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
     const FrameStatistics& s = *m.stats;
