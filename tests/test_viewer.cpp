@@ -224,7 +224,7 @@ TEST(Viewer, SplitScreenAndFlipErrorView) {
     const fs::path dir = starnt::test::makeTempDir("viewer");
     auto path = [&](const char* name) { return (dir / name).string(); };
     const ProcessResult r = runViewer("--scene builtin:panes --method abuffer",
-                            "split wboit; frames 2; screenshot " + path("split.png") + "; split off; flip; screenshot " +
+                            "split wboit; frames 2; screenshot " + path("split.png") + "; split off; view error; screenshot " +
                                 path("same.png") + "; method wboit; flip; screenshot " + path("wboit.png") + "; quit",
                             dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -249,7 +249,8 @@ TEST(Viewer, SplitScreenAndFlipErrorView) {
     EXPECT_LT(leftErr / (kWidth * kHeight * 1.5), kMaxMse);
     EXPECT_LT(rightErr / (kWidth * kHeight * 1.5), kMaxMse);
 
-    // FLIP of the A-buffer against itself is zero; WBOIT's is not, and the heatmap is shown.
+    // Switching to the error view computes a map; `flip` computes a new one. FLIP of the A-buffer
+    // against itself is zero; WBOIT's is not, and the heatmap is shown.
     const nlohmann::json same = readJson(dir / "same.json"), other = readJson(dir / "wboit.json");
     EXPECT_EQ(same["view"], "error");
     ASSERT_TRUE(same.contains("error")) << same.dump();

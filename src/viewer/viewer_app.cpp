@@ -26,7 +26,11 @@ namespace {
 
 nlohmann::json vec3Json(const glm::vec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
 
-std::string sceneLabelOf(const std::string& spec) {
+// The scene list's label when the scene is in it (so the list can mark it), else the file name.
+std::string sceneLabelOf(const std::string& spec, const std::vector<SceneEntry>& list) {
+    for (const auto& entry : list) {
+        if (entry.spec == spec) return entry.label;
+    }
     if (spec.rfind("builtin:", 0) == 0) return spec;
     return std::filesystem::path(spec).filename().string();
 }
@@ -50,6 +54,7 @@ public:
         scenes_ = listScenes(config.scenesFolder);
         renderer_ = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
         installScene(scene, config.scene);
+        computeErrorRequested_ = settings_.view == ViewMode::Error;  // --view error: one map to start with
         double x = 0, y = 0;
         glfwGetCursorPos(window_.handle(), &x, &y);
         lastCursor_ = {x, y};
@@ -103,7 +108,7 @@ private:
         auto gpu = std::make_unique<SceneGpu>(scene);
         sceneGpu_ = std::move(gpu);
         sceneSpec_ = spec;
-        sceneLabel_ = sceneLabelOf(spec);
+        sceneLabel_ = sceneLabelOf(spec, scenes_);
         sceneTriangles_ = scene.triangleCount();
         sceneBounds_ = scene.bounds();
         const glm::ivec2 size = window_.framebufferSize();
@@ -132,6 +137,8 @@ private:
             const bool rebuild = needsNewMethods(settings_, next);
             methods_.configure(next);
             if (rebuild) stats_.clear();  // timings of a different method would mix in
+            // Switching to the error view is the request for a map; later ones use the button.
+            if (next.view == ViewMode::Error && settings_.view != ViewMode::Error) computeErrorRequested_ = true;
             settings_ = next;
             error_.clear();
         } catch (const std::exception& e) {
@@ -202,7 +209,7 @@ private:
             ViewerSettings next = settings_;
             next.view = ViewMode::Error;
             applySettings(next);
-            computeErrorRequested_ = true;
+            computeErrorRequested_ = true;  // also when the view already was the error view
         } else if (cmd.verb == "screenshot") {
             screenshotPath_ = cmd.args[0];
             screenshotWithUi_ = cmd.args.size() == 2;
