@@ -10,6 +10,7 @@ void addRenderCommand(CLI::App& app);
 void addCompareCommand(CLI::App& app);
 void addTrainCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
+void addViewCommand(CLI::App& app);
 
 // Parses "R,G,B" with each component finite and in [0, 1]; throws starnt::Error otherwise.
 glm::vec3 parseColor(const std::string& text, const char* flag);

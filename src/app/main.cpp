@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
     starnt::app::addCompareCommand(app);
     starnt::app::addTrainCommand(app);
     starnt::app::addBenchCommand(app);
+    starnt::app::addViewCommand(app);
     app.add_subcommand("methods", "list the OIT methods, one per line")->callback([] {
         for (const auto& m : starnt::methodNames()) std::printf("%s\n", m.c_str());
     });
