@@ -1,6 +1,7 @@
 #include "methods/neural/neural_method.hpp"
 
 #include <cstdio>
+#include <map>
 
 #include "core/shader.hpp"
 #include "methods/common/method_base.hpp"
@@ -36,13 +37,18 @@ public:
           pass1_(buildGeometryProgram("neural_pass1", "methods/neural/pass1_nearest.frag.glsl")),
           pass2_(buildGeometryProgram("neural_pass2", "methods/neural/pass2_second.frag.glsl")),
           pass3_(buildGeometryProgram("neural_pass3", "methods/neural/pass3_accumulate.frag.glsl")),
-          inferFull_(buildInference("infer_full")),
           passes_(pass1_, pass2_, pass3_),
           temporal_(options_) {
         if (spatial_ || corners_) tiles_ = std::make_unique<tiles::GpuTiles>();
-        if (corners_) {
-            inferCorners_ = buildInference("infer_corners");
-            inferFill_ = buildInference("infer_fill");
+        // Compile up front what the frames will need, so no frame pays for a shader compile: the
+        // full-resolution variant for the first frame (no tile history) and fixed 100 % scales,
+        // the upsampling one when scales below 1 can occur.
+        const bool fixedFull = options_.fixedScale2 == 1.0f && options_.fixedScale3 == 1.0f;
+        const bool mayReduce = options_.fixedScale2 > 0.0f ? !fixedFull : spatial_;
+        for (const char* stage : {"infer_full", "infer_corners", "infer_fill"}) {
+            if (std::string(stage) != "infer_full" && !corners_) continue;
+            if (options_.fixedScale2 == 0.0f || fixedFull) inference(stage, true);
+            if (mayReduce) inference(stage, false);
         }
     }
 
@@ -127,11 +133,19 @@ private:
         return o;
     }
 
-    gl::Program buildInference(const std::string& stage) const {
-        const std::string defines = "#define STARNT_EPS_TRANSMITTANCE " + floatLiteral(nn::kTransmittanceEpsilon) +
+    // The inference programs: stage x (passes 2/3 at full resolution or not), built on first use.
+    const gl::Program& inference(const std::string& stage, bool fullResolutionInputs) {
+        auto& slot = inferencePrograms_[{stage, fullResolutionInputs}];
+        if (!slot) slot = buildInference(stage, fullResolutionInputs);
+        return slot;
+    }
+
+    gl::Program buildInference(const std::string& stage, bool fullResolutionInputs) const {
+        const std::string defines = std::string(fullResolutionInputs ? "#define STARNT_INPUTS_FULL_RESOLUTION\n" : "") +
+                                    "#define STARNT_EPS_TRANSMITTANCE " + floatLiteral(nn::kTransmittanceEpsilon) +
                                     "\n#define STARNT_EPS_TAIL_ALPHA " + floatLiteral(nn::kTailAlphaEpsilon) + "\n" +
                                     nn::generateInferenceGlsl(network_);
-        return buildFullscreenProgram(config_.name + "_" + stage,
+        return buildFullscreenProgram(config_.name + "_" + stage + (fullResolutionInputs ? "" : "_upsampled"),
                                       {config_.compositeShader, "methods/neural/" + stage + ".frag.glsl"}, defines);
     }
 
@@ -163,9 +177,11 @@ private:
         resetPassState();
         // Corner inference needs the masks of a previous real frame; the first frame infers everywhere.
         cornersUsed_ = corners_ && tiles_->updates() > 0;
+        const Size2 full{width_, height_};
+        const bool fullResolution = passes_.pass2Size() == full && passes_.pass3Size() == full;
         if (!cornersUsed_) {
             bindOutputFramebuffer();
-            setCommonUniforms(inferFull_, frame);
+            setCommonUniforms(inference("infer_full", fullResolution), frame);
             drawFullscreen();
             return;
         }
@@ -176,11 +192,11 @@ private:
         tiles_->bindMasks();
         glBindFramebuffer(GL_FRAMEBUFFER, cornerFb_.id());
         glViewport(0, 0, width_, height_);
-        setCommonUniforms(inferCorners_, frame);
+        setCommonUniforms(inference("infer_corners", fullResolution), frame);
         drawFullscreen();
 
         bindOutputFramebuffer();
-        setCommonUniforms(inferFill_, frame);
+        setCommonUniforms(inference("infer_fill", fullResolution), frame);
         glBindTextureUnit(kUnitCornerNetwork, cornerNetwork_.id());
         drawFullscreen();
     }
@@ -189,7 +205,8 @@ private:
     MethodOptions options_;
     bool spatial_, corners_;
     nn::Network network_;
-    gl::Program pass1_, pass2_, pass3_, inferFull_, inferCorners_, inferFill_;
+    gl::Program pass1_, pass2_, pass3_;
+    std::map<std::pair<std::string, bool>, gl::Program> inferencePrograms_;
     NeuralPasses passes_;
     TemporalFrames temporal_;
     std::unique_ptr<tiles::GpuTiles> tiles_;

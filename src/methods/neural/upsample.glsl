@@ -9,6 +9,12 @@ uniform ivec2 u_fullSize;
 uniform ivec2 u_pass2Size;
 uniform ivec2 u_pass3Size;
 
+#ifdef STARNT_INPUTS_FULL_RESOLUTION
+// Passes 2 and 3 ran at full resolution: plain reads. A separate program variant, because a
+// per-pixel size test measurably slowed the inference pass on llvmpipe.
+vec4 upsampleLinear(sampler2D source, ivec2 p, ivec2 size) { return texelFetch(source, p, 0); }
+vec4 upsampleAlphaWeighted(sampler2D source, ivec2 p, ivec2 size) { return texelFetch(source, p, 0); }
+#else
 struct BilinearTaps {
     ivec2 p0;  // lower-left texel
     ivec2 p1;  // upper-right texel
@@ -27,7 +33,6 @@ BilinearTaps bilinearTaps(ivec2 p, ivec2 size) {
 
 // Plain bilinear (sums, counts, transmittance).
 vec4 upsampleLinear(sampler2D source, ivec2 p, ivec2 size) {
-    if (size == u_fullSize) return texelFetch(source, p, 0);
     BilinearTaps t = bilinearTaps(p, size);
     vec4 bottom = mix(texelFetch(source, t.p0, 0), texelFetch(source, ivec2(t.p1.x, t.p0.y), 0), t.f.x);
     vec4 top = mix(texelFetch(source, ivec2(t.p0.x, t.p1.y), 0), texelFetch(source, t.p1, 0), t.f.x);
@@ -38,7 +43,6 @@ vec4 upsampleLinear(sampler2D source, ivec2 p, ivec2 size) {
 // colour as alpha * colour and divided back, so pixels without a fragment (alpha 0) do not darken
 // their neighbours' colour.
 vec4 upsampleAlphaWeighted(sampler2D source, ivec2 p, ivec2 size) {
-    if (size == u_fullSize) return texelFetch(source, p, 0);
     BilinearTaps t = bilinearTaps(p, size);
     vec4 s00 = texelFetch(source, t.p0, 0), s10 = texelFetch(source, ivec2(t.p1.x, t.p0.y), 0);
     vec4 s01 = texelFetch(source, ivec2(t.p0.x, t.p1.y), 0), s11 = texelFetch(source, t.p1, 0);
@@ -47,3 +51,4 @@ vec4 upsampleAlphaWeighted(sampler2D source, ivec2 p, ivec2 size) {
     vec4 premultiplied = mix(mix(p00, p10, t.f.x), mix(p01, p11, t.f.x), t.f.y);
     return premultiplied.a > 0.0 ? vec4(premultiplied.rgb / premultiplied.a, premultiplied.a) : vec4(0.0);
 }
+#endif
