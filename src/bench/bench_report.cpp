@@ -110,7 +110,9 @@ void header(std::ostringstream& md, const Results& r) {
     md << "| scenes | " << r.plan.suiteNote << " |\n";
     md << "| command | `" << r.commandLine << "` |\n";
     md << "| wall time | " << fixed(r.wallSeconds, 1) << " s |\n\n";
-    md << "Frame times are medians over frames 2..N (frame 1 compiles shaders), glFinish + wall clock"
+    md << "Frame times are medians over frames 2..N (frame 1 compiles shaders); for a variant with "
+          "interpolated frames, the mean over frames 2..N (a median would pick one kind of frame); "
+          "glFinish + wall clock"
        << (m.gl.software ? "; on a CPU rasteriser they rank methods by work done, not by GPU speed" : "")
        << ". Errors are means over every frame against the A-buffer at the same camera. D is the largest "
           "number of fragments on one pixel at the last camera.\n\n";

@@ -88,7 +88,10 @@ std::optional<double> statNumber(const json& stats, const char* key) {
 }  // namespace
 
 double CaseResult::frameMs() const {
-    auto v = statNumber(stats, "frame_ms");
+    // With interpolated frames the sequence alternates cheap and full frames: their mean is the
+    // cost per displayed frame; the median would report one kind only.
+    const auto interpolated = statNumber(stats, "interpolated_frames");
+    auto v = statNumber(stats, interpolated && *interpolated > 0 ? "frame_ms_mean" : "frame_ms");
     return v ? *v : std::numeric_limits<double>::quiet_NaN();
 }
 
