@@ -20,11 +20,14 @@ summary="$out/summary.md"
   echo "| method | frame ms (median) | MSE x10^2 | FLIP | GPU memory MiB |"
   echo "|---|---|---|---|---|"
 } >"$summary.tmp"
-for m in $methods; do
+# starnt-full: STAR-NT with its tiles off (every pass at full resolution), beside the default.
+for m in $methods starnt-full; do
   extra=()
+  method=$m
   # starnt runs its adaptive tiles: 5 frames let them settle (one level per frame) before the last.
   [ "$m" = starnt ] && extra=(--tiles-image "$out/starnt_tiles.png")
-  [ "$m" = abuffer ] || $starnt render --scene "$scene" --method "$m" "${size[@]}" --frames 5 \
+  [ "$m" = starnt-full ] && method=starnt && extra=(--spatial off)
+  [ "$m" = abuffer ] || $starnt render --scene "$scene" --method "$method" "${size[@]}" --frames 5 \
     --out "$out/$m.png" --stats "$out/$m.json" "${extra[@]}"
   cmp=$($starnt compare --reference "$out/abuffer.png" --test "$out/$m.png" --json --flip-map "$out/${m}_flip.png")
   python3 - "$out/$m.json" "$cmp" "$m" >>"$summary.tmp" <<'PY'
