@@ -75,12 +75,12 @@ glm::vec3 parseColor(const std::string& text, const char* flag) {
 void addRenderCommand(CLI::App& app) {
     struct Args {
         std::string scene = "builtin:tubes", method = "abuffer", camera, cameraPath, background = "1,1,1", out, exr, stats;
-        std::string frameStats, tilesImage, referenceMethod, inference = "full";
-        double targetFps = 60.0;
+        std::string frameStats, tilesImage, referenceMethod;
+        AccelerationFlags acceleration;
         int width = 1920, height = 1080, frames = 1, peelLayers = 0;
         double alpha = -1.0, alphaCutoff = 0.03, abufferCapMib = 2048;
         bool unlit = false;
-        std::string wboitWeight = "eq10", weights, spatial, temporal = "off", scales = "auto";
+        std::string wboitWeight = "eq10", weights;
     };
     auto a = std::make_shared<Args>();
     CLI::App* cmd = app.add_subcommand("render", "render a scene with one OIT method");
@@ -98,11 +98,7 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--wboit-weight", a->wboitWeight, "wboit: eq7|eq8|eq9|eq10")->capture_default_str();
     cmd->add_option("--abuffer-cap-mib", a->abufferCapMib, "abuffer: memory cap in MiB")->capture_default_str();
     cmd->add_option("--camera-path", a->cameraPath, "sequence camera: orbit:START,END[,ELEV] or a keyframe .json");
-    cmd->add_option("--spatial", a->spatial, "starnt/dfaoit: adaptive tiles on|off (default: on for starnt)");
-    cmd->add_option("--scales", a->scales, "starnt/dfaoit: pass 2/3 scales, auto or P2,P3 in %")->capture_default_str();
-    cmd->add_option("--inference", a->inference, "starnt/dfaoit: full|corners")->capture_default_str();
-    cmd->add_option("--temporal", a->temporal, "starnt/dfaoit: off|auto|K (K in 1..4)")->capture_default_str();
-    cmd->add_option("--target-fps", a->targetFps, "frame rate that --temporal auto aims for")->capture_default_str();
+    addAccelerationOptions(cmd, a->acceleration);
     cmd->add_option("--tiles-image", a->tilesImage, "write the tile levels over the last frame (.png)");
     cmd->add_option("--frame-stats", a->frameStats, "write one JSON line per frame (.jsonl)");
     cmd->add_option("--reference-method", a->referenceMethod,
@@ -118,11 +114,7 @@ void addRenderCommand(CLI::App& app) {
         if (!(a->alphaCutoff >= 0.0 && a->alphaCutoff <= 1.0)) throw Error("--alpha-cutoff must be in [0, 1]");
         if (!(a->abufferCapMib > 0.0)) throw Error("--abuffer-cap-mib must be positive");
         MethodOptions options;
-        parseSpatialOption(a->spatial, options);
-        parseScalesOption(a->scales, options);
-        parseInferenceOption(a->inference, options);
-        parseTemporalOption(a->temporal, options);
-        parseTargetFpsOption(a->targetFps, options);
+        applyAccelerationFlags(a->acceleration, options);
         if (!a->camera.empty() && !a->cameraPath.empty()) throw Error("--camera and --camera-path exclude each other");
         const bool numbered = isFramePattern(a->out);
         if (numbered) checkFramePattern(a->out, "--out");

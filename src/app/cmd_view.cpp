@@ -16,7 +16,7 @@ namespace starnt::app {
 void addViewCommand(CLI::App& app) {
     struct Args {
         std::string scene = "builtin:tubes", method = "starnt", split, view = "final", alpha, background = "1,1,1";
-        std::string spatial = "default", scales = "auto", inference = "full", temporal = "off", targetFps = "60";
+        AccelerationFlags acceleration;
         std::string script, scriptFile, scenesDir;
         int width = 1280, height = 720, framesLimit = 0;
         bool noUi = false;
@@ -29,11 +29,7 @@ void addViewCommand(CLI::App& app) {
     cmd->add_option("--view", a->view, "final|tiles|error")->capture_default_str();
     cmd->add_option("--alpha", a->alpha, "override every material's alpha (0..1)");
     cmd->add_option("--background", a->background, "background colour R,G,B (linear, 0..1)")->capture_default_str();
-    cmd->add_option("--spatial", a->spatial, "starnt/dfaoit: adaptive tiles on|off|default")->capture_default_str();
-    cmd->add_option("--scales", a->scales, "starnt/dfaoit: pass 2/3 scales, auto or P2,P3 in %")->capture_default_str();
-    cmd->add_option("--inference", a->inference, "starnt/dfaoit: full|corners")->capture_default_str();
-    cmd->add_option("--temporal", a->temporal, "starnt/dfaoit: off|auto|K (K in 1..4)")->capture_default_str();
-    cmd->add_option("--target-fps", a->targetFps, "frame rate that --temporal auto aims for")->capture_default_str();
+    addAccelerationOptions(cmd, a->acceleration);
     cmd->add_option("--width", a->width, "window width")->capture_default_str();
     cmd->add_option("--height", a->height, "window height")->capture_default_str();
     cmd->add_option("--script", a->script, "scripted input, e.g. \"frames 5; orbit 30 10; screenshot a.png; quit\"");
@@ -57,11 +53,11 @@ void addViewCommand(CLI::App& app) {
         s.set("view", a->view);
         if (!a->alpha.empty()) s.set("alpha", a->alpha);
         s.set("background", a->background);
-        s.set("spatial", a->spatial);
-        s.set("scales", a->scales);
-        s.set("inference", a->inference);
-        s.set("temporal", a->temporal);
-        s.set("target-fps", a->targetFps);
+        s.set("spatial", a->acceleration.spatial);
+        s.set("scales", a->acceleration.scales);
+        s.set("inference", a->acceleration.inference);
+        s.set("temporal", a->acceleration.temporal);
+        s.set("target-fps", std::to_string(a->acceleration.targetFps));
         if (!a->script.empty() && !a->scriptFile.empty()) throw Error("--script and --script-file exclude each other");
         config.script = a->script;
         if (!a->scriptFile.empty()) {

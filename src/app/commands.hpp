@@ -4,6 +4,8 @@
 #include <CLI/CLI.hpp>
 #include <glm/glm.hpp>
 
+#include "starnt/oit_method.hpp"
+
 namespace starnt::app {
 
 void addRenderCommand(CLI::App& app);
@@ -11,6 +13,19 @@ void addCompareCommand(CLI::App& app);
 void addTrainCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addViewCommand(CLI::App& app);
+
+// The acceleration flags of the neural methods (SPEC 9) as typed; `render` and `view` declare them
+// with one call so both accept the same spellings with the same help.
+struct AccelerationFlags {
+    std::string spatial = "default";  // on | off | default (the method's own: on for starnt)
+    std::string scales = "auto";      // auto | P2,P3 in percent
+    std::string inference = "full";   // full | corners
+    std::string temporal = "off";     // off | auto | K in 1..4
+    double targetFps = 60.0;
+};
+void addAccelerationOptions(CLI::App* command, AccelerationFlags& flags);
+// Checks the flags (throws starnt::Error) and sets them on `options`.
+void applyAccelerationFlags(const AccelerationFlags& flags, MethodOptions& options);
 
 // Parses "R,G,B" with each component finite and in [0, 1]; throws starnt::Error otherwise.
 glm::vec3 parseColor(const std::string& text, const char* flag);

@@ -8,10 +8,10 @@
 namespace starnt {
 
 void parseSpatialOption(const std::string& text, MethodOptions& options) {
-    if (text.empty()) options.spatial.reset();
+    if (text.empty() || text == "default") options.spatial.reset();
     else if (text == "on") options.spatial = true;
     else if (text == "off") options.spatial = false;
-    else throw Error("--spatial '" + text + "': expected on or off");
+    else throw Error("--spatial '" + text + "': expected on, off or default");
 }
 
 void parseScalesOption(const std::string& text, MethodOptions& options) {

@@ -7,7 +7,7 @@
 
 namespace starnt {
 
-// "on" | "off" | "" (method default).
+// "on" | "off" | "default" or "" (the method's default).
 void parseSpatialOption(const std::string& text, MethodOptions& options);
 // "auto" | "P2,P3" in percent, each in 25..100 (e.g. "100,50").
 void parseScalesOption(const std::string& text, MethodOptions& options);

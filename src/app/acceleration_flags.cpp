@@ -1,0 +1,23 @@
+#include "app/commands.hpp"
+#include "render/method_options.hpp"
+
+namespace starnt::app {
+
+void addAccelerationOptions(CLI::App* command, AccelerationFlags& flags) {
+    command->add_option("--spatial", flags.spatial, "starnt/dfaoit: adaptive tiles on|off|default (default: on for starnt)")
+        ->capture_default_str();
+    command->add_option("--scales", flags.scales, "starnt/dfaoit: pass 2/3 scales, auto or P2,P3 in %")->capture_default_str();
+    command->add_option("--inference", flags.inference, "starnt/dfaoit: full|corners")->capture_default_str();
+    command->add_option("--temporal", flags.temporal, "starnt/dfaoit: off|auto|K (K in 1..4)")->capture_default_str();
+    command->add_option("--target-fps", flags.targetFps, "frame rate that --temporal auto aims for")->capture_default_str();
+}
+
+void applyAccelerationFlags(const AccelerationFlags& flags, MethodOptions& options) {
+    parseSpatialOption(flags.spatial, options);
+    parseScalesOption(flags.scales, options);
+    parseInferenceOption(flags.inference, options);
+    parseTemporalOption(flags.temporal, options);
+    parseTargetFpsOption(flags.targetFps, options);
+}
+
+}  // namespace starnt::app
