@@ -1,19 +1,17 @@
-// Storage-buffer bindings of the temporal reprojection shaders (included from C++ and GLSL; keep
-// it to #defines). Above the A-buffer's bindings in shaders/shared_constants.h.
+// Constants of the temporal reprojection, shared by its shader and its CPU reference (included
+// from C++ and GLSL; keep it to #defines).
 #ifndef STARNT_TEMPORAL_REPROJECTION_BINDINGS_H
 #define STARNT_TEMPORAL_REPROJECTION_BINDINGS_H
 
-#define STARNT_SSBO_TEMPORAL_COLOR 4          // vec4 per pixel: the last real frame's composite
-#define STARNT_SSBO_TEMPORAL_DEPTH 5          // float per pixel: its pass-1 window depth
-#define STARNT_SSBO_TEMPORAL_SPLATS 6         // uvec2 per source pixel: (target index, key) or "none"
-#define STARNT_SSBO_TEMPORAL_WINNER_KEY 7     // uint per target pixel: nearest key
-#define STARNT_SSBO_TEMPORAL_WINNER_SOURCE 8  // uint per target pixel: winning source index
+// Depth-fetch steps of one search (one per seed); a search that has not met a consistent source by
+// then gives up.
+#define STARNT_TEMPORAL_SEARCH_STEPS 3
+// Seeds: the min and max depth over the 3x3 blocks of this many pixels squared around the output
+// pixel's block (so at least this many pixels around it).
+#define STARNT_TEMPORAL_SEED_BLOCK 8
 
-// Holes take the farthest winner within this many pixels (2: a 5x5 window). 1 (3x3) fills only
-// 1-pixel disocclusions; with 2 a 2-pixel parallax step is filled with the background.
-#define STARNT_TEMPORAL_FILL_RADIUS 2
-
-// "No splat" (matches temporal::kNoSplat in reprojection_reference.hpp).
-#define STARNT_TEMPORAL_NONE 0xFFFFFFFFu
+// A further seed is searched only when its first solution lies nearer than this fraction of the
+// view depth of the source already found (so smooth surfaces do not search twice).
+#define STARNT_TEMPORAL_NEARER 0.98
 
 #endif

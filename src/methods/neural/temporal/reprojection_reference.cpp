@@ -1,6 +1,7 @@
 #include "methods/neural/temporal/reprojection_reference.hpp"
 
-#include <bit>
+#include <algorithm>
+#include <limits>
 
 #include "methods/neural/temporal/reprojection_bindings.h"
 #include "starnt/error.hpp"
@@ -9,76 +10,108 @@ namespace starnt::temporal {
 
 Reprojection makeReprojection(const glm::mat4& oldViewProj, const glm::mat4& newViewProj) {
     const glm::dmat4 inverseOld = glm::inverse(glm::dmat4(oldViewProj));
-    Reprojection r;
-    r.matrix = glm::mat4(glm::dmat4(newViewProj) * inverseOld);
-    r.sourceScale = glm::vec4(inverseOld[0][3], inverseOld[1][3], inverseOld[2][3], inverseOld[3][3]);  // [column][row]
-    return r;
-}
-
-SplatTarget splatTarget(int x, int y, float depth, int width, int height, const Reprojection& reprojection) {
-    const glm::vec2 size{float(width), float(height)};
-    const glm::vec2 centre = (glm::vec2(float(x), float(y)) + 0.5f) / size * 2.0f - 1.0f;
-    const glm::vec4 ndc(centre, depth * 2.0f - 1.0f, 1.0f);
-    const glm::vec4 clip = reprojection.matrix * ndc;
-    SplatTarget out;
-    if (!(clip.w > 0.0f)) return out;  // behind the new camera (or NaN)
-    const glm::vec2 window = (glm::vec2(clip.x, clip.y) / clip.w * 0.5f + 0.5f) * size;
-    // Written so that NaN fails too.
-    if (!(window.x >= 0.0f && window.y >= 0.0f && window.x < size.x && window.y < size.y)) return out;
-    out.valid = true;
-    out.x = int(window.x);  // floor: window >= 0
-    out.y = int(window.y);
-    out.key = std::bit_cast<uint32_t>(clip.w / glm::dot(reprojection.sourceScale, ndc));
+    const glm::mat4 m(glm::dmat4(newViewProj) * inverseOld);
+    auto row = [](const glm::mat4& a, int r) { return glm::vec4(a[0][r], a[1][r], a[2][r], a[3][r]); };  // [column][row]
+    Reprojection out;
+    out.row0 = row(m, 0);
+    out.row1 = row(m, 1);
+    out.row3 = row(m, 3);
+    out.sourceScale = row(glm::mat4(inverseOld), 3);
     return out;
 }
 
-std::vector<glm::vec4> reprojectOnCpu(const ReprojectionFrame& frame, const Reprojection& reprojection) {
-    const int w = frame.width, h = frame.height;
+Solution solveSource(glm::vec2 c, float z, int width, int height, const Reprojection& r) {
+    const float zn = z * 2.0f - 1.0f;
+    const glm::vec4 a = r.row0 - c.x * r.row3;
+    const glm::vec4 b = r.row1 - c.y * r.row3;
+    const float det = a.x * b.y - a.y * b.x;
+    const glm::vec2 rhs = -glm::vec2(a.z * zn + a.w, b.z * zn + b.w);
+    const glm::vec2 ndc = glm::vec2(rhs.x * b.y - a.y * rhs.y, a.x * rhs.y - rhs.x * b.x) / det;
+    const glm::vec4 v(ndc, zn, 1.0f);
+    Solution s;
+    s.newViewDepth = glm::dot(r.row3, v) / glm::dot(r.sourceScale, v);
+    s.window = (ndc * 0.5f + 0.5f) * glm::vec2(float(width), float(height));
+    return s;
+}
+
+namespace {
+
+struct SearchState {
+    int bestIndex = -1;
+    float bestViewDepth = std::numeric_limits<float>::infinity();
+    int farIndex = -1;
+    float farDepth = -1.0f;
+};
+
+void search(const ReprojectionFrame& f, glm::vec2 c, float z, const Reprojection& r, SearchState& state) {
+    for (int step = 0; step < STARNT_TEMPORAL_SEARCH_STEPS; ++step) {
+        const Solution s = solveSource(c, z, f.width, f.height, r);
+        if (!(s.newViewDepth > 0.0f)) return;
+        if (step == 0 && !(s.newViewDepth < state.bestViewDepth * STARNT_TEMPORAL_NEARER)) return;
+        const glm::vec2 q = s.window;
+        if (!(q.x >= 0.0f && q.y >= 0.0f && q.x < float(f.width) && q.y < float(f.height))) return;
+        const int index = int(q.y) * f.width + int(q.x);
+        const float found = f.depth[size_t(index)];
+        if (found > state.farDepth) {
+            state.farDepth = found;
+            state.farIndex = index;
+        }
+        if (found == z) {
+            if (s.newViewDepth < state.bestViewDepth) {
+                state.bestViewDepth = s.newViewDepth;
+                state.bestIndex = index;
+            }
+            return;
+        }
+        z = found;
+    }
+}
+
+}  // namespace
+
+std::vector<glm::vec4> reprojectOnCpu(const ReprojectionFrame& f, const Reprojection& r) {
+    const int w = f.width, h = f.height;
     const size_t n = size_t(w) * size_t(h);
-    if (w < 1 || h < 1 || frame.color.size() != n || frame.depth.size() != n) {
+    if (w < 1 || h < 1 || f.color.size() != n || f.depth.size() != n) {
         throw Error("reprojectOnCpu: colour and depth must both hold width * height values");
     }
-    std::vector<SplatTarget> targets(n);
-    std::vector<uint32_t> winnerKey(n, kNoSplat), winnerSource(n, kNoSplat);
-    // A: nearest key per target.
-    for (int y = 0; y < h; ++y) {
+    // The seeds: (min, max) depth per block, then over the 3x3 blocks around each block.
+    constexpr int B = STARNT_TEMPORAL_SEED_BLOCK;
+    const int bw = (w + B - 1) / B, bh = (h + B - 1) / B;
+    std::vector<glm::vec2> block(size_t(bw) * size_t(bh), glm::vec2(std::numeric_limits<float>::infinity(),
+                                                                    -std::numeric_limits<float>::infinity()));
+    for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            const size_t s = size_t(y) * size_t(w) + size_t(x);
-            targets[s] = splatTarget(x, y, frame.depth[s], w, h, reprojection);
-            if (!targets[s].valid) continue;
-            const size_t t = size_t(targets[s].y) * size_t(w) + size_t(targets[s].x);
-            winnerKey[t] = std::min(winnerKey[t], targets[s].key);
+            glm::vec2& m = block[size_t(y / B) * size_t(bw) + size_t(x / B)];
+            const float z = f.depth[size_t(y) * size_t(w) + size_t(x)];
+            m = glm::vec2(std::min(m.x, z), std::max(m.y, z));
         }
-    }
-    // B: lowest source index among the nearest.
-    for (size_t s = 0; s < n; ++s) {
-        if (!targets[s].valid) continue;
-        const size_t t = size_t(targets[s].y) * size_t(w) + size_t(targets[s].x);
-        if (targets[s].key == winnerKey[t]) winnerSource[t] = std::min(winnerSource[t], uint32_t(s));
-    }
-    // C: winners, hole fill from the farthest neighbour, fallback to the same pixel.
+    std::vector<glm::vec2> seeds(block.size());
+    for (int by = 0; by < bh; ++by)
+        for (int bx = 0; bx < bw; ++bx) {
+            glm::vec2 m = block[size_t(by) * size_t(bw) + size_t(bx)];
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const glm::vec2 o = block[size_t(std::clamp(by + dy, 0, bh - 1)) * size_t(bw) +
+                                              size_t(std::clamp(bx + dx, 0, bw - 1))];
+                    m = glm::vec2(std::min(m.x, o.x), std::max(m.y, o.y));
+                }
+            seeds[size_t(by) * size_t(bw) + size_t(bx)] = m;
+        }
+
     std::vector<glm::vec4> out(n);
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
-            const size_t t = size_t(y) * size_t(w) + size_t(x);
-            uint32_t source = winnerSource[t];
-            if (source == kNoSplat) {
-                uint32_t farthestKey = 0u;
-                constexpr int r = STARNT_TEMPORAL_FILL_RADIUS;
-                for (int dy = -r; dy <= r; ++dy) {
-                    for (int dx = -r; dx <= r; ++dx) {
-                        const int nx = x + dx, ny = y + dy;
-                        if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
-                        const size_t q = size_t(ny) * size_t(w) + size_t(nx);
-                        if (winnerSource[q] == kNoSplat) continue;
-                        if (source == kNoSplat || winnerKey[q] > farthestKey) {
-                            source = winnerSource[q];
-                            farthestKey = winnerKey[q];
-                        }
-                    }
-                }
-            }
-            out[t] = frame.color[source == kNoSplat ? t : size_t(source)];
+            const glm::vec2 c = (glm::vec2(float(x), float(y)) + 0.5f) / glm::vec2(float(w), float(h)) * 2.0f - 1.0f;
+            const float here = f.depth[size_t(y) * size_t(w) + size_t(x)];
+            const glm::vec2 seed = seeds[size_t(y / B) * size_t(bw) + size_t(x / B)];
+            const float nearest = seed.x, farthest = seed.y;
+            SearchState state;
+            search(f, c, here, r, state);
+            if (nearest != here) search(f, c, nearest, r, state);
+            if (farthest != here && state.bestIndex < 0) search(f, c, farthest, r, state);
+            const int source = state.bestIndex >= 0 ? state.bestIndex : state.farIndex >= 0 ? state.farIndex : y * w + x;
+            out[size_t(y) * size_t(w) + size_t(x)] = f.color[size_t(source)];
         }
     }
     return out;

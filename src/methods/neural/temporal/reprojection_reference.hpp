@@ -1,53 +1,54 @@
-// Forward-splatting reprojection of a real frame to a new camera: the shared math and a CPU
-// reference of exactly the algorithm the compute shaders (reprojection_*.comp.glsl) run.
+// Reprojection of a real frame to a new camera by a backward search: the shared math and a CPU
+// reference of exactly the algorithm reprojection_search.frag.glsl runs.
 //
 // Pixel grids here are in GL order: index y * width + x, row 0 at the BOTTOM (as textures are
 // stored), unlike starnt::Image.
 //
-// Algorithm (one source pixel s = one point, its centre at its pass-1 window depth):
-//   A  splat:  ndc_old = (centre / size * 2 - 1, depth * 2 - 1, 1); clip = M * ndc_old with
-//              M = newViewProj * inverse(oldViewProj). Dropped when clip.w <= 0 (behind the new
-//              camera) or when the window position falls outside the image. Otherwise it targets
-//              pixel t = floor(window position) with key = the float bits of its new view depth
-//              (positive floats order like their bits); the nearest key per target wins
-//              (atomicMin). M yields clip coordinates scaled by 1 / (old view depth), which differs
-//              per source, so the depth is clip.w / dot(sourceScale, ndc_old) with sourceScale =
-//              row 3 of inverse(oldViewProj). (New NDC z also orders points, and would suit
-//              orthographic cameras, but in float it picked points up to ~3e-5 farther near the
-//              far plane, from cancellation; the project's cameras are perspective.)
-//   B  pick:   among the sources with the winning key, the lowest source index wins (deterministic).
-//   C  gather: a target with a winner shows the winner's colour. A target without one (a crack
-//              between splats, or a disocclusion) takes the colour of the FARTHEST winner within
-//              STARNT_TEMPORAL_FILL_RADIUS = 2 pixels (a 5x5 window), so what was behind shows
-//              through; the first in row-major order wins on equal keys. With no winner in the
-//              window either (content entering at the border, wide disocclusions), the fallback
-//              is the real frame's colour at the same pixel.
+// The real frame is a height field: texel t covers the window square [t, t + 1) at its pass-1
+// window depth Z[t] (1 = far plane where nothing transparent was drawn). R = newViewProj *
+// inverse(oldViewProj) carries a point (old ndc xy, old ndc z, 1) to new clip coordinates scaled by
+// 1 / (old view depth).
+//
+// For output pixel p with centre c (new NDC):
+//   solve(z):  the old window position q whose point at depth z lands exactly on c (two linear
+//              equations, solved in closed form), with its new view depth d = (R v).w / (S . v),
+//              S = row 3 of inverse(oldViewProj).
+//   search(z): up to STARNT_TEMPORAL_SEARCH_STEPS times: q = solve(z); stop if d <= 0 (behind the
+//              new camera) or q is off the old image (that source was never seen); fetch Z at
+//              t = floor(q); if Z[t] == z the source is CONSISTENT (the point at depth z lies in a
+//              texel of depth z): a candidate (t, d); else continue with z = Z[t].
+//   seeds:     Z[p], and the smallest and largest Z over the 3x3 window of pixels
+//              STARNT_TEMPORAL_SEED_STRIDE apart around p (clamped to the image), each searched
+//              when it differs from Z[p]. Nearer seeds find occluders moving in, farther ones the
+//              background.
+//   result:    the colour of the candidate with the smallest new view depth (nearest wins, as a
+//              depth test would decide). Without any candidate (a disocclusion: what is now seen
+//              was hidden) the colour of the FARTHEST texel any search fetched (what lay behind,
+//              not the occluder); when no search fetched a texel (content entering at the border,
+//              or behind the old camera) the real frame's colour at the same pixel.
+// A camera that does not move finds every pixel's own texel at once (bit-exact copy). For a
+// constant depth (a far plane) the first solve is exact, so a turning camera follows the
+// homography of the rotation to float precision.
 #pragma once
-#include <cstdint>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 namespace starnt::temporal {
 
-// "No splat" in the key and source buffers.
-constexpr uint32_t kNoSplat = 0xFFFFFFFFu;
-
-// What the splat step needs from the two cameras, computed in double and rounded once.
+// What the search needs from the two cameras, computed in double and rounded once.
 struct Reprojection {
-    glm::mat4 matrix{1.0f};             // newViewProj * inverse(oldViewProj)
-    glm::vec4 sourceScale{0, 0, 0, 1};  // row 3 of inverse(oldViewProj): . ndc_old = 1 / old view depth
+    glm::vec4 row0{1, 0, 0, 0}, row1{0, 1, 0, 0}, row3{0, 0, 0, 1};  // rows 0, 1, 3 of R
+    glm::vec4 sourceScale{0, 0, 0, 1};  // row 3 of inverse(oldViewProj): . v = 1 / old view depth
 };
 Reprojection makeReprojection(const glm::mat4& oldViewProj, const glm::mat4& newViewProj);
 
-struct SplatTarget {
-    bool valid = false;
-    int x = 0, y = 0;         // target pixel (GL order)
-    uint32_t key = kNoSplat;  // bits of the new view depth (> 0); smaller = nearer
+// solve(z) above for the new NDC point c and old window depth z, in the shader's float operations.
+struct Solution {
+    glm::vec2 window{0.0f};    // old window position (pixels)
+    float newViewDepth = 0.0f;  // <= 0 or NaN: no usable solution
 };
-
-// Pass A for one source pixel (GL order), same float operations as the shader.
-SplatTarget splatTarget(int x, int y, float depth, int width, int height, const Reprojection& reprojection);
+Solution solveSource(glm::vec2 newNdc, float depth, int width, int height, const Reprojection& reprojection);
 
 struct ReprojectionFrame {
     int width = 0, height = 0;

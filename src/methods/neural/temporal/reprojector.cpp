@@ -9,79 +9,97 @@
 namespace starnt::temporal {
 namespace {
 
-gl::Program buildPass(const char* name) {
-    const std::string file = std::string("methods/neural/temporal/") + name + ".comp.glsl";
-    return gl::buildComputeProgram(name, gl::embeddedSource(file));
+GLenum internalFormatOf(GLuint texture) {
+    GLint format = 0;
+    glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    return GLenum(format);
 }
 
-void bindStorage(GLuint binding, const gl::Buffer& buffer) {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer.id());
+gl::Program buildPass(const char* label, const char* file, const std::string& defines = {}) {
+    return gl::buildProgram(label, gl::embeddedSource("methods/common/fullscreen.vert.glsl"),
+                            gl::embeddedSource(std::string("methods/neural/temporal/") + file), defines);
 }
 
 }  // namespace
 
 Reprojector::Reprojector()
-    : capture_(buildPass("temporal_capture")),
-      clear_(buildPass("reprojection_clear")),
-      splat_(buildPass("reprojection_splat")),
-      pick_(buildPass("reprojection_pick")),
-      gather_(buildPass("reprojection_gather")) {}
+    : blockSeeds_(buildPass("reprojection_block_seeds", "reprojection_seeds.frag.glsl", "#define STARNT_SEEDS_BLOCK 1\n")),
+      dilateSeeds_(buildPass("reprojection_dilate_seeds", "reprojection_seeds.frag.glsl")),
+      search_(buildPass("reprojection_search", "reprojection_search.frag.glsl")),
+      emptyVao_(gl::makeEmptyVertexArray()) {}
 
-void Reprojector::dispatch(const gl::Program& program) const {
-    glUseProgram(program.id());
-    glUniform2i(program.uniform("u_size"), width_, height_);
-    glDispatchCompute(GLuint((width_ + 7) / 8), GLuint((height_ + 7) / 8), 1);
+// Binds a framebuffer drawing into `texture` (attached on every call: a texture name cached
+// across calls could have been deleted and reused) with a full viewport and no depth, blending or
+// scissor.
+void Reprojector::drawInto(GLuint texture, int width, int height) {
+    if (!framebuffer_) {
+        GLuint id = 0;
+        glCreateFramebuffers(1, &id);
+        framebuffer_ = gl::FramebufferHandle(id);
+    }
+    glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, texture, 0);
+    if (glCheckNamedFramebufferStatus(framebuffer_.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        throw Error("temporal reprojection: the output texture is not colour-renderable");
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+    glViewport(0, 0, width, height);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_SCISSOR_TEST);
 }
 
 void Reprojector::capture(GLuint colorTexture, GLuint depthTexture, int width, int height, const glm::mat4& viewProj) {
     if (width < 1 || height < 1) throw Error("temporal capture: empty frame size");
-    if (width != width_ || height != height_ || !color_) {
-        const size_t pixels = size_t(width) * size_t(height);
-        color_ = gl::Buffer(pixels * sizeof(glm::vec4));
-        depth_ = gl::Buffer(pixels * sizeof(float));
-        splats_ = gl::Buffer(pixels * 2 * sizeof(uint32_t));
-        winnerKey_ = gl::Buffer(pixels * sizeof(uint32_t));
-        winnerSource_ = gl::Buffer(pixels * sizeof(uint32_t));
+    const GLenum colorFormat = internalFormatOf(colorTexture), depthFormat = internalFormatOf(depthTexture);
+    if (colorFormat != GL_RGBA32F) throw Error("temporal capture: the composite must be an RGBA32F texture");
+    if (depthFormat != GL_DEPTH_COMPONENT32F && depthFormat != GL_R32F) {
+        throw Error("temporal capture: the depth must be a DEPTH_COMPONENT32F or R32F texture");
+    }
+    if (width != width_ || height != height_ || !color_ || depth_.format() != depthFormat) {
+        color_ = gl::Texture2D(GL_RGBA32F, width, height);
+        depth_ = gl::Texture2D(depthFormat, width, height);
+        const int blocksX = (width + STARNT_TEMPORAL_SEED_BLOCK - 1) / STARNT_TEMPORAL_SEED_BLOCK;
+        const int blocksY = (height + STARNT_TEMPORAL_SEED_BLOCK - 1) / STARNT_TEMPORAL_SEED_BLOCK;
+        blockMinMax_ = gl::Texture2D(GL_RG32F, blocksX, blocksY);
+        seeds_ = gl::Texture2D(GL_RG32F, blocksX, blocksY);
         width_ = width;
         height_ = height;
     }
-    bindStorage(STARNT_SSBO_TEMPORAL_COLOR, color_);
-    bindStorage(STARNT_SSBO_TEMPORAL_DEPTH, depth_);
-    glBindTextureUnit(0, colorTexture);
-    glBindTextureUnit(1, depthTexture);
-    dispatch(capture_);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    // Plain copies: the method overwrites its own targets on the next real frame.
+    glCopyImageSubData(colorTexture, GL_TEXTURE_2D, 0, 0, 0, 0, color_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width, height, 1);
+    glCopyImageSubData(depthTexture, GL_TEXTURE_2D, 0, 0, 0, 0, depth_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width, height, 1);
+    // The seeds: (min, max) depth per block, then over the 3x3 blocks around.
+    const int blocksX = seeds_.width(), blocksY = seeds_.height();
+    drawInto(blockMinMax_.id(), blocksX, blocksY);
+    glUseProgram(blockSeeds_.id());
+    glUniform2i(blockSeeds_.uniform("u_sourceSize"), width, height);
+    glBindTextureUnit(0, depth_.id());
+    gl::drawFullscreenTriangle(emptyVao_);
+    drawInto(seeds_.id(), blocksX, blocksY);
+    glUseProgram(dilateSeeds_.id());
+    glUniform2i(dilateSeeds_.uniform("u_sourceSize"), blocksX, blocksY);
+    glBindTextureUnit(0, blockMinMax_.id());
+    gl::drawFullscreenTriangle(emptyVao_);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
     viewProj_ = viewProj;
     hasFrame_ = true;
 }
 
-void Reprojector::reproject(const glm::mat4& newViewProj, GLuint outputTexture) const {
+void Reprojector::reproject(const glm::mat4& newViewProj, GLuint outputTexture) {
     if (!hasFrame_) throw Error("internal: temporal reprojection before any real frame was captured");
-    const Reprojection reprojection = makeReprojection(viewProj_, newViewProj);
-    bindStorage(STARNT_SSBO_TEMPORAL_COLOR, color_);
-    bindStorage(STARNT_SSBO_TEMPORAL_DEPTH, depth_);
-    bindStorage(STARNT_SSBO_TEMPORAL_SPLATS, splats_);
-    bindStorage(STARNT_SSBO_TEMPORAL_WINNER_KEY, winnerKey_);
-    bindStorage(STARNT_SSBO_TEMPORAL_WINNER_SOURCE, winnerSource_);
-
-    dispatch(clear_);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    glUseProgram(splat_.id());
-    glUniformMatrix4fv(splat_.uniform("u_reprojection"), 1, GL_FALSE, glm::value_ptr(reprojection.matrix));
-    glUniform4fv(splat_.uniform("u_sourceScale"), 1, glm::value_ptr(reprojection.sourceScale));
-    dispatch(splat_);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    dispatch(pick_);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    glBindImageTexture(0, outputTexture, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    dispatch(gather_);
-    // The output is next sampled, read back or blitted.
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
-                    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-}
-
-size_t Reprojector::gpuMemoryBytes() const {
-    return color_.bytes() + depth_.bytes() + splats_.bytes() + winnerKey_.bytes() + winnerSource_.bytes();
+    const Reprojection r = makeReprojection(viewProj_, newViewProj);
+    drawInto(outputTexture, width_, height_);
+    glUseProgram(search_.id());
+    glUniform2i(search_.uniform("u_size"), width_, height_);
+    glUniform4fv(search_.uniform("u_row0"), 1, glm::value_ptr(r.row0));
+    glUniform4fv(search_.uniform("u_row1"), 1, glm::value_ptr(r.row1));
+    glUniform4fv(search_.uniform("u_row3"), 1, glm::value_ptr(r.row3));
+    glUniform4fv(search_.uniform("u_sourceScale"), 1, glm::value_ptr(r.sourceScale));
+    glBindTextureUnit(0, color_.id());
+    glBindTextureUnit(1, depth_.id());
+    glBindTextureUnit(2, seeds_.id());
+    gl::drawFullscreenTriangle(emptyVao_);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 }  // namespace starnt::temporal

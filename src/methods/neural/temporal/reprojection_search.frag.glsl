@@ -1,0 +1,88 @@
+// Reprojection of the last real frame to the current camera by a backward search (gather), one
+// full-screen pass. reprojection_reference.hpp states the algorithm and runs the same float
+// operations on the CPU; read it first.
+//
+// Why a gather: a forward splat needs a clear, an atomic depth test per source, a tie-break pass
+// and a hole fill, four passes through storage buffers; on llvmpipe they cost ~90 ms at 1280x720.
+// Here every output pixel solves for its own source with a few depth fetches.
+#include "methods/neural/temporal/reprojection_bindings.h"
+
+layout(binding = 0) uniform highp sampler2D u_color;  // last real frame's composite, linear RGBA
+layout(binding = 1) uniform highp sampler2D u_depth;  // its pass-1 window depth, 1 = nothing drawn
+layout(binding = 2) uniform highp sampler2D u_seeds;  // (min, max) depth around each pixel block
+
+uniform ivec2 u_size;
+// Rows 0, 1 and 3 of R = newViewProj * inverse(oldViewProj), and row 3 of inverse(oldViewProj).
+uniform vec4 u_row0, u_row1, u_row3, u_sourceScale;
+
+out vec4 o_color;
+
+// The old window position whose point at old window depth z lands on the new NDC point c, and that
+// point's view depth along the new camera's axis (<= 0 or NaN: behind the new camera, or no
+// solution). Two linear equations: (row0 - c.x row3) . v = 0 and (row1 - c.y row3) . v = 0 with
+// v = (old ndc xy, old ndc z, 1).
+vec2 sourceFor(vec2 c, float z, out float newViewDepth) {
+    float zn = z * 2.0 - 1.0;
+    vec4 a = u_row0 - c.x * u_row3;
+    vec4 b = u_row1 - c.y * u_row3;
+    float det = a.x * b.y - a.y * b.x;
+    vec2 rhs = -vec2(a.z * zn + a.w, b.z * zn + b.w);
+    vec2 ndc = vec2(rhs.x * b.y - a.y * rhs.y, a.x * rhs.y - rhs.x * b.x) / det;
+    vec4 v = vec4(ndc, zn, 1.0);
+    newViewDepth = dot(u_row3, v) / dot(u_sourceScale, v);
+    return (ndc * 0.5 + 0.5) * vec2(u_size);
+}
+
+// The search state of one pixel: the nearest consistent source so far, and the farthest texel
+// any search visited (the fallback for a disoccluded pixel).
+ivec2 bestTexel;
+float bestViewDepth;
+ivec2 farTexel;
+float farDepth;
+
+void search(vec2 c, float z) {
+    for (int step = 0; step < STARNT_TEMPORAL_SEARCH_STEPS; ++step) {
+        float viewDepth;
+        vec2 q = sourceFor(c, z, viewDepth);
+        if (!(viewDepth > 0.0)) return;
+        // A seed whose point is not clearly nearer than the source already found cannot win.
+        if (step == 0 && !(viewDepth < bestViewDepth * STARNT_TEMPORAL_NEARER)) return;
+        // Off the old image (or NaN): the source was not seen.
+        if (!(q.x >= 0.0 && q.y >= 0.0 && q.x < float(u_size.x) && q.y < float(u_size.y))) return;
+        ivec2 t = ivec2(q);
+        float found = texelFetch(u_depth, t, 0).r;
+        if (found > farDepth) {
+            farDepth = found;
+            farTexel = t;
+        }
+        if (found == z) {  // consistent: the point at depth z lies in a texel of depth z
+            if (viewDepth < bestViewDepth) {
+                bestViewDepth = viewDepth;
+                bestTexel = t;
+            }
+            return;
+        }
+        z = found;
+    }
+}
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    vec2 c = (vec2(p) + 0.5) / vec2(u_size) * 2.0 - 1.0;
+    bestTexel = ivec2(-1);
+    bestViewDepth = uintBitsToFloat(0x7F800000u);  // +infinity
+    farTexel = ivec2(-1);
+    farDepth = -1.0;
+
+    // Seeds: the depth at the same pixel, and the nearest and farthest depth around its block, so
+    // that an occluder or a background moving in from a few pixels away is found.
+    float here = texelFetch(u_depth, p, 0).r;
+    vec2 seeds = texelFetch(u_seeds, p / STARNT_TEMPORAL_SEED_BLOCK, 0).rg;
+    float nearest = seeds.x, farthest = seeds.y;
+    search(c, here);
+    if (nearest != here) search(c, nearest);
+    if (farthest != here && bestTexel.x < 0) search(c, farthest);  // only a disocclusion needs it
+
+    ivec2 source = bestTexel.x >= 0 ? bestTexel : farTexel.x >= 0 ? farTexel : p;
+    o_color = texelFetch(u_color, source, 0);
+}
