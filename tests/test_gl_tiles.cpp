@@ -247,6 +247,96 @@ void main() {
     }
 }
 
+// The inference's reads (readPixelSums in neural_inputs.glsl) equal upsamplePassSums: tail-first
+// upsampling of pass 3 at three different sizes, and the plain reads of the full-resolution
+// variant. Outside the reduced rectangles the targets hold poison.
+TEST(GlTiles, PassSumsUpsampleMatchesCpu) {
+    test::glContext();
+    const Size2 full{37, 23};
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    auto alpha = [&]() { return u(rng) < 0.2f ? 0.0f : 0.03f + 0.9f * u(rng); };
+    for (auto [pass2, pass3] : {std::pair{Size2{19, 12}, Size2{10, 6}}, std::pair{full, Size2{19, 12}}, std::pair{full, full}}) {
+        PassTargets t{full, pass2, pass3, {}, {}, {}, {}, {}};
+        const size_t n = size_t(full.width) * size_t(full.height);
+        std::vector<glm::vec4> second(n, glm::vec4(1e6f)), alphaColor(n, glm::vec4(1e6f)), colorCount(n, glm::vec4(1e6f)),
+            transmittance(n, glm::vec4(1e6f));
+        for (size_t i = 0; i < n; ++i) t.nearest.emplace_back(u(rng), u(rng), u(rng), alpha());
+        for (int y = 0; y < pass2.height; ++y)
+            for (int x = 0; x < pass2.width; ++x) {
+                t.second.emplace_back(u(rng), u(rng), u(rng), alpha());
+                second[size_t(y * full.width + x)] = t.second.back();
+            }
+        for (int y = 0; y < pass3.height; ++y)
+            for (int x = 0; x < pass3.width; ++x) {
+                const float count = std::floor(8.0f * u(rng));
+                t.alphaColor.emplace_back(3.0f * u(rng), 3.0f * u(rng), 3.0f * u(rng), 4.0f * u(rng));
+                t.colorCount.emplace_back(5.0f * u(rng), 5.0f * u(rng), 5.0f * u(rng), count);
+                t.transmittance.push_back(u(rng) * u(rng));
+                const size_t i = size_t(y * full.width + x);
+                alphaColor[i] = t.alphaColor.back();
+                colorCount[i] = t.colorCount.back();
+                transmittance[i] = glm::vec4(t.transmittance.back());
+            }
+        const gl::Texture2D nearestTex = upload(t.nearest, full.width, full.height),
+                            secondTex = upload(second, full.width, full.height),
+                            alphaColorTex = upload(alphaColor, full.width, full.height),
+                            colorCountTex = upload(colorCount, full.width, full.height),
+                            transmittanceTex = upload(transmittance, full.width, full.height);
+        std::vector<gl::Texture2D> outputs;
+        for (int i = 0; i < 5; ++i) outputs.emplace_back(GL_RGBA32F, full.width, full.height);
+        const bool plain = pass2 == full && pass3 == full;
+        const std::string defines = std::string(plain ? "#define STARNT_INPUTS_FULL_RESOLUTION\n" : "") +
+                                    "#define STARNT_EPS_TRANSMITTANCE " + std::to_string(nn::kTransmittanceEpsilon) +
+                                    "\n#define STARNT_EPS_TAIL_ALPHA 1e-6\n";
+        gl::Program program = gl::buildComputeProgram("pass_sums_test", R"(
+#include "methods/neural/neural_inputs.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0, rgba32f) writeonly uniform highp image2D u_out0;
+layout(binding = 1, rgba32f) writeonly uniform highp image2D u_out1;
+layout(binding = 2, rgba32f) writeonly uniform highp image2D u_out2;
+layout(binding = 3, rgba32f) writeonly uniform highp image2D u_out3;
+layout(binding = 4, rgba32f) writeonly uniform highp image2D u_out4;
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (p.x >= u_fullSize.x || p.y >= u_fullSize.y) return;
+    PixelSums s = readPixelSums(p);
+    imageStore(u_out0, p, vec4(s.c1, s.a1));
+    imageStore(u_out1, p, vec4(s.c2, s.a2));
+    imageStore(u_out2, p, vec4(s.sumAlphaColor, s.sumAlpha));
+    imageStore(u_out3, p, vec4(s.sumColor, s.count));
+    imageStore(u_out4, p, vec4(s.transmittance));
+}
+)", defines);
+        glUseProgram(program.id());
+        glUniform2i(program.uniform("u_fullSize"), full.width, full.height);
+        glUniform2i(program.uniform("u_pass2Size"), pass2.width, pass2.height);
+        glUniform2i(program.uniform("u_pass3Size"), pass3.width, pass3.height);
+        const gl::Texture2D* inputs[] = {&nearestTex, &secondTex, &alphaColorTex, &colorCountTex, &transmittanceTex};
+        for (GLuint i = 0; i < 5; ++i) {
+            glBindTextureUnit(i, inputs[i]->id());
+            glBindImageTexture(i, outputs[i].id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        }
+        glDispatchCompute(GLuint(full.width + 7) / 8, GLuint(full.height + 7) / 8, 1);
+        glMemoryBarrier(GL_ALL_BARRIER_BITS);
+
+        const std::vector<UpsampledSums> want = upsamplePassSums(t, nn::kTransmittanceEpsilon);
+        std::vector<std::vector<glm::vec4>> got;
+        for (const gl::Texture2D& o : outputs) got.push_back(glOrder(gl::readTexture(o)));
+        size_t tailPixels = 0;
+        for (size_t i = 0; i < n; ++i) {
+            const glm::vec4 expected[] = {want[i].nearest, want[i].second, want[i].alphaColor, want[i].colorCount,
+                                          glm::vec4(want[i].transmittance)};
+            for (int k = 0; k < 5; ++k)
+                for (int ch = 0; ch < 4; ++ch)
+                    ASSERT_NEAR(got[size_t(k)][i][ch], expected[k][ch], 2e-5f * std::max(1.0f, std::abs(expected[k][ch])))
+                        << "pixel " << i << " output " << k << " channel " << ch << " pass3 " << pass3.width;
+            tailPixels += want[i].colorCount.a > 2.5f ? 1 : 0;
+        }
+        EXPECT_GT(tailPixels, n / 10) << "the data should have tails";
+    }
+}
+
 TEST(GlTiles, DepthDownsampleMatchesCpuMax) {
     test::glContext();
     const int fullW = 41, fullH = 29, w = 11, h = 8;

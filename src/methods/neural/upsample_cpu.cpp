@@ -28,6 +28,30 @@ std::vector<float> maxDownsampleDepth(const std::vector<float>& depth, Size2 ful
     return out;
 }
 
+namespace {
+
+// The four reduced texels around full pixel (x, y) and the weights of the second ones, as
+// upsample.glsl's bilinearTaps computes them.
+struct Taps {
+    int x0, x1, y0, y1;
+    float fx, fy;
+};
+
+Taps bilinearTaps(int x, int y, Size2 r, Size2 full) {
+    const float ux = (float(x) + 0.5f) * float(r.width) / float(full.width) - 0.5f;
+    const float uy = (float(y) + 0.5f) * float(r.height) / float(full.height) - 0.5f;
+    const float bx = std::floor(ux), by = std::floor(uy);
+    return {std::clamp(int(bx), 0, r.width - 1), std::clamp(int(bx) + 1, 0, r.width - 1),
+            std::clamp(int(by), 0, r.height - 1), std::clamp(int(by) + 1, 0, r.height - 1), ux - bx, uy - by};
+}
+
+template <class T, class At>
+T interpolate(const Taps& t, At at) {
+    return glm::mix(glm::mix(at(t.x0, t.y0), at(t.x1, t.y0), t.fx), glm::mix(at(t.x0, t.y1), at(t.x1, t.y1), t.fx), t.fy);
+}
+
+}  // namespace
+
 std::vector<glm::vec4> bilinearUpsample(const std::vector<glm::vec4>& reduced, Size2 r, Size2 full, bool alphaWeighted) {
     std::vector<glm::vec4> out(size_t(full.width) * size_t(full.height));
     auto at = [&](int x, int y) {
@@ -37,21 +61,82 @@ std::vector<glm::vec4> bilinearUpsample(const std::vector<glm::vec4>& reduced, S
     for (int y = 0; y < full.height; ++y) {
         for (int x = 0; x < full.width; ++x) {
             glm::vec4 v;
-            if (r == full) {
+            if (r == full) {  // the taps fall on texel centres: the texel itself
                 v = reduced[size_t(y) * size_t(r.width) + size_t(x)];
+                if (alphaWeighted && v.a == 0.0f) v = glm::vec4(0.0f);
             } else {
-                const float ux = (float(x) + 0.5f) * float(r.width) / float(full.width) - 0.5f;
-                const float uy = (float(y) + 0.5f) * float(r.height) / float(full.height) - 0.5f;
-                const float bx = std::floor(ux), by = std::floor(uy);
-                const float fx = ux - bx, fy = uy - by;
-                const int x0 = std::clamp(int(bx), 0, r.width - 1), x1 = std::clamp(int(bx) + 1, 0, r.width - 1);
-                const int y0 = std::clamp(int(by), 0, r.height - 1), y1 = std::clamp(int(by) + 1, 0, r.height - 1);
-                const glm::vec4 bottom = glm::mix(at(x0, y0), at(x1, y0), fx);
-                const glm::vec4 top = glm::mix(at(x0, y1), at(x1, y1), fx);
-                v = glm::mix(bottom, top, fy);
+                v = interpolate<glm::vec4>(bilinearTaps(x, y, r, full), at);
                 if (alphaWeighted) v = v.a > 0.0f ? glm::vec4(glm::vec3(v) / v.a, v.a) : glm::vec4(0.0f);
             }
             out[size_t(y) * size_t(full.width) + size_t(x)] = v;
+        }
+    }
+    return out;
+}
+
+std::vector<UpsampledSums> upsamplePassSums(const PassTargets& t, float transmittanceEpsilon) {
+    const size_t n = size_t(t.full.width) * size_t(t.full.height);
+    std::vector<UpsampledSums> out(n);
+    const bool fullResolution = t.pass2 == t.full && t.pass3 == t.full;
+    const std::vector<glm::vec4> second = bilinearUpsample(t.second, t.pass2, t.full, true);
+
+    // The tail of every pass-3 texel (TailSums / tailAt in neural_inputs.glsl).
+    struct Tail {
+        glm::vec4 alphaColor, colorCount;
+        float transmittance;
+    };
+    std::vector<Tail> tails(size_t(t.pass3.width) * size_t(t.pass3.height));
+    for (int y = 0; y < t.pass3.height && !fullResolution; ++y) {
+        for (int x = 0; x < t.pass3.width; ++x) {
+            const glm::vec2 centre(float(x) + 0.5f, float(y) + 0.5f);
+            auto under = [&](Size2 s) {
+                const glm::ivec2 p(centre * glm::vec2(float(s.width), float(s.height)) /
+                                   glm::vec2(float(t.pass3.width), float(t.pass3.height)));
+                return glm::clamp(p, glm::ivec2(0), glm::ivec2(s.width - 1, s.height - 1));
+            };
+            const glm::ivec2 p1 = under(t.full), p2 = under(t.pass2);
+            const glm::vec4 f1 = t.nearest[size_t(p1.y) * size_t(t.full.width) + size_t(p1.x)];
+            const glm::vec4 f2 = t.second[size_t(p2.y) * size_t(t.pass2.width) + size_t(p2.x)];
+            const size_t i = size_t(y) * size_t(t.pass3.width) + size_t(x);
+            const float has1 = f1.a > 0.0f ? 1.0f : 0.0f, has2 = f2.a > 0.0f ? 1.0f : 0.0f;
+            Tail& tail = tails[i];
+            tail.alphaColor = glm::max(t.alphaColor[i] - glm::vec4(glm::vec3(f1) * f1.a, f1.a) -
+                                           glm::vec4(glm::vec3(f2) * f2.a, f2.a), glm::vec4(0.0f));
+            tail.colorCount = glm::max(t.colorCount[i] - glm::vec4(glm::vec3(f1), 1.0f) * has1 -
+                                           glm::vec4(glm::vec3(f2), 1.0f) * has2, glm::vec4(0.0f));
+            const float t2 = (1.0f - f1.a) * (1.0f - f2.a);
+            tail.transmittance = t2 > transmittanceEpsilon ? std::clamp(t.transmittance[i] / t2, 0.0f, 1.0f) : 1.0f;
+        }
+    }
+
+    for (int y = 0; y < t.full.height; ++y) {
+        for (int x = 0; x < t.full.width; ++x) {
+            const size_t i = size_t(y) * size_t(t.full.width) + size_t(x);
+            UpsampledSums& s = out[i];
+            s.nearest = t.nearest[i];
+            if (s.nearest.a == 0.0f) {
+                s = UpsampledSums{};
+                continue;
+            }
+            if (fullResolution) {
+                s.second = t.second[i];
+                s.alphaColor = t.alphaColor[i];
+                s.colorCount = t.colorCount[i];
+                s.transmittance = t.transmittance[i];
+                continue;
+            }
+            s.second = second[i];
+            const Taps taps = bilinearTaps(x, y, t.pass3, t.full);
+            auto tail = [&](int tx, int ty) -> const Tail& { return tails[size_t(ty) * size_t(t.pass3.width) + size_t(tx)]; };
+            const glm::vec4 tailAc = interpolate<glm::vec4>(taps, [&](int tx, int ty) { return tail(tx, ty).alphaColor; });
+            const glm::vec4 tailCn = interpolate<glm::vec4>(taps, [&](int tx, int ty) { return tail(tx, ty).colorCount; });
+            const float tailT = interpolate<float>(taps, [&](int tx, int ty) { return tail(tx, ty).transmittance; });
+            const glm::vec3 c1(s.nearest), c2(s.second);
+            const float a1 = s.nearest.a, a2 = s.second.a;
+            const float has1 = a1 > 0.0f ? 1.0f : 0.0f, has2 = a2 > 0.0f ? 1.0f : 0.0f;
+            s.alphaColor = glm::vec4(glm::vec3(tailAc) + a1 * c1 + a2 * c2, tailAc.a + a1 + a2);
+            s.colorCount = glm::vec4(glm::vec3(tailCn) + has1 * c1 + has2 * c2, tailCn.a + has1 + has2);
+            s.transmittance = tailT * (1.0f - a1) * (1.0f - a2);
         }
     }
     return out;
