@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "methods/neural/temporal/reprojection_bindings.h"
+#include "methods/neural/temporal/reprojection_constants.h"
 #include "starnt/error.hpp"
 
 namespace starnt::temporal {

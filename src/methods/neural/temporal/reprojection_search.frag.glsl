@@ -4,8 +4,8 @@
 //
 // Why a gather: a forward splat needs a clear, an atomic depth test per source, a tie-break pass
 // and a hole fill, four passes through storage buffers; on llvmpipe they cost ~90 ms at 1280x720.
-// Here every output pixel solves for its own source with a few depth fetches.
-#include "methods/neural/temporal/reprojection_bindings.h"
+// Here every output pixel solves for its own source with a few depth fetches (~31-40 ms there).
+#include "methods/neural/temporal/reprojection_constants.h"
 
 layout(binding = 0) uniform highp sampler2D u_color;  // last real frame's composite, linear RGBA
 layout(binding = 1) uniform highp sampler2D u_depth;  // its pass-1 window depth, 1 = nothing drawn

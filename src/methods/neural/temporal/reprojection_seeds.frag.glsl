@@ -2,7 +2,7 @@
 // per block of STARNT_TEMPORAL_SEED_BLOCK^2 pixels the (min, max) pass-1 depth, then the same over
 // the 3x3 blocks around each block. One fetch per output pixel then replaces a window of fetches
 // at every interpolated frame.
-#include "methods/neural/temporal/reprojection_bindings.h"
+#include "methods/neural/temporal/reprojection_constants.h"
 
 layout(binding = 0) uniform highp sampler2D u_source;  // BLOCK: the depth; else the block (min, max)
 uniform ivec2 u_sourceSize;

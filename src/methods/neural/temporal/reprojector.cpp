@@ -2,7 +2,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include "methods/neural/temporal/reprojection_bindings.h"
+#include "methods/neural/temporal/reprojection_constants.h"
 #include "methods/neural/temporal/reprojection_reference.hpp"
 #include "starnt/error.hpp"
 

@@ -1,7 +1,7 @@
 // Constants of the temporal reprojection, shared by its shader and its CPU reference (included
 // from C++ and GLSL; keep it to #defines).
-#ifndef STARNT_TEMPORAL_REPROJECTION_BINDINGS_H
-#define STARNT_TEMPORAL_REPROJECTION_BINDINGS_H
+#ifndef STARNT_TEMPORAL_REPROJECTION_CONSTANTS_H
+#define STARNT_TEMPORAL_REPROJECTION_CONSTANTS_H
 
 // Depth-fetch steps of one search (one per seed); a search that has not met a consistent source by
 // then gives up.
