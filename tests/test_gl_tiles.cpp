@@ -8,6 +8,7 @@
 #include "core/gl_util.hpp"
 #include "core/shader.hpp"
 #include "methods/neural/neural_method.hpp"
+#include "methods/neural/neural_passes.hpp"
 #include "methods/neural/tiles/tile_constants.h"
 #include "methods/neural/tiles/tiles_cpu.hpp"
 #include "methods/neural/tiles/tiles_gpu.hpp"
@@ -247,9 +248,10 @@ void main() {
     }
 }
 
-// The inference's reads (readPixelSums in neural_inputs.glsl) equal upsamplePassSums: tail-first
-// upsampling of pass 3 at three different sizes, and the plain reads of the full-resolution
-// variant. Outside the reduced rectangles the targets hold poison.
+// The tail resolve and the inference's reads (tail_resolve.comp.glsl, then readPixelSums in
+// neural_inputs.glsl) equal upsamplePassSums: tail-first upsampling with passes 2 and 3 at
+// different reduced sizes, pass 3 alone reduced, and the plain reads of the full-resolution variant.
+// Outside the reduced rectangles the targets hold poison.
 TEST(GlTiles, PassSumsUpsampleMatchesCpu) {
     test::glContext();
     const Size2 full{37, 23};
@@ -281,14 +283,18 @@ TEST(GlTiles, PassSumsUpsampleMatchesCpu) {
         const gl::Texture2D nearestTex = upload(t.nearest, full.width, full.height),
                             secondTex = upload(second, full.width, full.height),
                             alphaColorTex = upload(alphaColor, full.width, full.height),
-                            colorCountTex = upload(colorCount, full.width, full.height),
-                            transmittanceTex = upload(transmittance, full.width, full.height);
+                            colorCountTex = upload(colorCount, full.width, full.height);
+        gl::Texture2D transmittanceTex(GL_R32F, full.width, full.height);  // as pass 3's (image format r32f)
+        glTextureSubImage2D(transmittanceTex.id(), 0, 0, 0, full.width, full.height, GL_RGBA, GL_FLOAT, transmittance.data());
         std::vector<gl::Texture2D> outputs;
         for (int i = 0; i < 5; ++i) outputs.emplace_back(GL_RGBA32F, full.width, full.height);
         const bool plain = pass2 == full && pass3 == full;
-        const std::string defines = std::string(plain ? "#define STARNT_INPUTS_FULL_RESOLUTION\n" : "") +
-                                    "#define STARNT_EPS_TRANSMITTANCE " + std::to_string(nn::kTransmittanceEpsilon) +
-                                    "\n#define STARNT_EPS_TAIL_ALPHA 1e-6\n";
+        if (!plain) {
+            resolveTails(buildTailResolveProgram(), nearestTex.id(), secondTex.id(), alphaColorTex.id(), colorCountTex.id(),
+                         transmittanceTex.id(), full, pass2, pass3);
+        }
+        const std::string defines =
+            std::string(plain ? "#define STARNT_INPUTS_FULL_RESOLUTION\n" : "") + neuralEpsilonDefines();
         gl::Program program = gl::buildComputeProgram("pass_sums_test", R"(
 #include "methods/neural/neural_inputs.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;

@@ -22,31 +22,6 @@ struct PixelSums {
     float transmittance;
 };
 
-#ifndef STARNT_INPUTS_FULL_RESOLUTION
-struct TailSums {
-    vec4 alphaColor;  // tail sum a C, tail sum a
-    vec4 colorCount;  // tail sum C, tail count
-    float transmittance;
-};
-
-// The tail at pass-3 texel t: its sums minus the nearest fragment at the same sample point (the
-// full-resolution pass-1 pixel under the texel centre) and the second (the pass-2 texel there).
-TailSums tailAt(ivec2 t) {
-    vec2 centre = vec2(t) + 0.5;
-    ivec2 full = clamp(ivec2(centre * vec2(u_fullSize) / vec2(u_pass3Size)), ivec2(0), u_fullSize - 1);
-    ivec2 second = clamp(ivec2(centre * vec2(u_pass2Size) / vec2(u_pass3Size)), ivec2(0), u_pass2Size - 1);
-    vec4 f1 = texelFetch(u_nearest, full, 0), f2 = texelFetch(u_second, second, 0);
-    vec4 ac = texelFetch(u_alphaColor, t, 0), cn = texelFetch(u_colorCount, t, 0);
-    float has1 = f1.a > 0.0 ? 1.0 : 0.0, has2 = f2.a > 0.0 ? 1.0 : 0.0;
-    TailSums tail;
-    tail.alphaColor = max(ac - vec4(f1.rgb * f1.a, f1.a) - vec4(f2.rgb * f2.a, f2.a), vec4(0.0));
-    tail.colorCount = max(cn - vec4(f1.rgb, 1.0) * has1 - vec4(f2.rgb, 1.0) * has2, vec4(0.0));
-    float t2 = (1.0 - f1.a) * (1.0 - f2.a);
-    tail.transmittance = t2 > STARNT_EPS_TRANSMITTANCE ? clamp(texelFetch(u_transmittance, t, 0).r / t2, 0.0, 1.0) : 1.0;
-    return tail;
-}
-#endif
-
 PixelSums readPixelSums(ivec2 p) {
     PixelSums s;
     vec4 f1 = texelFetch(u_nearest, p, 0);
@@ -65,15 +40,11 @@ PixelSums readPixelSums(ivec2 p) {
     s.c2 = f2.rgb;
     s.a2 = f2.a;
 #ifndef STARNT_INPUTS_FULL_RESOLUTION
-    // The tail is upsampled, not the sums: each pass-3 texel first loses the two layers seen at its
-    // own sample point, and the pixel then adds its own. Subtracting this pixel's layers from its
-    // neighbours' sums would remove fragments those neighbours never had (thin edges).
-    BilinearTaps t = bilinearTaps(p, u_pass3Size);
-    TailSums t00 = tailAt(t.p0), t10 = tailAt(ivec2(t.p1.x, t.p0.y));
-    TailSums t01 = tailAt(ivec2(t.p0.x, t.p1.y)), t11 = tailAt(t.p1);
-    vec4 tailAc = mix(mix(t00.alphaColor, t10.alphaColor, t.f.x), mix(t01.alphaColor, t11.alphaColor, t.f.x), t.f.y);
-    vec4 tailCn = mix(mix(t00.colorCount, t10.colorCount, t.f.x), mix(t01.colorCount, t11.colorCount, t.f.x), t.f.y);
-    float tailT = mix(mix(t00.transmittance, t10.transmittance, t.f.x), mix(t01.transmittance, t11.transmittance, t.f.x), t.f.y);
+    // Reduced passes: the pass-3 targets hold each texel's tail (tail_resolve.comp.glsl). The tails
+    // are interpolated, and the pixel adds back its own two layers.
+    vec4 tailAc = upsampleLinear(u_alphaColor, p, u_pass3Size);
+    vec4 tailCn = upsampleLinear(u_colorCount, p, u_pass3Size);
+    float tailT = upsampleLinear(u_transmittance, p, u_pass3Size).r;
     float has1 = s.a1 > 0.0 ? 1.0 : 0.0, has2 = s.a2 > 0.0 ? 1.0 : 0.0;
     s.sumAlphaColor = tailAc.rgb + s.a1 * s.c1 + s.a2 * s.c2;
     s.sumAlpha = tailAc.a + s.a1 + s.a2;

@@ -1,6 +1,5 @@
 #include "methods/neural/neural_method.hpp"
 
-#include <cstdio>
 #include <map>
 
 #include "core/shader.hpp"
@@ -15,12 +14,6 @@
 
 namespace starnt {
 namespace {
-
-std::string floatLiteral(float v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.9e", double(v));
-    return buf;
-}
 
 // Texture unit of the corner network outputs in infer_fill.frag.glsl (after the NeuralInputUnit units).
 constexpr GLuint kUnitCornerNetwork = 6;
@@ -142,9 +135,7 @@ private:
 
     gl::Program buildInference(const std::string& stage, bool fullResolutionInputs) const {
         const std::string defines = std::string(fullResolutionInputs ? "#define STARNT_INPUTS_FULL_RESOLUTION\n" : "") +
-                                    "#define STARNT_EPS_TRANSMITTANCE " + floatLiteral(nn::kTransmittanceEpsilon) +
-                                    "\n#define STARNT_EPS_TAIL_ALPHA " + floatLiteral(nn::kTailAlphaEpsilon) + "\n" +
-                                    nn::generateInferenceGlsl(network_);
+                                    neuralEpsilonDefines() + nn::generateInferenceGlsl(network_);
         return buildFullscreenProgram(config_.name + "_" + stage + (fullResolutionInputs ? "" : "_upsampled"),
                                       {config_.compositeShader, "methods/neural/" + stage + ".frag.glsl"}, defines);
     }

@@ -1,7 +1,17 @@
 #include "methods/neural/neural_passes.hpp"
 
+#include <cstdio>
+
+#include "starnt/nn.hpp"
+
 namespace starnt {
 namespace {
+
+std::string floatLiteral(float v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9e", double(v));
+    return buf;
+}
 
 // Restricts clears and rasterisation to the lower-left rectangle a reduced pass renders into.
 void useRectangle(Size2 size) {
@@ -12,11 +22,37 @@ void useRectangle(Size2 size) {
 
 }  // namespace
 
+std::string neuralEpsilonDefines() {
+    return "#define STARNT_EPS_TRANSMITTANCE " + floatLiteral(nn::kTransmittanceEpsilon) + "\n#define STARNT_EPS_TAIL_ALPHA " +
+           floatLiteral(nn::kTailAlphaEpsilon) + "\n";
+}
+
+gl::Program buildTailResolveProgram() {
+    return gl::buildComputeProgram("tail_resolve", "#include \"methods/neural/tail_resolve.comp.glsl\"\n",
+                                   neuralEpsilonDefines());
+}
+
+void resolveTails(const gl::Program& program, GLuint nearest, GLuint second, GLuint alphaColor, GLuint colorCount,
+                  GLuint transmittance, Size2 full, Size2 pass2, Size2 pass3) {
+    glUseProgram(program.id());
+    glBindTextureUnit(0, nearest);
+    glBindTextureUnit(1, second);
+    glBindImageTexture(0, alphaColor, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    glBindImageTexture(1, colorCount, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    glBindImageTexture(2, transmittance, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
+    glUniform2i(program.uniform("u_fullSize"), full.width, full.height);
+    glUniform2i(program.uniform("u_pass2Size"), pass2.width, pass2.height);
+    glUniform2i(program.uniform("u_pass3Size"), pass3.width, pass3.height);
+    glDispatchCompute(GLuint((pass3.width + 7) / 8), GLuint((pass3.height + 7) / 8), 1);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
 NeuralPasses::NeuralPasses(const gl::Program& pass1, const gl::Program& pass2, const gl::Program& pass3)
     : pass1_(pass1),
       pass2_(pass2),
       pass3_(pass3),
-      depthDownsample_(gl::buildComputeProgram("depth_downsample", "#include \"methods/neural/depth_downsample.comp.glsl\"\n")) {}
+      depthDownsample_(gl::buildComputeProgram("depth_downsample", "#include \"methods/neural/depth_downsample.comp.glsl\"\n")),
+      tailResolve_(buildTailResolveProgram()) {}
 
 void NeuralPasses::resize(int width, int height) {
     if (width == width_ && height == height_) return;
@@ -98,6 +134,11 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
         glBlendFunci(2, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
         MethodBase::runGeometryPass("pass3", pass3_, frame, draw);
         resetPassState();
+    }
+    if (reduced2 || !(pass3Size == full)) {
+        gl::ScopedPass timing(frame.timer, "tail_resolve");
+        resolveTails(tailResolve_, nearest_.id(), second_.id(), alphaColor_.id(), colorCount_.id(), transmittance_.id(),
+                     full, pass2Size, pass3Size);
     }
     glViewport(0, 0, width_, height_);
 }

@@ -3,6 +3,7 @@
 //   pass 1: nearest fragment (colour+alpha, depth)        full resolution
 //   pass 2: second-nearest by peeling against pass 1      scale s2 (against a max-downsampled depth)
 //   pass 3: sums over all fragments                       scale s3
+//   (then, if pass 2 or 3 was reduced, their tails: tail_resolve.comp.glsl)
 // Passes 2 and 3 render into the lower-left ceil(W s) x ceil(H s) rectangle of full-size targets,
 // so a change of scale from frame to frame never reallocates; the inference reads them back at
 // full resolution through upsample.glsl.
@@ -10,6 +11,8 @@
 //   nearest / second colour RGBA32F, their depths DEPTH_COMPONENT32F, reduced depth R32F,
 //   sum aC + sum a RGBA32F, sum C + N RGBA32F, transmittance R32F.
 #pragma once
+#include <string>
+
 #include "methods/common/method_base.hpp"
 #include "methods/neural/upsample_cpu.hpp"
 
@@ -24,6 +27,16 @@ enum NeuralInputUnit : GLuint {
     kUnitTransmittance = 4,
     kUnitNearestDepth = 5,
 };
+
+// "#define STARNT_EPS_TRANSMITTANCE ..." and "STARNT_EPS_TAIL_ALPHA", from nn::kTransmittanceEpsilon
+// and nn::kTailAlphaEpsilon, for the shaders that guard the same quotients as the CPU features.
+std::string neuralEpsilonDefines();
+
+// The tail resolve (tail_resolve.comp.glsl, CPU reference upsamplePassSums): turns the pass-3
+// targets' sums into tails in place over the pass3 rectangle. Run when pass 2 or 3 was reduced.
+gl::Program buildTailResolveProgram();
+void resolveTails(const gl::Program& program, GLuint nearest, GLuint second, GLuint alphaColor, GLuint colorCount,
+                  GLuint transmittance, Size2 full, Size2 pass2, Size2 pass3);
 
 class NeuralPasses {
 public:
@@ -57,7 +70,7 @@ private:
     const gl::Program& pass1_;
     const gl::Program& pass2_;
     const gl::Program& pass3_;
-    gl::Program depthDownsample_;
+    gl::Program depthDownsample_, tailResolve_;
     int width_ = 0, height_ = 0;
     Size2 pass2Size_, pass3Size_;
     gl::Texture2D nearest_, nearestDepth_, reducedDepth_, second_, secondDepth_, alphaColor_, colorCount_, transmittance_;
