@@ -33,9 +33,9 @@ public:
     // used, and ends the real-frame time measurement (which includes this copy).
     void endRealFrame(GLuint compositeTexture, GLuint nearestDepthTexture, const glm::mat4& viewProj, int width,
                       int height);
-    // An interpolated frame: the kept real frame reprojected to `viewProj`, written into
-    // `outputTexture` (immutable RGBA32F of the frame size) with image stores. Timed as pass
-    // "reproject" when a timer is given.
+    // An interpolated frame: the kept real frame reprojected to `viewProj`, rendered into
+    // `outputTexture` (a colour-renderable RGBA texture of the frame size; the framebuffer binding is
+    // 0 afterwards). Timed as pass "reproject" when a timer is given.
     void interpolate(const glm::mat4& viewProj, GLuint outputTexture, gl::GpuPassTimer* timer = nullptr);
 
     // False for a fixed interval of 1: then nothing is kept (no copy, no memory).
