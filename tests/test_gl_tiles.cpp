@@ -248,7 +248,7 @@ void main() {
     }
 }
 
-// The tail resolve and the inference's reads (tail_resolve.comp.glsl, then readPixelSums in
+// The tail resolve and the inference's reads (tail_resolve.frag.glsl, then readPixelSums in
 // neural_inputs.glsl) equal upsamplePassSums: tail-first upsampling with passes 2 and 3 at
 // different reduced sizes, pass 3 alone reduced, and the plain reads of the full-resolution variant.
 // Outside the reduced rectangles the targets hold poison.
@@ -284,14 +284,19 @@ TEST(GlTiles, PassSumsUpsampleMatchesCpu) {
                             secondTex = upload(second, full.width, full.height),
                             alphaColorTex = upload(alphaColor, full.width, full.height),
                             colorCountTex = upload(colorCount, full.width, full.height);
-        gl::Texture2D transmittanceTex(GL_R32F, full.width, full.height);  // as pass 3's (image format r32f)
+        gl::Texture2D transmittanceTex(GL_R32F, full.width, full.height);  // as pass 3's
         glTextureSubImage2D(transmittanceTex.id(), 0, 0, 0, full.width, full.height, GL_RGBA, GL_FLOAT, transmittance.data());
         std::vector<gl::Texture2D> outputs;
         for (int i = 0; i < 5; ++i) outputs.emplace_back(GL_RGBA32F, full.width, full.height);
         const bool plain = pass2 == full && pass3 == full;
         if (!plain) {
-            resolveTails(buildTailResolveProgram(), nearestTex.id(), secondTex.id(), alphaColorTex.id(), colorCountTex.id(),
-                         transmittanceTex.id(), full, pass2, pass3);
+            const gl::Program resolve = buildTailResolveProgram();
+            const gl::FramebufferHandle pass3Fb = gl::makeFramebuffer({&alphaColorTex, &colorCountTex, &transmittanceTex});
+            const gl::VertexArrayHandle vao = gl::makeEmptyVertexArray();
+            resolveTails({&resolve, nearestTex.id(), secondTex.id(), alphaColorTex.id(), colorCountTex.id(),
+                          transmittanceTex.id(), full, pass2, pass3},
+                         pass3Fb.id(), vao);
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
         }
         const std::string defines =
             std::string(plain ? "#define STARNT_INPUTS_FULL_RESOLUTION\n" : "") + neuralEpsilonDefines();

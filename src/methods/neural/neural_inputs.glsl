@@ -40,7 +40,7 @@ PixelSums readPixelSums(ivec2 p) {
     s.c2 = f2.rgb;
     s.a2 = f2.a;
 #ifndef STARNT_INPUTS_FULL_RESOLUTION
-    // Reduced passes: the pass-3 targets hold each texel's tail (tail_resolve.comp.glsl). The tails
+    // Reduced passes: the pass-3 targets hold each texel's tail (tail_resolve.frag.glsl). The tails
     // are interpolated, and the pixel adds back its own two layers.
     vec4 tailAc = upsampleLinear(u_alphaColor, p, u_pass3Size);
     vec4 tailCn = upsampleLinear(u_colorCount, p, u_pass3Size);

@@ -28,23 +28,23 @@ std::string neuralEpsilonDefines() {
 }
 
 gl::Program buildTailResolveProgram() {
-    return gl::buildComputeProgram("tail_resolve", "#include \"methods/neural/tail_resolve.comp.glsl\"\n",
-                                   neuralEpsilonDefines());
+    return gl::buildProgram("tail_resolve", gl::embeddedSource("methods/common/fullscreen.vert.glsl"),
+                            gl::embeddedSource("methods/neural/tail_resolve.frag.glsl"), neuralEpsilonDefines());
 }
 
-void resolveTails(const gl::Program& program, GLuint nearest, GLuint second, GLuint alphaColor, GLuint colorCount,
-                  GLuint transmittance, Size2 full, Size2 pass2, Size2 pass3) {
-    glUseProgram(program.id());
-    glBindTextureUnit(0, nearest);
-    glBindTextureUnit(1, second);
-    glBindImageTexture(0, alphaColor, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-    glBindImageTexture(1, colorCount, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-    glBindImageTexture(2, transmittance, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
-    glUniform2i(program.uniform("u_fullSize"), full.width, full.height);
-    glUniform2i(program.uniform("u_pass2Size"), pass2.width, pass2.height);
-    glUniform2i(program.uniform("u_pass3Size"), pass3.width, pass3.height);
-    glDispatchCompute(GLuint((pass3.width + 7) / 8), GLuint((pass3.height + 7) / 8), 1);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+void resolveTails(const TailResolveInputs& in, GLuint pass3Framebuffer, const gl::VertexArrayHandle& emptyVao) {
+    glTextureBarrier();  // pass 3's blended writes become visible to this draw's fetches
+    glUseProgram(in.program->id());
+    const GLuint textures[] = {in.nearest, in.second, in.alphaColor, in.colorCount, in.transmittance};
+    for (GLuint unit = 0; unit < 5; ++unit) glBindTextureUnit(unit, textures[unit]);
+    glUniform2i(in.program->uniform("u_fullSize"), in.full.width, in.full.height);
+    glUniform2i(in.program->uniform("u_pass2Size"), in.pass2.width, in.pass2.height);
+    glUniform2i(in.program->uniform("u_pass3Size"), in.pass3.width, in.pass3.height);
+    glBindFramebuffer(GL_FRAMEBUFFER, pass3Framebuffer);
+    resetPassState();
+    useRectangle(in.pass3);
+    gl::drawFullscreenTriangle(emptyVao);
+    resetPassState();
 }
 
 NeuralPasses::NeuralPasses(const gl::Program& pass1, const gl::Program& pass2, const gl::Program& pass3)
@@ -52,7 +52,8 @@ NeuralPasses::NeuralPasses(const gl::Program& pass1, const gl::Program& pass2, c
       pass2_(pass2),
       pass3_(pass3),
       depthDownsample_(gl::buildComputeProgram("depth_downsample", "#include \"methods/neural/depth_downsample.comp.glsl\"\n")),
-      tailResolve_(buildTailResolveProgram()) {}
+      tailResolve_(buildTailResolveProgram()),
+      emptyVao_(gl::makeEmptyVertexArray()) {}
 
 void NeuralPasses::resize(int width, int height) {
     if (width == width_ && height == height_) return;
@@ -137,8 +138,9 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
     }
     if (reduced2 || !(pass3Size == full)) {
         gl::ScopedPass timing(frame.timer, "tail_resolve");
-        resolveTails(tailResolve_, nearest_.id(), second_.id(), alphaColor_.id(), colorCount_.id(), transmittance_.id(),
-                     full, pass2Size, pass3Size);
+        resolveTails({&tailResolve_, nearest_.id(), second_.id(), alphaColor_.id(), colorCount_.id(), transmittance_.id(),
+                      full, pass2Size, pass3Size},
+                     pass3Fb_.id(), emptyVao_);
     }
     glViewport(0, 0, width_, height_);
 }

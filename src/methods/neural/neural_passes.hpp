@@ -3,7 +3,7 @@
 //   pass 1: nearest fragment (colour+alpha, depth)        full resolution
 //   pass 2: second-nearest by peeling against pass 1      scale s2 (against a max-downsampled depth)
 //   pass 3: sums over all fragments                       scale s3
-//   (then, if pass 2 or 3 was reduced, their tails: tail_resolve.comp.glsl)
+//   (then, if pass 2 or 3 was reduced, their tails: tail_resolve.frag.glsl)
 // Passes 2 and 3 render into the lower-left ceil(W s) x ceil(H s) rectangle of full-size targets,
 // so a change of scale from frame to frame never reallocates; the inference reads them back at
 // full resolution through upsample.glsl.
@@ -32,11 +32,16 @@ enum NeuralInputUnit : GLuint {
 // and nn::kTailAlphaEpsilon, for the shaders that guard the same quotients as the CPU features.
 std::string neuralEpsilonDefines();
 
-// The tail resolve (tail_resolve.comp.glsl, CPU reference upsamplePassSums): turns the pass-3
+// The tail resolve (tail_resolve.frag.glsl, CPU reference upsamplePassSums): turns the pass-3
 // targets' sums into tails in place over the pass3 rectangle. Run when pass 2 or 3 was reduced.
+// `pass3Framebuffer` has alphaColor, colorCount and transmittance attached, in that order.
 gl::Program buildTailResolveProgram();
-void resolveTails(const gl::Program& program, GLuint nearest, GLuint second, GLuint alphaColor, GLuint colorCount,
-                  GLuint transmittance, Size2 full, Size2 pass2, Size2 pass3);
+struct TailResolveInputs {
+    const gl::Program* program;
+    GLuint nearest, second, alphaColor, colorCount, transmittance;  // textures, as NeuralPasses has them
+    Size2 full, pass2, pass3;
+};
+void resolveTails(const TailResolveInputs& inputs, GLuint pass3Framebuffer, const gl::VertexArrayHandle& emptyVao);
 
 class NeuralPasses {
 public:
@@ -71,6 +76,7 @@ private:
     const gl::Program& pass2_;
     const gl::Program& pass3_;
     gl::Program depthDownsample_, tailResolve_;
+    gl::VertexArrayHandle emptyVao_;
     int width_ = 0, height_ = 0;
     Size2 pass2Size_, pass3Size_;
     gl::Texture2D nearest_, nearestDepth_, reducedDepth_, second_, secondDepth_, alphaColor_, colorCount_, transmittance_;
