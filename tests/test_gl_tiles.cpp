@@ -6,6 +6,7 @@
 #include <random>
 
 #include "core/gl_util.hpp"
+#include "core/gpu_timer.hpp"
 #include "core/shader.hpp"
 #include "methods/neural/neural_method.hpp"
 #include "methods/neural/neural_passes.hpp"
@@ -26,8 +27,8 @@ namespace {
 const glm::vec3 kBackground(0.9f, 0.85f, 0.8f);
 
 // Uploads RGBA rows bottom-first (GL order) into a new RGBA32F texture.
-gl::Texture2D upload(const std::vector<glm::vec4>& pixels, int w, int h) {
-    gl::Texture2D t(GL_RGBA32F, w, h);
+gl::Texture2D upload(const std::vector<glm::vec4>& pixels, int w, int h, GLenum filter = GL_NEAREST) {
+    gl::Texture2D t(GL_RGBA32F, w, h, filter);
     glTextureSubImage2D(t.id(), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, pixels.data());
     return t;
 }
@@ -282,9 +283,9 @@ TEST(GlTiles, PassSumsUpsampleMatchesCpu) {
             }
         const gl::Texture2D nearestTex = upload(t.nearest, full.width, full.height),
                             secondTex = upload(second, full.width, full.height),
-                            alphaColorTex = upload(alphaColor, full.width, full.height),
-                            colorCountTex = upload(colorCount, full.width, full.height);
-        gl::Texture2D transmittanceTex(GL_R32F, full.width, full.height);  // as pass 3's
+                            alphaColorTex = upload(alphaColor, full.width, full.height, GL_LINEAR),
+                            colorCountTex = upload(colorCount, full.width, full.height, GL_LINEAR);
+        gl::Texture2D transmittanceTex(GL_R32F, full.width, full.height, GL_LINEAR);  // as pass 3's
         glTextureSubImage2D(transmittanceTex.id(), 0, 0, 0, full.width, full.height, GL_RGBA, GL_FLOAT, transmittance.data());
         std::vector<gl::Texture2D> outputs;
         for (int i = 0; i < 5; ++i) outputs.emplace_back(GL_RGBA32F, full.width, full.height);
@@ -334,13 +335,17 @@ void main() {
         const std::vector<UpsampledSums> want = upsamplePassSums(t, nn::kTransmittanceEpsilon);
         std::vector<std::vector<glm::vec4>> got;
         for (const gl::Texture2D& o : outputs) got.push_back(glOrder(gl::readTexture(o)));
+        // Pass 3 goes through the texture unit's bilinear filter: llvmpipe weights in float (CI);
+        // GPUs commonly with 8 fractional bits, i.e. up to 1/256 of the taps' spread (values < 10 here).
+        const float filterSlack = gl::currentContextIsSoftware() ? 0.0f : 10.0f / 256.0f;
         size_t tailPixels = 0;
         for (size_t i = 0; i < n; ++i) {
             const glm::vec4 expected[] = {want[i].nearest, want[i].second, want[i].alphaColor, want[i].colorCount,
                                           glm::vec4(want[i].transmittance)};
             for (int k = 0; k < 5; ++k)
                 for (int ch = 0; ch < 4; ++ch)
-                    ASSERT_NEAR(got[size_t(k)][i][ch], expected[k][ch], 2e-5f * std::max(1.0f, std::abs(expected[k][ch])))
+                    ASSERT_NEAR(got[size_t(k)][i][ch], expected[k][ch],
+                                2e-5f * std::max(1.0f, std::abs(expected[k][ch])) + (k >= 2 ? filterSlack : 0.0f))
                         << "pixel " << i << " output " << k << " channel " << ch << " pass3 " << pass3.width;
             tailPixels += want[i].colorCount.a > 2.5f ? 1 : 0;
         }

@@ -42,9 +42,9 @@ PixelSums readPixelSums(ivec2 p) {
 #ifndef STARNT_INPUTS_FULL_RESOLUTION
     // Reduced passes: the pass-3 targets hold each texel's tail (tail_resolve.frag.glsl). The tails
     // are interpolated, and the pixel adds back its own two layers.
-    vec4 tailAc = upsampleLinear(u_alphaColor, p, u_pass3Size);
-    vec4 tailCn = upsampleLinear(u_colorCount, p, u_pass3Size);
-    float tailT = upsampleLinear(u_transmittance, p, u_pass3Size).r;
+    vec4 tailAc = upsampleFiltered(u_alphaColor, p, u_pass3Size);
+    vec4 tailCn = upsampleFiltered(u_colorCount, p, u_pass3Size);
+    float tailT = upsampleFiltered(u_transmittance, p, u_pass3Size).r;
     float has1 = s.a1 > 0.0 ? 1.0 : 0.0, has2 = s.a2 > 0.0 ? 1.0 : 0.0;
     s.sumAlphaColor = tailAc.rgb + s.a1 * s.c1 + s.a2 * s.c2;
     s.sumAlpha = tailAc.a + s.a1 + s.a2;

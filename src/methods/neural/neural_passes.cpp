@@ -64,9 +64,9 @@ void NeuralPasses::resize(int width, int height) {
     reducedDepth_ = gl::Texture2D(GL_R32F, width, height);
     second_ = gl::Texture2D(GL_RGBA32F, width, height);
     secondDepth_ = gl::Texture2D(GL_DEPTH_COMPONENT32F, width, height);
-    alphaColor_ = gl::Texture2D(GL_RGBA32F, width, height);
-    colorCount_ = gl::Texture2D(GL_RGBA32F, width, height);
-    transmittance_ = gl::Texture2D(GL_R32F, width, height);
+    alphaColor_ = gl::Texture2D(GL_RGBA32F, width, height, GL_LINEAR);
+    colorCount_ = gl::Texture2D(GL_RGBA32F, width, height, GL_LINEAR);
+    transmittance_ = gl::Texture2D(GL_R32F, width, height, GL_LINEAR);
     pass1Fb_ = gl::makeFramebuffer({&nearest_}, &nearestDepth_);
     pass2Fb_ = gl::makeFramebuffer({&second_}, &secondDepth_);
     pass3Fb_ = gl::makeFramebuffer({&alphaColor_, &colorCount_, &transmittance_});

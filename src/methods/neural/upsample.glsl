@@ -39,6 +39,14 @@ vec4 upsampleLinear(sampler2D source, ivec2 p, ivec2 size) {
     return mix(bottom, top, t.f.y);
 }
 
+// The same as upsampleLinear through the texture unit's bilinear filter: one filtered fetch instead
+// of four. The source must use GL_LINEAR filtering; the position is clamped so that the filter never
+// reaches outside the reduced rectangle (edge texels extend outwards, as with the clamped taps).
+vec4 upsampleFiltered(sampler2D source, ivec2 p, ivec2 size) {
+    vec2 u = clamp((vec2(p) + 0.5) * vec2(size) / vec2(u_fullSize) - 0.5, vec2(0.0), vec2(size - 1));
+    return textureLod(source, (u + 0.5) / vec2(textureSize(source, 0)), 0.0);
+}
+
 // Bilinear of a straight (colour, alpha) fragment, alpha-weighted: alpha is interpolated, the
 // colour as alpha * colour and divided back, so pixels without a fragment (alpha 0) do not darken
 // their neighbours' colour.
