@@ -9,7 +9,8 @@
 // full resolution through upsample.glsl.
 // Target formats (chosen for precision; memory is reported per method):
 //   nearest / second colour RGBA32F, their depths DEPTH_COMPONENT32F, reduced depth R32F,
-//   sum aC + sum a RGBA32F, sum C + N RGBA32F, transmittance R32F.
+//   sum aC + sum a RGBA32F, sum C + N RGBA32F, transmittance R32F; these three with GL_LINEAR
+//   filtering, as the inference reads their reduced tails through the bilinear filter.
 #pragma once
 #include <string>
 
