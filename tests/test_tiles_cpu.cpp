@@ -188,27 +188,45 @@ TEST(TilesCpu, CornerInterpolationIsBilinearInsideALeaf) {
 }
 
 TEST(Resampling, DepthCoverageAndMaxDownsample) {
-    // 5 -> 3: reduced pixel 0 covers full 0..1, pixel 1 covers 2, pixel 2 covers 3..4.
+    // 5 -> 3: reduced samples at full x = 0.5, 2.17, 3.83 with footprints 5/3 wide around them,
+    // so reduced pixel 0 covers full 0, pixel 1 covers 1..2, pixel 2 covers 3..4.
     EXPECT_EQ(coverBegin(0, 5, 3), 0);
-    EXPECT_EQ(coverBegin(1, 5, 3), 2);
+    EXPECT_EQ(coverBegin(1, 5, 3), 1);
     EXPECT_EQ(coverBegin(2, 5, 3), 3);
     EXPECT_EQ(coverBegin(3, 5, 3), 5);
+    // 8 -> 4: reduced pixel i samples full pixel 2i and covers 2i - 1 and 2i.
+    for (int i = 1; i <= 4; ++i) EXPECT_EQ(coverBegin(i, 8, 4), 2 * i - 1);
     for (int i = 0; i <= 7; ++i) EXPECT_EQ(coverBegin(i, 7, 7), i);
     const std::vector<float> depth = {0.1f, 0.9f, 0.3f, 0.2f, 0.4f};  // 5x1
-    EXPECT_EQ(maxDownsampleDepth(depth, {5, 1}, {3, 1}), (std::vector<float>{0.9f, 0.3f, 0.4f}));
+    EXPECT_EQ(maxDownsampleDepth(depth, {5, 1}, {3, 1}), (std::vector<float>{0.1f, 0.9f, 0.4f}));
+}
+
+TEST(Resampling, ReducedSamplesFallOnFullPixelCentres) {
+    // Viewport offset (1 - R/F)/2 reduced pixels: 1/4 at half size, 3/8 at a quarter, 0 at full.
+    EXPECT_FLOAT_EQ(reducedViewportOffset(640, 1280), 0.25f);
+    EXPECT_FLOAT_EQ(reducedViewportOffset(320, 1280), 0.375f);
+    EXPECT_FLOAT_EQ(reducedViewportOffset(1280, 1280), 0.0f);
+    // Texel i of R samples full x = i F/R + 0.5: at F = 2R the centre of full pixel 2i.
+    for (int i = 0; i < 4; ++i) EXPECT_EQ(nearestSampleTexel(i, 4, 8), 2 * i);
+    EXPECT_EQ(nearestSampleTexel(3, 5, 8), 5);   // 4.8 rounds to 5
+    EXPECT_EQ(nearestSampleTexel(1, 2, 3), 2);   // 1.5: halves round up
+    EXPECT_EQ(nearestSampleTexel(2, 4, 2), 1);   // to a smaller image: 1
+    EXPECT_EQ(nearestSampleTexel(9, 10, 5), 4);  // 4.5 rounds to 5, clamped to the last texel
 }
 
 TEST(Resampling, BilinearUpsample) {
     const std::vector<glm::vec4> ramp = {glm::vec4(0.0f), glm::vec4(1.0f), glm::vec4(2.0f), glm::vec4(3.0f)};  // 4x1
     const auto up = bilinearUpsample(ramp, {4, 1}, {8, 1}, false);
-    // Full pixel x maps to u = (x + 0.5) / 2 - 0.5: 0 (clamped), 0.25, 0.75, ..., 3 (clamped).
-    const float want[8] = {0.0f, 0.25f, 0.75f, 1.25f, 1.75f, 2.25f, 2.75f, 3.0f};
+    // Full pixel x maps to u = x / 2 (texel i sampled full pixel 2i): 0, 0.5, 1, ..., 3, 3 (clamped).
+    const float want[8] = {0.0f, 0.5f, 1.0f, 1.5f, 2.0f, 2.5f, 3.0f, 3.0f};
     for (int x = 0; x < 8; ++x) EXPECT_FLOAT_EQ(up[size_t(x)].x, want[x]);
     EXPECT_EQ(bilinearUpsample(ramp, {4, 1}, {4, 1}, false), ramp);
     // Alpha-weighted: a neighbour without a fragment lowers alpha, not the colour.
     const std::vector<glm::vec4> edge = {glm::vec4(0.8f, 0.4f, 0.2f, 0.5f), glm::vec4(0.0f)};
     const auto weighted = bilinearUpsample(edge, {2, 1}, {4, 1}, true);
+    EXPECT_EQ(weighted[0], edge[0]);
     EXPECT_FLOAT_EQ(weighted[1].r, 0.8f);
-    EXPECT_FLOAT_EQ(weighted[1].a, 0.5f * 0.75f);
+    EXPECT_FLOAT_EQ(weighted[1].a, 0.5f * 0.5f);
+    EXPECT_EQ(weighted[2], glm::vec4(0.0f));
     EXPECT_EQ(weighted[3], glm::vec4(0.0f));
 }

@@ -1,8 +1,9 @@
 // Pass 2 at scale s2 < 1 peels against a downsampled pass-1 depth: the maximum over the full
 // pixels whose centres fall inside the reduced pixel (SPEC 2). Reduced pixel i along an axis of
-// full size F and reduced size R covers full pixels j with (j + 0.5) in [i F / R, (i + 1) F / R),
-// i.e. j from ceil((2 i F - R) / 2R) up to ceil((2 (i + 1) F - R) / 2R), exclusive; integer
-// arithmetic, so the CPU reference (upsample_cpu.cpp) matches exactly.
+// full size F and reduced size R samples at i F/R + 0.5 (upsample_cpu.hpp) and covers full pixels
+// j with (j + 0.5) in [i F/R + 0.5 - F/2R, i F/R + 0.5 + F/2R), i.e. j from ceil((2 i - 1) F / 2R)
+// up to ceil((2 i + 1) F / 2R), exclusive; integer arithmetic, so the CPU reference
+// (upsample_cpu.cpp) matches exactly.
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0) uniform sampler2D u_nearestDepth;  // full resolution
 layout(binding = 0, r32f) writeonly uniform highp image2D u_reducedDepth;
@@ -12,8 +13,8 @@ uniform ivec2 u_reducedSize;
 int ceilDiv(int a, int b) { return a <= 0 ? 0 : (a + b - 1) / b; }
 
 ivec2 coverBegin(ivec2 i) {
-    return ivec2(ceilDiv(2 * i.x * u_fullSize.x - u_reducedSize.x, 2 * u_reducedSize.x),
-                 ceilDiv(2 * i.y * u_fullSize.y - u_reducedSize.y, 2 * u_reducedSize.y));
+    return ivec2(ceilDiv((2 * i.x - 1) * u_fullSize.x, 2 * u_reducedSize.x),
+                 ceilDiv((2 * i.y - 1) * u_fullSize.y, 2 * u_reducedSize.y));
 }
 
 void main() {

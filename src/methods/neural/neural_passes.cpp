@@ -13,11 +13,21 @@ std::string floatLiteral(float v) {
     return buf;
 }
 
-// Restricts clears and rasterisation to the lower-left rectangle a reduced pass renders into.
+// Restricts clears and rasterisation to the lower-left rectangle a pass renders into.
 void useRectangle(Size2 size) {
     glViewport(0, 0, size.width, size.height);
     glEnable(GL_SCISSOR_TEST);
     glScissor(0, 0, size.width, size.height);
+}
+
+// The same for a geometry pass at a reduced size: the viewport moves by a fraction of a reduced
+// pixel so that its samples fall on full-resolution pixel centres (upsample_cpu.hpp). GL keeps
+// viewport origins as floats; GL_VIEWPORT_SUBPIXEL_BITS may round them (llvmpipe reports 0 bits
+// but applies them exactly, GlTiles.ReducedPassesSampleFullPixelCentres checks it; NVIDIA keeps 8).
+void useReducedRectangle(Size2 size, Size2 full) {
+    useRectangle(size);
+    glViewportIndexedf(0, reducedViewportOffset(size.width, full.width), reducedViewportOffset(size.height, full.height),
+                       float(size.width), float(size.height));
 }
 
 }  // namespace
@@ -109,7 +119,7 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
     }
     {
         gl::ScopedPass timing(frame.timer, "pass2");
-        useRectangle(pass2Size);
+        useReducedRectangle(pass2Size, full);
         glBindFramebuffer(GL_FRAMEBUFFER, pass2Fb_.id());
         glClearBufferfv(GL_COLOR, 0, zero);
         glClearBufferfv(GL_DEPTH, 0, &farDepth);
@@ -123,7 +133,7 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
     }
     {
         gl::ScopedPass timing(frame.timer, "pass3");
-        useRectangle(pass3Size);
+        useReducedRectangle(pass3Size, full);
         glBindFramebuffer(GL_FRAMEBUFFER, pass3Fb_.id());
         glClearBufferfv(GL_COLOR, 0, zero);
         glClearBufferfv(GL_COLOR, 1, zero);

@@ -1,7 +1,8 @@
 // Stage "upsample", first half: when pass 2 or 3 ran at a reduced size, every pass-3 texel's sums
 // become its TAIL in place: minus the nearest fragment seen at the texel's own sample point (the
-// full-resolution pass-1 pixel under its centre) and the second (the pass-2 texel under its
-// centre), its transmittance divided by theirs. The inference then interpolates tails and adds
+// full-resolution pass-1 pixel nearest to that sample, which IS its sample when the full size is a
+// multiple of the reduced one) and the second (the pass-2 texel whose sample is nearest), its
+// transmittance divided by theirs. The inference then interpolates tails and adds
 // each pixel's own two layers (neural_inputs.glsl). Interpolating the sums and subtracting the
 // pixel's own layers instead would remove fragments its neighbours never had, at every thin edge.
 // CPU reference: upsamplePassSums in upsample_cpu.hpp.
@@ -23,11 +24,15 @@ layout(location = 0) out vec4 o_alphaColor;     // tail sum a C, tail sum a
 layout(location = 1) out vec4 o_colorCount;     // tail sum C, tail count
 layout(location = 2) out vec4 o_transmittance;  // tail transmittance
 
+// round(t * to / from) in integers, clamped: nearestSampleTexel in upsample_cpu.cpp.
+ivec2 nearestSampleTexel(ivec2 t, ivec2 from, ivec2 to) {
+    return clamp((2 * t * to + from) / (2 * from), ivec2(0), to - 1);
+}
+
 void main() {
     ivec2 t = ivec2(gl_FragCoord.xy);
-    vec2 centre = vec2(t) + 0.5;
-    ivec2 full = clamp(ivec2(centre * vec2(u_fullSize) / vec2(u_pass3Size)), ivec2(0), u_fullSize - 1);
-    ivec2 second = clamp(ivec2(centre * vec2(u_pass2Size) / vec2(u_pass3Size)), ivec2(0), u_pass2Size - 1);
+    ivec2 full = nearestSampleTexel(t, u_pass3Size, u_fullSize);
+    ivec2 second = nearestSampleTexel(t, u_pass3Size, u_pass2Size);
     vec4 f1 = texelFetch(u_nearest, full, 0), f2 = texelFetch(u_second, second, 0);
     float has1 = f1.a > 0.0 ? 1.0 : 0.0, has2 = f2.a > 0.0 ? 1.0 : 0.0;
     vec4 ac = texelFetch(u_alphaColor, t, 0), cn = texelFetch(u_colorCount, t, 0);

@@ -3,8 +3,10 @@
 // resolution through these bilinear lookups. Fusing the upsample into the reads saves writing and
 // re-reading four full-resolution float targets; upsample_cpu.hpp is the CPU reference.
 //
-// Full pixel p maps to the reduced position u = (p + 0.5) * size / fullSize - 0.5; the four
-// surrounding texels are clamped to the reduced rectangle (edge texels extend outwards).
+// The reduced passes sample the full window at i * fullSize / size + 0.5 (neural_passes.cpp moves
+// their viewport; upsample_cpu.hpp says why), so full pixel p maps to the continuous texel position
+// u = p * size / fullSize, texel i's sample being at u = i. The two texels around u per axis are
+// clamped to the reduced rectangle (edge texels extend outwards).
 uniform ivec2 u_fullSize;
 uniform ivec2 u_pass2Size;
 uniform ivec2 u_pass3Size;
@@ -22,7 +24,7 @@ struct BilinearTaps {
 };
 
 BilinearTaps bilinearTaps(ivec2 p, ivec2 size) {
-    vec2 u = (vec2(p) + 0.5) * vec2(size) / vec2(u_fullSize) - 0.5;
+    vec2 u = vec2(p) * vec2(size) / vec2(u_fullSize);
     vec2 base = floor(u);
     BilinearTaps t;
     t.f = u - base;
@@ -43,7 +45,7 @@ vec4 upsampleLinear(sampler2D source, ivec2 p, ivec2 size) {
 // of four. The source must use GL_LINEAR filtering; the position is clamped so that the filter never
 // reaches outside the reduced rectangle (edge texels extend outwards, as with the clamped taps).
 vec4 upsampleFiltered(sampler2D source, ivec2 p, ivec2 size) {
-    vec2 u = clamp((vec2(p) + 0.5) * vec2(size) / vec2(u_fullSize) - 0.5, vec2(0.0), vec2(size - 1));
+    vec2 u = clamp(vec2(p) * vec2(size) / vec2(u_fullSize), vec2(0.0), vec2(size - 1));
     return textureLod(source, (u + 0.5) / vec2(textureSize(source, 0)), 0.0);
 }
 

@@ -5,8 +5,16 @@
 
 namespace starnt {
 
+float reducedViewportOffset(int reduced, int full) { return 0.5f * (1.0f - float(reduced) / float(full)); }
+
+int nearestSampleTexel(int t, int from, int to) {
+    const long long x = (2LL * t * to + from) / (2LL * from);  // floor(t to / from + 1/2), t >= 0
+    return std::clamp(int(x), 0, to - 1);
+}
+
 int coverBegin(int i, int full, int reduced) {
-    const long long a = 2LL * i * full - reduced, b = 2LL * reduced;
+    // ceil((2 i - 1) F / 2R): the first j with j + 0.5 >= i F/R + 0.5 - F/2R.
+    const long long a = (2LL * i - 1) * full, b = 2LL * reduced;
     return a <= 0 ? 0 : int((a + b - 1) / b);
 }
 
@@ -38,8 +46,8 @@ struct Taps {
 };
 
 Taps bilinearTaps(int x, int y, Size2 r, Size2 full) {
-    const float ux = (float(x) + 0.5f) * float(r.width) / float(full.width) - 0.5f;
-    const float uy = (float(y) + 0.5f) * float(r.height) / float(full.height) - 0.5f;
+    const float ux = float(x) * float(r.width) / float(full.width);
+    const float uy = float(y) * float(r.height) / float(full.height);
     const float bx = std::floor(ux), by = std::floor(uy);
     return {std::clamp(int(bx), 0, r.width - 1), std::clamp(int(bx) + 1, 0, r.width - 1),
             std::clamp(int(by), 0, r.height - 1), std::clamp(int(by) + 1, 0, r.height - 1), ux - bx, uy - by};
@@ -88,13 +96,10 @@ std::vector<UpsampledSums> upsamplePassSums(const PassTargets& t, float transmit
     std::vector<Tail> tails(size_t(t.pass3.width) * size_t(t.pass3.height));
     for (int y = 0; y < t.pass3.height && !fullResolution; ++y) {
         for (int x = 0; x < t.pass3.width; ++x) {
-            const glm::vec2 centre(float(x) + 0.5f, float(y) + 0.5f);
-            auto under = [&](Size2 s) {
-                const glm::ivec2 p(centre * glm::vec2(float(s.width), float(s.height)) /
-                                   glm::vec2(float(t.pass3.width), float(t.pass3.height)));
-                return glm::clamp(p, glm::ivec2(0), glm::ivec2(s.width - 1, s.height - 1));
+            auto nearest = [&](Size2 s) {
+                return glm::ivec2(nearestSampleTexel(x, t.pass3.width, s.width), nearestSampleTexel(y, t.pass3.height, s.height));
             };
-            const glm::ivec2 p1 = under(t.full), p2 = under(t.pass2);
+            const glm::ivec2 p1 = nearest(t.full), p2 = nearest(t.pass2);
             const glm::vec4 f1 = t.nearest[size_t(p1.y) * size_t(t.full.width) + size_t(p1.x)];
             const glm::vec4 f2 = t.second[size_t(p2.y) * size_t(t.pass2.width) + size_t(p2.x)];
             const size_t i = size_t(y) * size_t(t.pass3.width) + size_t(x);
