@@ -144,13 +144,6 @@ public:
     gl::Program pass1, pass2, pass3;
 };
 
-// An RGBA32F target's texels, rows bottom-first, at its full allocated size.
-std::vector<glm::vec4> texels(const gl::Texture2D& t) {
-    std::vector<glm::vec4> out(size_t(t.width()) * size_t(t.height()));
-    glGetTextureImage(t.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(out.size() * sizeof(glm::vec4)), out.data());
-    return out;
-}
-
 }  // namespace
 
 TEST(GlTiles, GpuMasksEqualCpuMasksOnRealRenders) {
@@ -390,6 +383,8 @@ TEST(GlTiles, ReducedPassesSampleFullPixelCentres) {
     const Size2 full{c.width, c.height};
     const float eps = NeuralPasses::kDefaultPeelEpsilon;
     passes.run(frame, draw, eps, full, full);
+    // Targets at their full allocated size, rows bottom-first.
+    auto texels = [](const gl::Texture2D& t) { return glOrder(gl::readTexture(t)); };
     const auto nearest = texels(passes.nearest()), second = texels(passes.second());
     const auto sumsAc = texels(passes.alphaColor()), sumsCn = texels(passes.colorCount());
     for (int k : {2, 4}) {
