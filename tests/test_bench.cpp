@@ -57,7 +57,14 @@ json readJson(const fs::path& p) {
 }  // namespace
 
 TEST(BenchPlan, VariantsCarryTheirOptions) {
-    EXPECT_EQ(bench::defaultVariantNames().size(), 7u);
+    EXPECT_EQ(bench::defaultVariantNames().size(), 9u);
+    const auto& paper = bench::findVariant("starnt-paper");
+    EXPECT_EQ(paper.options.tileSignal, MethodOptions::TileSignal::Composite);
+    EXPECT_EQ(paper.options.scaleRule, MethodOptions::ScaleRule::Continuous);
+    EXPECT_FALSE(paper.options.scaleGuard);
+    EXPECT_EQ(bench::findVariant("starnt").options.scaleRule, MethodOptions::ScaleRule::Snapped);
+    EXPECT_EQ(bench::findVariant("starnt-total-warp").options.temporalMode, MethodOptions::TemporalMode::Warp);
+    EXPECT_EQ(bench::findVariant("starnt-total").options.temporalMode, MethodOptions::TemporalMode::Refresh);
     EXPECT_EQ(bench::findVariant("starnt-full").options.spatial, std::optional<bool>(false));
     EXPECT_EQ(bench::findVariant("starnt").options.spatial, std::optional<bool>(true));
     EXPECT_EQ(bench::findVariant("starnt").options.temporalInterval, 1);
@@ -143,7 +150,7 @@ void expectEveryFile(const fs::path& dir) {
     ASSERT_EQ(results["scenes"].size(), 2u);
     for (const auto& scene : results["scenes"]) {
         EXPECT_TRUE(fs::exists(dir / scene["ground_truth"]["image"].get<std::string>()));
-        ASSERT_EQ(scene["methods"].size(), 7u);
+        ASSERT_EQ(scene["methods"].size(), 9u);
         for (const auto& c : scene["methods"]) {
             ASSERT_EQ(c["status"], "ok") << c["variant"] << ": " << c["error"];
             EXPECT_TRUE(fs::exists(dir / c["images"]["image"].get<std::string>())) << c["variant"];
@@ -157,7 +164,7 @@ void expectEveryFile(const fs::path& dir) {
     std::string line;
     std::vector<std::string> lines;
     while (std::getline(csv, line)) lines.push_back(line);
-    ASSERT_EQ(lines.size(), 1u + 2u * 7u);
+    ASSERT_EQ(lines.size(), 1u + 2u * 9u);
     auto fields = [](const std::string& l) { return std::count(l.begin(), l.end(), ',') + 1; };
     for (const auto& l : lines) EXPECT_EQ(fields(l), fields(lines[0])) << l;
 
@@ -221,7 +228,7 @@ void expectEveryJsonField(const fs::path& dir) {
             for (const auto& f : c["frames"]) mseSum += f["mse"].get<double>();
             EXPECT_NEAR(c["quality"]["mse"].get<double>(), mseSum / 3.0, 1e-15);
             // Q recomputed from the figures beside it.
-            const double uMse = (*unsorted)["quality"]["mse"], mse = c["quality"]["mse"], ms = c["stats"]["frame_ms"];
+            const double uMse = (*unsorted)["quality"]["mse"], mse = c["quality"]["mse"], ms = c["stats"]["frame_ms_mean"];
             if (uMse > 0.0) EXPECT_NEAR(c["q_percent_per_ms"].get<double>(), (uMse - mse) / (ms * uMse) * 100.0, 1e-9);
         }
     }

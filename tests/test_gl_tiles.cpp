@@ -67,6 +67,17 @@ std::vector<glm::vec4> occupancyFromCapture(const CapturedFrame& frags) {
     return out;
 }
 
+// The nearest fragment of every pixel (colour, alpha) as pass 1 leaves it, from a capture, GL order.
+std::vector<glm::vec4> nearestFromCapture(const CapturedFrame& frags) {
+    std::vector<glm::vec4> out(size_t(frags.width) * size_t(frags.height), glm::vec4(0.0f));
+    for (int y = 0; y < frags.height; ++y)
+        for (int x = 0; x < frags.width; ++x) {
+            const nn::PixelSums s = nn::sumsFromFragments(frags.at(x, y));
+            if (s.count > 0.5f) out[size_t(frags.height - 1 - y) * size_t(frags.width) + size_t(x)] = glm::vec4(s.c1, s.a1);
+        }
+    return out;
+}
+
 std::vector<glm::vec4> checker(int w, int h, const std::function<bool(int, int)>& where) {
     std::vector<glm::vec4> out(size_t(w) * size_t(h));
     for (int y = 0; y < h; ++y)
@@ -80,12 +91,13 @@ std::vector<glm::vec4> checker(int w, int h, const std::function<bool(int, int)>
 // Runs one GPU update and the CPU reference from the same previous masks; expects equal masks
 // and histograms. Returns the masks.
 std::vector<uint32_t> updateBoth(GpuTiles& gpu, const std::vector<glm::vec4>& composite,
-                                 const std::vector<glm::vec4>& nearest, int w, int h) {
+                                 const std::vector<glm::vec4>& nearest, int w, int h,
+                                 TileSignal signal = TileSignal::Composite) {
     const std::vector<uint32_t> previous = gpu.readMasks();
     const gl::Texture2D c = upload(composite, w, h), n = upload(nearest, w, h);
-    gpu.update(c.id(), n.id());
+    gpu.update(c.id(), n.id(), signal);
     glFinish();
-    const TileUpdate want = updateTiles(colorImage(composite, w, h), alphaChannel(nearest), previous);
+    const TileUpdate want = updateTiles(tileSignalImage(signal, w, h, composite, nearest), alphaChannel(nearest), previous);
     const std::vector<uint32_t> got = gpu.readMasks();
     EXPECT_EQ(got, want.masks);
     EXPECT_TRUE(gpu.pollHistogram());
@@ -157,7 +169,8 @@ TEST(GlTiles, GpuMasksEqualCpuMasksOnRealRenders) {
         test::TestScene c(makeBuiltinScene(frame % 2 ? "smoke" : "tubes", 3), kW, kH, 25.0f * frame, 20.0f, kBackground);
         MethodRunner run(c, "starnt", spatialOptions(false));
         run.frame();
-        const auto masks = updateBoth(gpu, glOrder(run.image()), occupancyFromCapture(c.capture()), kW, kH);
+        const auto masks = updateBoth(gpu, glOrder(run.image()), nearestFromCapture(c.capture()), kW, kH,
+                                      frame % 2 ? TileSignal::Back : TileSignal::Composite);
         expectBalanced(masks, gpu.tilesX(), gpu.tilesY());
         for (uint32_t m : masks) split += m != 0u;
     }
@@ -443,7 +456,10 @@ TEST(GlTiles, DepthDownsampleMatchesCpuMax) {
 
 TEST(GlTiles, ScalesOfTheNextFrameFollowWBar) {
     test::TestScene c(makeBuiltinScene("tubes", 3), 160, 96, 30.0f, 20.0f, kBackground);
-    MethodRunner run(c, "starnt", {});  // spatial on by default
+    MethodOptions paperRule;  // the paper's behaviour: the formula alone, tiles on every frame
+    paperRule.scaleRule = MethodOptions::ScaleRule::Continuous;
+    paperRule.scaleGuard = false;
+    MethodRunner run(c, "starnt", paperRule);  // spatial on by default
     nlohmann::json previous = run.frame();
     EXPECT_EQ(previous["scale_pass2"], 1.0) << "no tile history: full resolution";
     size_t reducedFrames = 0;
@@ -472,7 +488,8 @@ TEST(GlTiles, NoTransparentPixelGivesWBarZeroAndMinimumScales) {
     const FrameDesc f = c.frame();
     SurfaceOptions invisible;
     invisible.alphaOverride = 0.01f;  // below the 0.03 cut-off: nothing is drawn
-    for (int frame = 0; frame < 2; ++frame) {
+    // The guard's probe frames (full resolution) come first, then its scales apply.
+    for (int frame = 0; frame < STARNT_SCALE_SETTLE_FRAMES + 2; ++frame) {
         run.method->render(f, c.gpu->callback(f.view, f.projection, invisible));
         glFinish();
     }

@@ -340,6 +340,7 @@ TEST(TemporalFrames, FixedTwoAlternatesAndKeepsItsOwnCopy) {
     test::glContext();
     const int w = 21, h = 13;
     MethodOptions options;
+    options.temporalMode = MethodOptions::TemporalMode::Warp;  // these tests check the warp path
     options.temporalInterval = 2;
     TemporalFrames temporal(options);
     const ReprojectionFrame first = randomFrame(w, h, 1), second = randomFrame(w, h, 2);
@@ -370,6 +371,7 @@ TEST(TemporalFrames, FixedTwoAlternatesAndKeepsItsOwnCopy) {
 TEST(TemporalFrames, SizeChangeAndResetForceARealFrame) {
     test::glContext();
     MethodOptions options;
+    options.temporalMode = MethodOptions::TemporalMode::Warp;  // these tests check the warp path
     options.temporalInterval = 4;
     TemporalFrames temporal(options);
     const ReprojectionFrame f = randomFrame(8, 8, 3);
@@ -409,6 +411,7 @@ TEST(TemporalFrames, AutoMeasuresRealFramesAndRaisesTheInterval) {
     gl::Texture2D composite = uploadColor(f), depth = uploadDepth(f), output(GL_RGBA32F, 16, 16);
     auto run = [&](double targetFps) {
         MethodOptions options;
+    options.temporalMode = MethodOptions::TemporalMode::Warp;  // these tests check the warp path
         options.temporalAuto = true;
         options.targetFps = targetFps;
         TemporalFrames temporal(options);
@@ -442,6 +445,7 @@ TEST(TemporalFrames, TimingAt720p) {
         const ReprojectionFrame f = frame ? *frame : randomFrame(w, h, 9);
         gl::Texture2D composite = uploadColor(f), depth = uploadDepth(f), output(GL_RGBA32F, w, h);
         MethodOptions options;
+    options.temporalMode = MethodOptions::TemporalMode::Warp;  // these tests check the warp path
         options.temporalInterval = 4;
         TemporalFrames temporal(options);
         gl::GpuPassTimer timer(gl::currentContextIsSoftware());

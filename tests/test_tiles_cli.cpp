@@ -56,6 +56,13 @@ TEST(TilesCli, BadSpatialOptionsFailCleanly) {
     expectCleanFailure(common + " --scales 10,10", out, "25..100");
     expectCleanFailure(common + " --scales 50", out, "P2,P3");
     expectCleanFailure(common + " --inference some", out, "--inference");
+    expectCleanFailure(common + " --scale-rule round", out, "snapped, continuous or step");
+    expectCleanFailure(common + " --tile-signal depth", out, "back or composite");
+    expectCleanFailure(common + " --scale-guard maybe", out, "--scale-guard");
+    expectCleanFailure(common + " --temporal 2 --temporal-mode blend", out, "warp or refresh");
+    expectCleanFailure("render --scene builtin:panes --method wboit --width 32 --height 32 --temporal-mode refresh --out " +
+                           out.string(),
+                       out, "no nearest-layer pass");
     expectCleanFailure(common + " --tiles-image " + (dir / "t.jpg").string(), out, ".png");
     expectCleanFailure("render --scene builtin:panes --method wboit --width 32 --height 32 --out " + out.string() +
                            " --tiles-image " + (dir / "t.png").string(),

@@ -72,6 +72,22 @@ struct MethodOptions {
     // spatial is off).
     float fixedScale2 = 0.0f;
     float fixedScale3 = 0.0f;
+    // How the tiles' w_bar becomes the scales (SPEC 5): Snapped (default) = the paper's value
+    // snapped to 1, 1/2 or 1/4 (integer ratios keep reduced samples on pixel centres);
+    // Continuous = the paper's formula as printed; Step = the authors' release.
+    enum class ScaleRule { Snapped, Continuous, Step };
+    ScaleRule scaleRule = ScaleRule::Snapped;
+    // What the tiles measure (SPEC 4): Back (default) = the composite minus the nearest layer's
+    // own term, C - a1 C1, what the reduced passes produce; Composite = the paper.
+    enum class TileSignal { Back, Composite };
+    TileSignal tileSignal = TileSignal::Back;
+    // Scale guard (beyond the paper): passes 2/3 run at full resolution on probe frames (the first
+    // real frames after a reset, then every 8th real frame); there the tiles update and the loss
+    // of each reduced scale is predicted from the full-resolution image, and a pass is reduced
+    // only as far as that loss stays within a fixed share of what the pass adds. It keeps thin
+    // structures (hair, strands) that fall between tile corners at full resolution. Off: the
+    // tiles update on every real frame and the rule alone decides (the paper).
+    bool scaleGuard = true;
     // Full: the network at every pixel. Corners: only at quadtree leaf corners, bilinear inside each
     // leaf (beyond the paper; needs the tiles, so it turns them on).
     enum class Inference { Full, Corners };
@@ -81,6 +97,11 @@ struct MethodOptions {
     // clamp(floor(fps_real / targetFps), 1, 4).
     int temporalInterval = 1;
     bool temporalAuto = false;
+    // What an interpolated frame renders (SPEC 6): Warp = the paper (the last real frame's
+    // composite reprojected; no geometry pass); Refresh = pass 1 at the current camera, so the
+    // nearest layer is exact, over what lay behind it in the last real frame, reprojected.
+    enum class TemporalMode { Warp, Refresh };
+    TemporalMode temporalMode = TemporalMode::Refresh;
     double targetFps = 60.0;
 };
 

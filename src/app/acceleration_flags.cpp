@@ -10,6 +10,16 @@ void addAccelerationOptions(CLI::App* command, AccelerationFlags& flags) {
     command->add_option("--inference", flags.inference, "starnt/dfaoit: full|corners")->capture_default_str();
     command->add_option("--temporal", flags.temporal, "starnt/dfaoit: off|auto|K (K in 1..4)")->capture_default_str();
     command->add_option("--target-fps", flags.targetFps, "frame rate that --temporal auto aims for")->capture_default_str();
+    command->add_option("--scale-rule", flags.scaleRule, "starnt/dfaoit: w_bar -> scales: snapped|continuous|step")
+        ->capture_default_str();
+    command->add_option("--tile-signal", flags.tileSignal, "starnt/dfaoit: what the tiles measure: back|composite")
+        ->capture_default_str();
+    command->add_option("--scale-guard", flags.scaleGuard,
+                        "starnt/dfaoit: probe frames that keep passes at full resolution where reducing loses detail: on|off")
+        ->capture_default_str();
+    command->add_option("--temporal-mode", flags.temporalMode,
+                        "starnt/dfaoit: interpolated frames: warp (the paper) | refresh (fresh pass 1)")
+        ->capture_default_str();
 }
 
 void applyAccelerationFlags(const AccelerationFlags& flags, MethodOptions& options) {
@@ -18,6 +28,10 @@ void applyAccelerationFlags(const AccelerationFlags& flags, MethodOptions& optio
     parseInferenceOption(flags.inference, options);
     parseTemporalOption(flags.temporal, options);
     parseTargetFpsOption(flags.targetFps, options);
+    parseScaleRuleOption(flags.scaleRule, options);
+    parseTileSignalOption(flags.tileSignal, options);
+    parseScaleGuardOption(flags.scaleGuard, options);
+    parseTemporalModeOption(flags.temporalMode, options);
 }
 
 }  // namespace starnt::app

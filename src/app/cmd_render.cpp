@@ -107,7 +107,8 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--out", a->out, "output image (.png, sRGB); frame_%04d.png writes every frame")->required();
     cmd->add_option("--exr", a->exr, "also write linear float EXR");
     cmd->add_option("--stats", a->stats, "write statistics JSON");
-    cmd->callback([a] {
+    const CLI::Option* temporalModeOption = cmd->get_option("--temporal-mode");
+    cmd->callback([a, temporalModeOption] {
         checkImageSize(a->width, a->height);
         if (a->frames < 1 || a->frames > 100000) throw Error("--frames must be in 1..100000");
         if (a->alpha != -1.0 && !(a->alpha >= 0.0 && a->alpha <= 1.0)) throw Error("--alpha must be in [0, 1]");
@@ -116,6 +117,10 @@ void addRenderCommand(CLI::App& app) {
         MethodOptions options;
         applyAccelerationFlags(a->acceleration, options);
         if (!a->camera.empty() && !a->cameraPath.empty()) throw Error("--camera and --camera-path exclude each other");
+        if (temporalModeOption->count() > 0 && !methodHasNearestPass(a->method)) {
+            throw Error("--temporal-mode: method " + a->method +
+                        " has no nearest-layer pass to refresh or frames to warp (use starnt or dfaoit)");
+        }
         const bool numbered = isFramePattern(a->out);
         if (numbered) checkFramePattern(a->out, "--out");
         if (isFramePattern(a->exr)) checkFramePattern(a->exr, "--exr");

@@ -22,6 +22,10 @@ struct AccelerationFlags {
     std::string inference = "full";   // full | corners
     std::string temporal = "off";     // off | auto | K in 1..4
     double targetFps = 60.0;
+    std::string scaleRule = "snapped";      // snapped | continuous | step
+    std::string tileSignal = "back";        // back | composite
+    std::string scaleGuard = "on";          // on | off
+    std::string temporalMode = "refresh";   // warp | refresh
 };
 void addAccelerationOptions(CLI::App* command, AccelerationFlags& flags);
 // Checks the flags (throws starnt::Error) and sets them on `options`.

@@ -41,10 +41,25 @@ const std::vector<Variant>& allVariants() {
                     [](MethodOptions& o) { o.spatial = false; }),
         makeVariant("starnt", "starnt", "STAR-NT, adaptive tiles on (\"w/o temporal\")",
                     [](MethodOptions& o) { o.spatial = true; }),
-        makeVariant("starnt-total", "starnt", "STAR-NT, tiles on + temporal K = 2 (the paper's \"Total STAR\")",
+        makeVariant("starnt-paper", "starnt",
+                    "STAR-NT as the paper: tiles on the composite, continuous scales, no guard",
+                    [](MethodOptions& o) {
+                        o.spatial = true;
+                        o.tileSignal = MethodOptions::TileSignal::Composite;
+                        o.scaleRule = MethodOptions::ScaleRule::Continuous;
+                        o.scaleGuard = false;
+                    }),
+        makeVariant("starnt-total", "starnt", "STAR-NT, tiles on + temporal K = 2, refresh frames (\"Total STAR\")",
                     [](MethodOptions& o) {
                         o.spatial = true;
                         o.temporalInterval = 2;
+                        o.temporalMode = MethodOptions::TemporalMode::Refresh;
+                    }),
+        makeVariant("starnt-total-warp", "starnt", "STAR-NT, tiles on + temporal K = 2, warped frames (the paper's)",
+                    [](MethodOptions& o) {
+                        o.spatial = true;
+                        o.temporalInterval = 2;
+                        o.temporalMode = MethodOptions::TemporalMode::Warp;
                     }),
         makeVariant("starnt-corners", "starnt", "STAR-NT, tiles on, inference at leaf corners only",
                     [](MethodOptions& o) {
@@ -58,7 +73,8 @@ const std::vector<Variant>& allVariants() {
 }
 
 std::vector<std::string> defaultVariantNames() {
-    return {"unsorted", "wboit", "dfaoit", "starnt-full", "starnt", "starnt-total", "starnt-corners"};
+    return {"unsorted", "wboit", "dfaoit", "starnt-full", "starnt", "starnt-paper", "starnt-total", "starnt-total-warp",
+            "starnt-corners"};
 }
 
 const Variant& findVariant(const std::string& name) {

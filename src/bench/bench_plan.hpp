@@ -63,9 +63,14 @@ struct Request {
 };
 
 // The resolved run: concrete scenes (sources made absolute), variants and sizes.
+// Frames rendered before the timed ones, neither timed nor scored: shader compiles, and the
+// tiles, which change one level a frame, settle (issue 13: at least 4).
+constexpr int kWarmupFrames = 4;
+
 struct Plan {
     std::string preset;
     int width = 0, height = 0, frames = 0;
+    int warmupFrames = kWarmupFrames;
     std::string cameraPath;
     std::vector<SceneSpec> scenes;
     std::vector<Variant> variants;

@@ -110,8 +110,9 @@ void header(std::ostringstream& md, const Results& r) {
     md << "| scenes | " << r.plan.suiteNote << " |\n";
     md << "| command | `" << r.commandLine << "` |\n";
     md << "| wall time | " << fixed(r.wallSeconds, 1) << " s |\n\n";
-    md << "Frame times are medians over frames 2..N (frame 1 compiles shaders); for a variant with "
-          "interpolated frames, the mean over frames 2..N (a median would pick one kind of frame); "
+    md << "Frame times are means over the " << r.plan.frames << " timed frames, after " << r.plan.warmupFrames
+       << " untimed warm-up frames at the first camera (shader compiles; tiles settle): the same statistic for "
+          "every variant, table and plots (interpolated and probe frames make periodic sequences); "
           "glFinish + wall clock"
        << (m.gl.software ? "; on a CPU rasteriser they rank methods by work done, not by GPU speed" : "")
        << ". Errors are means over every frame against the A-buffer at the same camera. D is the largest "
@@ -158,6 +159,62 @@ void passBreakdownTable(std::ostringstream& md, const Results& r) {
             std::string passes;
             for (auto& [name, value] : c.stats["pass_ms"].items()) passes += (passes.empty() ? "" : ", ") + name + " " + ms(value.get<double>());
             md << "| " << s.spec.name << " | " << c.variant << " | " << (passes.empty() ? kMissing : passes) << " |\n";
+        }
+    }
+    md << '\n';
+}
+
+// Fragment-shader invocations per frame (mean over the timed frames) of the named passes, or of
+// every counted pass when `passes` is empty.
+std::optional<double> fragments(const CaseResult* c, std::initializer_list<const char*> passes = {}) {
+    if (!c || !c->ok || !c->stats.contains("pass_counters") || c->stats["pass_counters"].empty()) return std::nullopt;
+    double sum = 0.0;
+    for (auto& [name, counters] : c->stats["pass_counters"].items()) {
+        bool wanted = passes.size() == 0;
+        for (const char* p : passes) wanted = wanted || name == p;
+        if (wanted) sum += counters.value("fragment_invocations", 0.0);
+    }
+    return sum;
+}
+
+std::string millions(double v) { return fixed(v / 1e6, 2); }
+
+// Mean of a per-frame number over the real (not interpolated) timed frames.
+std::optional<double> realFrameMean(const CaseResult& c, const char* key) {
+    double sum = 0.0;
+    int n = 0;
+    for (const auto& f : c.frames) {
+        if (f.value("interpolated", false) || !f.contains(key) || !f[key].is_number()) continue;
+        sum += f[key].get<double>();
+        ++n;
+    }
+    return n ? std::optional(sum / n) : std::nullopt;
+}
+
+// Issue 13: what the tiles chose and what it saved in work, which does not depend on the machine.
+void scalesAndWorkTables(std::ostringstream& md, const Results& r) {
+    md << "## Fragments shaded per frame (millions, all geometry passes)\n\n"
+          "Fragment-shader invocations (GL_ARB_pipeline_statistics_query), mean per timed frame: the work a GPU "
+          "would do, independent of the machine's speed.\n\n";
+    sceneByVariantTable(
+        md, r, [](const CaseResult& c) { auto f = fragments(&c); return f ? millions(*f) : kMissing; },
+        [](const CaseResult& c) { return fragments(&c); }, [](double v) { return millions(v); });
+    md << "## Scales and passes 2 + 3 work of the STAR-NT variants\n\n"
+          "P2 / P3: mean pass scales over the real timed frames; w_bar: the last frame's; frag. 2+3: fragments "
+          "shaded by passes 2 and 3 per frame (millions, mean); vs full: their reduction against starnt-full "
+          "in the same run.\n\n| scene | variant | P2 % | P3 % | w_bar | frag. 2+3 | vs full |\n|---|---|---|---|---|---|---|\n";
+    for (const auto& s : r.scenes) {
+        const auto full = fragments(s.find("starnt-full"), {"pass2", "pass3"});
+        for (const auto& c : s.cases) {
+            if (!c.ok || c.method != "starnt") continue;
+            const auto p2 = realFrameMean(c, "scale_pass2"), p3 = realFrameMean(c, "scale_pass3");
+            const auto f23 = fragments(&c, {"pass2", "pass3"});
+            std::optional<double> saved;
+            if (full && f23 && *full > 0.0) saved = (*full - *f23) / *full * 100.0;
+            const auto& wBar = c.stats.contains("w_bar") ? c.stats["w_bar"] : nlohmann::json(nullptr);
+            md << "| " << s.spec.name << " | " << c.variant << " | " << (p2 ? fixed(*p2 * 100.0, 0) : kMissing) << " | "
+               << (p3 ? fixed(*p3 * 100.0, 0) : kMissing) << " | " << (wBar.is_number() ? fixed(wBar.get<double>(), 2) : kMissing)
+               << " | " << (f23 ? millions(*f23) : kMissing) << " | " << percent(saved) << " |\n";
         }
     }
     md << '\n';
@@ -266,6 +323,7 @@ std::string reportMarkdown(const Results& results) {
     header(md, results);
     frameTimeTable(md, results);
     passBreakdownTable(md, results);
+    scalesAndWorkTables(md, results);
     speedupTable(md, results);
     qualityTables(md, results);
     memoryTable(md, results);

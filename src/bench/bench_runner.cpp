@@ -35,6 +35,7 @@ RenderJob baseJob(const Plan& plan, const SceneSpec& spec, const Scene& scene) {
     job.width = plan.width;
     job.height = plan.height;
     job.frames = plan.frames;
+    job.warmupFrames = plan.warmupFrames;
     job.background = glm::vec3(1.0f);  // SPEC 9 default: white
     job.alphaCutoff = spec.alphaCutoff;
     job.surface = surfaceOptionsFor(spec);

@@ -21,9 +21,21 @@ bool currentContextIsSoftware() {
            renderer.find("swrast") != std::string_view::npos;
 }
 
-GpuPassTimer::GpuPassTimer(bool finishAndWallClock) : wallClock_(finishAndWallClock) {}
+namespace {
+constexpr std::array<GLenum, 3> kCounterTargets = {GL_VERTEX_SHADER_INVOCATIONS_ARB,
+                                                   GL_FRAGMENT_SHADER_INVOCATIONS_ARB,
+                                                   GL_PRIMITIVES_SUBMITTED_ARB};
+}  // namespace
+
+GpuPassTimer::GpuPassTimer(bool finishAndWallClock)
+    : wallClock_(finishAndWallClock),
+      countersAvailable_(epoxy_is_desktop_gl() && (epoxy_gl_version() >= 46 || epoxy_has_gl_extension("GL_ARB_pipeline_statistics_query"))) {}
 
 GpuPassTimer::~GpuPassTimer() {
+    for (auto& p : pendingCounters_)
+        for (size_t i = 0; i < 3; ++i) freeCounterQueries_[i].push_back(p.queries[i]);
+    for (auto& list : freeCounterQueries_)
+        if (!list.empty()) glDeleteQueries(GLsizei(list.size()), list.data());
     for (auto& p : pending_) {
         free_.push_back(p.begin);
         free_.push_back(p.end);
@@ -90,6 +102,42 @@ std::map<std::string, double> GpuPassTimer::collect() {
     }
     pending_.clear();
     return ms;
+}
+
+void GpuPassTimer::beginCounters(const std::string& pass) {
+    if (!countersAvailable_) return;
+    if (countersOpen_) throw Error("internal: GpuPassTimer::beginCounters('" + pass + "') inside another pass");
+    PendingCounters p{pass, {}};
+    for (size_t i = 0; i < kCounterTargets.size(); ++i) {
+        if (freeCounterQueries_[i].empty()) {
+            glGenQueries(1, &p.queries[i]);
+        } else {
+            p.queries[i] = freeCounterQueries_[i].back();
+            freeCounterQueries_[i].pop_back();
+        }
+        glBeginQuery(kCounterTargets[i], p.queries[i]);
+    }
+    pendingCounters_.push_back(std::move(p));
+    countersOpen_ = true;
+}
+
+void GpuPassTimer::endCounters() {
+    if (!countersAvailable_) return;
+    if (!countersOpen_) throw Error("internal: GpuPassTimer::endCounters without beginCounters");
+    for (GLenum target : kCounterTargets) glEndQuery(target);
+    countersOpen_ = false;
+}
+
+std::map<std::string, PassCounters> GpuPassTimer::collectCounters() {
+    std::map<std::string, PassCounters> out;
+    for (const PendingCounters& p : pendingCounters_) {
+        GLuint64 v[3] = {0, 0, 0};
+        for (size_t i = 0; i < 3; ++i) glGetQueryObjectui64v(p.queries[i], GL_QUERY_RESULT, &v[i]);
+        out[p.name] += PassCounters{v[0], v[1], v[2]};
+        for (size_t i = 0; i < 3; ++i) freeCounterQueries_[i].push_back(p.queries[i]);
+    }
+    pendingCounters_.clear();
+    return out;
 }
 
 }  // namespace starnt::gl

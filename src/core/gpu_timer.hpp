@@ -9,11 +9,28 @@
 #pragma once
 #include <epoxy/gl.h>
 
+#include <array>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
 
 namespace starnt::gl {
+
+// Work done by one geometry pass (GL_ARB_pipeline_statistics_query, core in GL 4.6, on llvmpipe
+// and the GPU drivers): they do not depend on the machine's speed, so they show what a GPU saves
+// where llvmpipe's single-threaded vertex stage hides it in the timings.
+struct PassCounters {
+    uint64_t vertexInvocations = 0;
+    uint64_t fragmentInvocations = 0;
+    uint64_t primitives = 0;  // primitives submitted
+    PassCounters& operator+=(const PassCounters& o) {
+        vertexInvocations += o.vertexInvocations;
+        fragmentInvocations += o.fragmentInvocations;
+        primitives += o.primitives;
+        return *this;
+    }
+};
 
 class GpuPassTimer {
 public:
@@ -29,6 +46,15 @@ public:
     // Waits for the queries of this frame and returns milliseconds per pass name; resets.
     std::map<std::string, double> collect();
 
+    // Work counters around a geometry pass (MethodBase::runGeometryPass brackets the engine's
+    // draws with them); a pass counted twice in a frame adds up. No-ops when the context lacks
+    // pipeline statistics queries (countersAvailable() is false).
+    bool countersAvailable() const { return countersAvailable_; }
+    void beginCounters(const std::string& pass);
+    void endCounters();
+    // Waits for this frame's counter queries and returns them per pass name; resets.
+    std::map<std::string, PassCounters> collectCounters();
+
 private:
     struct Pending {
         std::string name;
@@ -43,6 +69,15 @@ private:
     double openStartMs_ = 0.0;
     bool open_wall_ = false;
     std::map<std::string, double> wallMs_;
+
+    struct PendingCounters {
+        std::string name;
+        std::array<GLuint, 3> queries;
+    };
+    bool countersAvailable_ = false;
+    bool countersOpen_ = false;
+    std::vector<PendingCounters> pendingCounters_;
+    std::array<std::vector<GLuint>, 3> freeCounterQueries_;  // per target: a query's target is fixed at first use
 };
 
 // True when the current context is a software rasteriser (llvmpipe, softpipe, swrast).

@@ -49,4 +49,6 @@ bool methodUsesTiles(const std::string& name, const MethodOptions& options) {
     return false;
 }
 
+bool methodHasNearestPass(const std::string& name) { return name == starntConfig().name || name == dfaoitConfig().name; }
+
 }  // namespace starnt

@@ -20,5 +20,8 @@ const NeuralMethodConfig& dfaoitConfig();
 // True when `name` with `options` runs the adaptive tiles (a neural method with spatial on, by
 // option or by default, or with corner inference): the methods with a tile overlay.
 bool methodUsesTiles(const std::string& name, const MethodOptions& options);
+// True for the methods built on the three neural passes (pass 1 = the nearest layer): the ones
+// with temporal reprojection (warp or refresh frames).
+bool methodHasNearestPass(const std::string& name);
 
 }  // namespace starnt

@@ -52,6 +52,32 @@ void parseTemporalOption(const std::string& text, MethodOptions& options) {
     }
 }
 
+void parseScaleRuleOption(const std::string& text, MethodOptions& options) {
+    using R = MethodOptions::ScaleRule;
+    if (text == "snapped") options.scaleRule = R::Snapped;
+    else if (text == "continuous") options.scaleRule = R::Continuous;
+    else if (text == "step") options.scaleRule = R::Step;
+    else throw Error("--scale-rule '" + text + "': expected snapped, continuous or step");
+}
+
+void parseTileSignalOption(const std::string& text, MethodOptions& options) {
+    if (text == "back") options.tileSignal = MethodOptions::TileSignal::Back;
+    else if (text == "composite") options.tileSignal = MethodOptions::TileSignal::Composite;
+    else throw Error("--tile-signal '" + text + "': expected back or composite");
+}
+
+void parseScaleGuardOption(const std::string& text, MethodOptions& options) {
+    if (text == "on") options.scaleGuard = true;
+    else if (text == "off") options.scaleGuard = false;
+    else throw Error("--scale-guard '" + text + "': expected on or off");
+}
+
+void parseTemporalModeOption(const std::string& text, MethodOptions& options) {
+    if (text == "warp") options.temporalMode = MethodOptions::TemporalMode::Warp;
+    else if (text == "refresh") options.temporalMode = MethodOptions::TemporalMode::Refresh;
+    else throw Error("--temporal-mode '" + text + "': expected warp or refresh");
+}
+
 void parseTargetFpsOption(double fps, MethodOptions& options) {
     if (!std::isfinite(fps) || !(fps > 0.0) || fps > 1000.0) throw Error("--target-fps must be in (0, 1000]");
     options.targetFps = fps;
@@ -70,6 +96,23 @@ std::string scalesText(const MethodOptions& options) {
 std::string temporalText(const MethodOptions& options) {
     if (options.temporalAuto) return "auto";
     return options.temporalInterval <= 1 ? "off" : std::to_string(options.temporalInterval);
+}
+
+std::string scaleRuleText(const MethodOptions& options) {
+    switch (options.scaleRule) {
+        case MethodOptions::ScaleRule::Continuous: return "continuous";
+        case MethodOptions::ScaleRule::Step: return "step";
+        case MethodOptions::ScaleRule::Snapped: break;
+    }
+    return "snapped";
+}
+
+std::string tileSignalText(const MethodOptions& options) {
+    return options.tileSignal == MethodOptions::TileSignal::Back ? "back" : "composite";
+}
+
+std::string temporalModeText(const MethodOptions& options) {
+    return options.temporalMode == MethodOptions::TemporalMode::Refresh ? "refresh" : "warp";
 }
 
 }  // namespace starnt

@@ -15,6 +15,14 @@ void parseScalesOption(const std::string& text, MethodOptions& options);
 void parseInferenceOption(const std::string& text, MethodOptions& options);
 // "off" | "auto" | "K" with K in 1..4.
 void parseTemporalOption(const std::string& text, MethodOptions& options);
+// "snapped" | "continuous" | "step" (SPEC 5).
+void parseScaleRuleOption(const std::string& text, MethodOptions& options);
+// "back" | "composite" (SPEC 4).
+void parseTileSignalOption(const std::string& text, MethodOptions& options);
+// "on" | "off".
+void parseScaleGuardOption(const std::string& text, MethodOptions& options);
+// "warp" | "refresh" (SPEC 6).
+void parseTemporalModeOption(const std::string& text, MethodOptions& options);
 // Target frame rate for --temporal auto: finite and in (0, 1000].
 void parseTargetFpsOption(double fps, MethodOptions& options);
 
@@ -22,5 +30,8 @@ void parseTargetFpsOption(double fps, MethodOptions& options);
 std::string spatialText(const MethodOptions& options);
 std::string scalesText(const MethodOptions& options);
 std::string temporalText(const MethodOptions& options);
+std::string scaleRuleText(const MethodOptions& options);
+std::string tileSignalText(const MethodOptions& options);
+std::string temporalModeText(const MethodOptions& options);
 
 }  // namespace starnt

@@ -35,6 +35,20 @@ namespace {
 
 nlohmann::json nullableMean(const std::vector<double>& v) { return v.empty() ? nlohmann::json(nullptr) : nlohmann::json(mean(v)); }
 
+// `pass_counters`: pass name -> {"vertex_invocations", "fragment_invocations", "primitives"},
+// each divided by `frames` (the mean per frame over several frames; passes a frame did not run
+// count 0 for it).
+nlohmann::json countersJson(const std::map<std::string, gl::PassCounters>& counters, size_t frames = 1) {
+    nlohmann::json out = nlohmann::json::object();
+    const double n = double(std::max<size_t>(frames, 1));
+    for (const auto& [name, c] : counters) {
+        out[name] = {{"vertex_invocations", double(c.vertexInvocations) / n},
+                     {"fragment_invocations", double(c.fragmentInvocations) / n},
+                     {"primitives", double(c.primitives) / n}};
+    }
+    return out;
+}
+
 }  // namespace
 
 RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
@@ -65,10 +79,20 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
     // are others.
     std::vector<double> frameMs, realMs, interpolatedMs;
     std::map<std::string, std::vector<double>> passMs;
+    std::map<std::string, gl::PassCounters> counterSums;  // over the timed frames
     std::vector<double> mseReal, mseInterp, flipReal, flipInterp;
     int interpolatedFrames = 0;
     Image image, referenceImage;
     DrawCallback draw;
+    for (int w = 0; w < job.warmupFrames; ++w) {
+        const Camera camera = job.path ? job.path->frame(0, job.frames) : job.camera;
+        FrameDesc warm = frame;
+        warm.view = camera.view();
+        warm.projection = camera.projection(aspect);
+        warm.timer = nullptr;
+        method->render(warm, scene.callback(warm.view, warm.projection, job.surface));
+        glFinish();
+    }
     for (int i = 0; i < job.frames; ++i) {
         const Camera camera = job.path ? job.path->frame(i, job.frames) : job.camera;
         frame.view = camera.view();
@@ -83,6 +107,7 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
         auto t1 = std::chrono::steady_clock::now();
         const double ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
         auto passes = timer.collect();
+        const auto counters = timer.collectCounters();
         const nlohmann::json methodStats = method->lastFrameStats();
         const bool interpolated = methodStats.value("interpolated", false);
         interpolatedFrames += interpolated ? 1 : 0;
@@ -90,8 +115,9 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
         FrameRecord record;
         record.index = i;
         record.camera = camera;
-        record.stats = {{"frame", i}, {"frame_ms", ms}, {"interpolated", interpolated}, {"pass_ms", passes}};
-        for (const char* key : {"scale_pass2", "scale_pass3", "w_bar", "tile_levels"}) {
+        record.stats = {{"frame", i}, {"frame_ms", ms}, {"interpolated", interpolated}, {"pass_ms", passes},
+                        {"pass_counters", countersJson(counters)}};
+        for (const char* key : {"scale_pass2", "scale_pass3", "w_bar", "tile_levels", "probe_frame"}) {
             if (methodStats.contains(key)) record.stats[key] = methodStats[key];
         }
         const bool last = i + 1 == job.frames;
@@ -119,10 +145,11 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
             record.reference = referenceOfFrame;
             job.onFrame(record);
         }
-        if (i == 0 && job.frames > 1) continue;
+        if (i == 0 && job.frames > 1 && job.warmupFrames == 0) continue;
         frameMs.push_back(ms);
         (interpolated ? interpolatedMs : realMs).push_back(ms);
         for (auto& [name, value] : passes) passMs[name].push_back(value);
+        for (auto& [name, value] : counters) counterSums[name] += value;
     }
 
     RenderOutput out;
@@ -150,6 +177,9 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
         {"real_frame_ms", realMs.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(realMs))},
         {"interpolated_frame_ms", interpolatedMs.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(interpolatedMs))},
         {"pass_ms", passes},
+        {"pass_counters", countersJson(counterSums, frameMs.size())},
+        {"pass_counters_source", timer.countersAvailable() ? "GL_ARB_pipeline_statistics_query, mean per timed frame"
+                                                           : "unavailable (no pipeline statistics queries)"},
         {"scale_pass2", 1.0},
         {"scale_pass3", 1.0},
         {"w_bar", nullptr},
@@ -159,6 +189,7 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
         {"scene_memory_bytes", scene.gpuMemoryBytes()},
         {"frames", job.frames},
         {"timed_frames", frameMs.size()},
+        {"warmup_frames", job.warmupFrames},
         {"interpolated_frames", interpolatedFrames},
         {"pass_timing", timer.usesWallClock() ? "glFinish + wall clock (software rasteriser)" : "GL_TIMESTAMP pairs"},
         {"method_stats", methodStats},

@@ -16,6 +16,8 @@
 #define STARNT_SSBO_TILE_MASKS_OUT 5
 #define STARNT_SSBO_TILE_OCCUPANCY 6
 #define STARNT_SSBO_TILE_HISTOGRAM 7
+// Scale guard: per-tile sums (STARNT_GUARD_VALUES floats a tile).
+#define STARNT_SSBO_TILE_GUARD 8
 
 // A-buffer list terminator.
 #define STARNT_ABUFFER_END 0xFFFFFFFFu

@@ -70,7 +70,9 @@ void ABufferLists::build(const FrameDesc& frame, const DrawCallback& draw, const
             const char* name = captureOrder_ ? "abuffer_capture" : "abuffer_build";
             glUseProgram(program.id());
             glUniform1f(program.uniform("u_alphaCutoff"), frame.alphaCutoff);
+            if (frame.timer) frame.timer->beginCounters(name);
             draw(GeometryPass{name, program.id()});
+            if (frame.timer) frame.timer->endCounters();
             glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         }
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);

@@ -37,7 +37,9 @@ void MethodBase::runGeometryPass(const char* name, const gl::Program& program, c
                                  const DrawCallback& draw) {
     glUseProgram(program.id());
     glUniform1f(program.uniform("u_alphaCutoff"), frame.alphaCutoff);
+    if (frame.timer) frame.timer->beginCounters(name);
     draw(GeometryPass{name, program.id()});
+    if (frame.timer) frame.timer->endCounters();
 }
 
 void MethodBase::bindOutputFramebuffer() const {

@@ -87,25 +87,28 @@ size_t NeuralPasses::gpuMemoryBytes() const {
            alphaColor_.bytes() + colorCount_.bytes() + transmittance_.bytes();
 }
 
+void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) {
+    resize(frame.width, frame.height);
+    const float zero[4] = {0, 0, 0, 0}, farDepth = 1.0f;
+    resetPassState();
+    gl::ScopedPass timing(frame.timer, "pass1");
+    useRectangle({width_, height_});
+    glBindFramebuffer(GL_FRAMEBUFFER, pass1Fb_.id());
+    glClearBufferfv(GL_COLOR, 0, zero);
+    glClearBufferfv(GL_DEPTH, 0, &farDepth);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    MethodBase::runGeometryPass("pass1", pass1_, frame, draw);
+    resetPassState();
+}
+
 void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float peelEpsilon, Size2 pass2Size,
                        Size2 pass3Size) {
-    resize(frame.width, frame.height);
+    runNearest(frame, draw);
     const Size2 full{width_, height_};
     pass2Size_ = pass2Size;
     pass3Size_ = pass3Size;
     const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1}, farDepth = 1.0f;
-    resetPassState();
-    {
-        gl::ScopedPass timing(frame.timer, "pass1");
-        useRectangle(full);
-        glBindFramebuffer(GL_FRAMEBUFFER, pass1Fb_.id());
-        glClearBufferfv(GL_COLOR, 0, zero);
-        glClearBufferfv(GL_DEPTH, 0, &farDepth);
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_LESS);
-        MethodBase::runGeometryPass("pass1", pass1_, frame, draw);
-        resetPassState();
-    }
     const bool reduced2 = !(pass2Size == full);
     if (reduced2) {
         gl::ScopedPass timing(frame.timer, "depth_downsample");

@@ -57,6 +57,8 @@ public:
     void resize(int width, int height);
     // Renders the three passes; pass2Size / pass3Size are the reduced sizes (the full size for s = 1).
     void run(const FrameDesc& frame, const DrawCallback& draw, float peelEpsilon, Size2 pass2Size, Size2 pass3Size);
+    // Pass 1 alone (nearest() and nearestDepth()), for refresh frames.
+    void runNearest(const FrameDesc& frame, const DrawCallback& draw);
     // Binds the pass outputs to the NeuralInputUnit units and sets the upsample uniforms of
     // `program` (which includes neural_inputs.glsl).
     void bindInputs(const gl::Program& program) const;

@@ -13,5 +13,8 @@
 // A further seed is searched only when its first solution lies nearer than this fraction of the
 // view depth of the source already found (so smooth surfaces do not search twice).
 #define STARNT_TEMPORAL_NEARER 0.98
+// Refresh frames: below this transmittance through the kept frame's nearest layer, what lay behind
+// it is not divided out (it was hardly visible); the background stands in for it.
+#define STARNT_TEMPORAL_MIN_TRANSMITTANCE 1e-4
 
 #endif

@@ -69,7 +69,7 @@ void search(const ReprojectionFrame& f, glm::vec2 c, float z, const Reprojection
 
 }  // namespace
 
-std::vector<glm::vec4> reprojectOnCpu(const ReprojectionFrame& f, const Reprojection& r) {
+std::vector<int> reprojectionSourcesOnCpu(const ReprojectionFrame& f, const Reprojection& r) {
     const int w = f.width, h = f.height;
     const size_t n = size_t(w) * size_t(h);
     if (w < 1 || h < 1 || f.color.size() != n || f.depth.size() != n) {
@@ -99,7 +99,7 @@ std::vector<glm::vec4> reprojectOnCpu(const ReprojectionFrame& f, const Reprojec
             seeds[size_t(by) * size_t(bw) + size_t(bx)] = m;
         }
 
-    std::vector<glm::vec4> out(n);
+    std::vector<int> out(n);
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
             const glm::vec2 c = (glm::vec2(float(x), float(y)) + 0.5f) / glm::vec2(float(w), float(h)) * 2.0f - 1.0f;
@@ -111,10 +111,27 @@ std::vector<glm::vec4> reprojectOnCpu(const ReprojectionFrame& f, const Reprojec
             if (nearest != here) search(f, c, nearest, r, state);
             if (farthest != here && state.bestIndex < 0) search(f, c, farthest, r, state);
             const int source = state.bestIndex >= 0 ? state.bestIndex : state.farIndex >= 0 ? state.farIndex : y * w + x;
-            out[size_t(y) * size_t(w) + size_t(x)] = f.color[size_t(source)];
+            out[size_t(y) * size_t(w) + size_t(x)] = source;
         }
     }
     return out;
+}
+
+std::vector<glm::vec4> reprojectOnCpu(const ReprojectionFrame& f, const Reprojection& r) {
+    const std::vector<int> sources = reprojectionSourcesOnCpu(f, r);
+    std::vector<glm::vec4> out(sources.size());
+    for (size_t i = 0; i < sources.size(); ++i) out[i] = f.color[size_t(sources[i])];
+    return out;
+}
+
+glm::vec3 refreshComposite(const glm::vec3& keptComposite, const glm::vec4& keptNearest, const glm::vec4& nearest,
+                           const glm::vec3& background) {
+    if (!(nearest.a > 0.0f)) return background;
+    const glm::vec3 front = nearest.a * glm::vec3(nearest);
+    const float keptOpen = 1.0f - keptNearest.a;
+    if (!(keptOpen > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE))) return front + (1.0f - nearest.a) * background;
+    const float r = (1.0f - nearest.a) / keptOpen;
+    return glm::max(r * keptComposite + (front - r * (keptNearest.a * glm::vec3(keptNearest))), glm::vec3(0.0f));
 }
 
 }  // namespace starnt::temporal

@@ -58,5 +58,19 @@ struct ReprojectionFrame {
 
 // The whole algorithm on the CPU; returns the reprojected colours in GL order.
 std::vector<glm::vec4> reprojectOnCpu(const ReprojectionFrame& frame, const Reprojection& reprojection);
+// The same search, returning each output pixel's source index (GL order) instead of its colour.
+std::vector<int> reprojectionSourcesOnCpu(const ReprojectionFrame& frame, const Reprojection& reprojection);
+
+// Refresh frames (SPEC 6, `--temporal-mode refresh`): the nearest layer is rendered fresh at the
+// new camera (nearest = C1, a1, straight); what lay behind the kept frame's nearest layer at the
+// source texel, B = (C_kept - a1k C1k) / (1 - a1k), is composited under it:
+//   C = a1 C1 + (1 - a1) B = r C_kept + (a1 C1 - r a1k C1k),  r = (1 - a1) / (1 - a1k),
+// written the second way so that an unchanged pixel (same nearest fragment, r = 1) returns
+// C_kept bit for bit. No fragment now (a1 = 0): the background, exactly. A kept nearest layer
+// with transmittance <= STARNT_TEMPORAL_MIN_TRANSMITTANCE hid what lay behind: the background
+// stands in for B. Where the kept frame had no fragment (a1k = 0, C_kept = background) this
+// gives the fresh layer over the background. GLSL: refreshComposite in reprojection_search.frag.glsl.
+glm::vec3 refreshComposite(const glm::vec3& keptComposite, const glm::vec4& keptNearest, const glm::vec4& nearest,
+                           const glm::vec3& background);
 
 }  // namespace starnt::temporal

@@ -11,6 +11,24 @@ layout(binding = 0) uniform highp sampler2D u_color;  // last real frame's compo
 layout(binding = 1) uniform highp sampler2D u_depth;  // its pass-1 window depth, 1 = nothing drawn
 layout(binding = 2) uniform highp sampler2D u_seeds;  // (min, max) depth around each pixel block
 
+#ifdef STARNT_REFRESH
+// Refresh frames: the kept frame's pass-1 colour, and pass 1 rendered at the new camera.
+layout(binding = 3) uniform highp sampler2D u_keptNearest;
+layout(binding = 4) uniform highp sampler2D u_nearest;
+uniform vec3 u_background;
+
+// temporal::refreshComposite (reprojection_reference.hpp states it): the fresh nearest layer over
+// what lay behind the kept frame's nearest layer at the source texel.
+vec3 refreshComposite(vec3 keptComposite, vec4 keptNearest, vec4 nearest, vec3 background) {
+    if (!(nearest.a > 0.0)) return background;
+    vec3 front = nearest.a * nearest.rgb;
+    float keptOpen = 1.0 - keptNearest.a;
+    if (!(keptOpen > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE))) return front + (1.0 - nearest.a) * background;
+    float r = (1.0 - nearest.a) / keptOpen;
+    return max(r * keptComposite + (front - r * (keptNearest.a * keptNearest.rgb)), vec3(0.0));
+}
+#endif
+
 uniform ivec2 u_size;
 // Rows 0, 1 and 3 of R = newViewProj * inverse(oldViewProj), and row 3 of inverse(oldViewProj).
 uniform vec4 u_row0, u_row1, u_row3, u_sourceScale;
@@ -84,5 +102,10 @@ void main() {
     if (farthest != here && bestTexel.x < 0) search(c, farthest);  // only a disocclusion needs it
 
     ivec2 source = bestTexel.x >= 0 ? bestTexel : farTexel.x >= 0 ? farTexel : p;
+#ifdef STARNT_REFRESH
+    o_color = vec4(refreshComposite(texelFetch(u_color, source, 0).rgb, texelFetch(u_keptNearest, source, 0),
+                                    texelFetch(u_nearest, p, 0), u_background), 1.0);
+#else
     o_color = texelFetch(u_color, source, 0);
+#endif
 }

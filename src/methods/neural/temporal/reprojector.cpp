@@ -26,6 +26,7 @@ Reprojector::Reprojector()
     : blockSeeds_(buildPass("reprojection_block_seeds", "reprojection_seeds.frag.glsl", "#define STARNT_SEEDS_BLOCK 1\n")),
       dilateSeeds_(buildPass("reprojection_dilate_seeds", "reprojection_seeds.frag.glsl")),
       search_(buildPass("reprojection_search", "reprojection_search.frag.glsl")),
+      searchRefresh_(buildPass("reprojection_refresh", "reprojection_search.frag.glsl", "#define STARNT_REFRESH 1\n")),
       emptyVao_(gl::makeEmptyVertexArray()) {}
 
 // Binds a framebuffer drawing into `texture` (attached on every call: a texture name cached
@@ -48,7 +49,8 @@ void Reprojector::drawInto(GLuint texture, int width, int height) {
     glDisable(GL_SCISSOR_TEST);
 }
 
-void Reprojector::capture(GLuint colorTexture, GLuint depthTexture, int width, int height, const glm::mat4& viewProj) {
+void Reprojector::capture(GLuint colorTexture, GLuint depthTexture, int width, int height, const glm::mat4& viewProj,
+                          GLuint nearestTexture) {
     if (width < 1 || height < 1) throw Error("temporal capture: empty frame size");
     const GLenum colorFormat = internalFormatOf(colorTexture), depthFormat = internalFormatOf(depthTexture);
     if (colorFormat != GL_RGBA32F) throw Error("temporal capture: the composite must be an RGBA32F texture");
@@ -64,6 +66,17 @@ void Reprojector::capture(GLuint colorTexture, GLuint depthTexture, int width, i
         seeds_ = gl::Texture2D(GL_RG32F, blocksX, blocksY);
         width_ = width;
         height_ = height;
+    }
+    if (nearestTexture && internalFormatOf(nearestTexture) != GL_RGBA32F) {
+        throw Error("temporal capture: the nearest layer must be an RGBA32F texture");
+    }
+    if (nearestTexture && (keptNearest_.width() != width || keptNearest_.height() != height)) {
+        keptNearest_ = gl::Texture2D(GL_RGBA32F, width, height);
+    }
+    hasNearest_ = nearestTexture != 0;
+    if (hasNearest_) {
+        glCopyImageSubData(nearestTexture, GL_TEXTURE_2D, 0, 0, 0, 0, keptNearest_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width,
+                           height, 1);
     }
     // Plain copies: the method overwrites its own targets on the next real frame.
     glCopyImageSubData(colorTexture, GL_TEXTURE_2D, 0, 0, 0, 0, color_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width, height, 1);
@@ -85,19 +98,36 @@ void Reprojector::capture(GLuint colorTexture, GLuint depthTexture, int width, i
     hasFrame_ = true;
 }
 
-void Reprojector::reproject(const glm::mat4& newViewProj, GLuint outputTexture) {
-    if (!hasFrame_) throw Error("internal: temporal reprojection before any real frame was captured");
+void Reprojector::setSearchUniforms(const gl::Program& program, const glm::mat4& newViewProj) const {
     const Reprojection r = makeReprojection(viewProj_, newViewProj);
-    drawInto(outputTexture, width_, height_);
-    glUseProgram(search_.id());
-    glUniform2i(search_.uniform("u_size"), width_, height_);
-    glUniform4fv(search_.uniform("u_row0"), 1, glm::value_ptr(r.row0));
-    glUniform4fv(search_.uniform("u_row1"), 1, glm::value_ptr(r.row1));
-    glUniform4fv(search_.uniform("u_row3"), 1, glm::value_ptr(r.row3));
-    glUniform4fv(search_.uniform("u_sourceScale"), 1, glm::value_ptr(r.sourceScale));
+    glUseProgram(program.id());
+    glUniform2i(program.uniform("u_size"), width_, height_);
+    glUniform4fv(program.uniform("u_row0"), 1, glm::value_ptr(r.row0));
+    glUniform4fv(program.uniform("u_row1"), 1, glm::value_ptr(r.row1));
+    glUniform4fv(program.uniform("u_row3"), 1, glm::value_ptr(r.row3));
+    glUniform4fv(program.uniform("u_sourceScale"), 1, glm::value_ptr(r.sourceScale));
     glBindTextureUnit(0, color_.id());
     glBindTextureUnit(1, depth_.id());
     glBindTextureUnit(2, seeds_.id());
+}
+
+void Reprojector::reproject(const glm::mat4& newViewProj, GLuint outputTexture) {
+    if (!hasFrame_) throw Error("internal: temporal reprojection before any real frame was captured");
+    drawInto(outputTexture, width_, height_);
+    setSearchUniforms(search_, newViewProj);
+    gl::drawFullscreenTriangle(emptyVao_);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void Reprojector::reprojectRefresh(const glm::mat4& newViewProj, GLuint nearestTexture, const glm::vec3& background,
+                                   GLuint outputTexture) {
+    if (!hasFrame_) throw Error("internal: temporal reprojection before any real frame was captured");
+    if (!hasNearest_) throw Error("internal: a refresh frame needs the kept frame's nearest layer");
+    drawInto(outputTexture, width_, height_);
+    setSearchUniforms(searchRefresh_, newViewProj);
+    glBindTextureUnit(3, keptNearest_.id());
+    glBindTextureUnit(4, nearestTexture);
+    glUniform3fv(searchRefresh_.uniform("u_background"), 1, glm::value_ptr(background));
     gl::drawFullscreenTriangle(emptyVao_);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }

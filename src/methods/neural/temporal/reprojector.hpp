@@ -17,7 +17,9 @@ public:
     // Keeps a copy of a real frame: its composite (RGBA32F texture), its pass-1 depth
     // (DEPTH_COMPONENT32F or R32F texture, window depth, 1 = far plane where nothing was drawn),
     // both width x height, and the view-projection (GL clip conventions) it was rendered with.
-    void capture(GLuint colorTexture, GLuint depthTexture, int width, int height, const glm::mat4& viewProj);
+    // With `nearestTexture` (RGBA32F pass-1 colour + alpha) it is kept too, for refresh frames.
+    void capture(GLuint colorTexture, GLuint depthTexture, int width, int height, const glm::mat4& viewProj,
+                 GLuint nearestTexture = 0);
     bool hasFrame() const { return hasFrame_; }
     int width() const { return width_; }
     int height() const { return height_; }
@@ -26,16 +28,24 @@ public:
     // Renders the captured frame as seen with `newViewProj` into `outputTexture`, a colour-renderable
     // RGBA texture of the captured size. Throws starnt::Error when nothing was captured.
     void reproject(const glm::mat4& newViewProj, GLuint outputTexture);
+    // A refresh frame (temporal::refreshComposite): `nearestTexture` is pass 1 rendered at the new
+    // camera (RGBA32F, captured size). Throws when the capture kept no nearest layer.
+    void reprojectRefresh(const glm::mat4& newViewProj, GLuint nearestTexture, const glm::vec3& background,
+                          GLuint outputTexture);
 
     void reset() { hasFrame_ = false; }  // forgets the frame, keeps the allocations
-    size_t gpuMemoryBytes() const { return color_.bytes() + depth_.bytes() + blockMinMax_.bytes() + seeds_.bytes(); }
+    size_t gpuMemoryBytes() const {
+        return color_.bytes() + depth_.bytes() + keptNearest_.bytes() + blockMinMax_.bytes() + seeds_.bytes();
+    }
 
 private:
     void drawInto(GLuint texture, int width, int height);
+    void setSearchUniforms(const gl::Program& program, const glm::mat4& newViewProj) const;
 
-    gl::Program blockSeeds_, dilateSeeds_, search_;
+    gl::Program blockSeeds_, dilateSeeds_, search_, searchRefresh_;
     gl::VertexArrayHandle emptyVao_;
-    gl::Texture2D color_, depth_;
+    gl::Texture2D color_, depth_, keptNearest_;
+    bool hasNearest_ = false;
     gl::Texture2D blockMinMax_, seeds_;  // RG32F (min, max) depth per block, then dilated
     gl::FramebufferHandle framebuffer_;
     int width_ = 0, height_ = 0;

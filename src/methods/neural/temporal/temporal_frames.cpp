@@ -5,7 +5,9 @@
 namespace starnt {
 
 TemporalFrames::TemporalFrames(const MethodOptions& options)
-    : schedule_(options), clock_(gl::currentContextIsSoftware()) {}
+    : schedule_(options),
+      clock_(gl::currentContextIsSoftware()),
+      refresh_(options.temporalMode == MethodOptions::TemporalMode::Refresh) {}
 
 bool TemporalFrames::beginFrame(int width, int height) {
     if (auto ms = clock_.take()) schedule_.recordRealFrameMs(*ms);
@@ -24,10 +26,11 @@ bool TemporalFrames::beginFrame(int width, int height) {
 }
 
 void TemporalFrames::endRealFrame(GLuint compositeTexture, GLuint nearestDepthTexture, const glm::mat4& viewProj,
-                                  int width, int height) {
+                                  int width, int height, GLuint nearestTexture) {
     if (lastInterpolated_) throw Error("internal: TemporalFrames::endRealFrame on an interpolated frame");
     if (!interpolates()) return;  // every frame is real: nothing to keep
-    reprojector_.capture(compositeTexture, nearestDepthTexture, width, height, viewProj);
+    if (refresh_ && !nearestTexture) throw Error("internal: refresh frames need the real frame's nearest layer");
+    reprojector_.capture(compositeTexture, nearestDepthTexture, width, height, viewProj, refresh_ ? nearestTexture : 0);
     clock_.stop();
 }
 
@@ -35,6 +38,13 @@ void TemporalFrames::interpolate(const glm::mat4& viewProj, GLuint outputTexture
     if (!lastInterpolated_) throw Error("internal: TemporalFrames::interpolate on a real frame");
     gl::ScopedPass timing(timer, "reproject");
     reprojector_.reproject(viewProj, outputTexture);
+}
+
+void TemporalFrames::interpolateRefresh(const glm::mat4& viewProj, GLuint nearestTexture, const glm::vec3& background,
+                                        GLuint outputTexture, gl::GpuPassTimer* timer) {
+    if (!lastInterpolated_) throw Error("internal: TemporalFrames::interpolateRefresh on a real frame");
+    gl::ScopedPass timing(timer, "reproject");
+    reprojector_.reprojectRefresh(viewProj, nearestTexture, background, outputTexture);
 }
 
 void TemporalFrames::reset() {

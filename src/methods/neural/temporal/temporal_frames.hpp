@@ -31,12 +31,19 @@ public:
     // After a real frame: keeps copies of its composite (RGBA32F) and pass-1 depth
     // (DEPTH_COMPONENT32F, 1 = far plane where no transparent fragment) with the view-projection it
     // used, and ends the real-frame time measurement (which includes this copy).
+    // In refresh mode `nearestTexture` (pass-1 colour + alpha, RGBA32F) is kept too (required).
     void endRealFrame(GLuint compositeTexture, GLuint nearestDepthTexture, const glm::mat4& viewProj, int width,
-                      int height);
+                      int height, GLuint nearestTexture = 0);
     // An interpolated frame: the kept real frame reprojected to `viewProj`, rendered into
     // `outputTexture` (a colour-renderable RGBA texture of the frame size; the framebuffer binding is
     // 0 afterwards). Timed as pass "reproject" when a timer is given.
     void interpolate(const glm::mat4& viewProj, GLuint outputTexture, gl::GpuPassTimer* timer = nullptr);
+    // A refresh frame: `nearestTexture` is pass 1 rendered at `viewProj` (the caller renders it);
+    // what lay behind the kept frame's nearest layer is reprojected under it. Timed as "reproject".
+    void interpolateRefresh(const glm::mat4& viewProj, GLuint nearestTexture, const glm::vec3& background,
+                            GLuint outputTexture, gl::GpuPassTimer* timer = nullptr);
+    // Interpolated frames render pass 1 fresh (MethodOptions::TemporalMode::Refresh).
+    bool refreshes() const { return refresh_; }
 
     // False for a fixed interval of 1: then nothing is kept (no copy, no memory).
     bool interpolates() const { return schedule_.isAuto() || schedule_.interval() > 1; }
@@ -54,6 +61,7 @@ private:
     temporal::Reprojector reprojector_;
     temporal::RealFrameClock clock_;
     bool lastInterpolated_ = false;
+    bool refresh_ = false;
 };
 
 }  // namespace starnt

@@ -14,8 +14,16 @@ layout(std430, binding = STARNT_SSBO_TILE_OCCUPANCY) writeonly buffer Occupancy 
 
 uniform ivec2 u_size;   // image size
 uniform ivec2 u_tiles;  // tile grid size
+uniform int u_backSignal;  // 1: D on C - a1 C1 (tiles::TileSignal::Back); 0: on the composite
 
-vec3 colorAt(ivec2 p) { return texelFetch(u_composite, p, 0).rgb; }
+vec3 colorAt(ivec2 p) {
+    vec3 c = texelFetch(u_composite, p, 0).rgb;
+    if (u_backSignal != 0) {
+        vec4 n = texelFetch(u_nearest, p, 0);
+        c -= n.a * n.rgb;
+    }
+    return c;
+}
 
 float nodeVariation(ivec2 origin, int size) {
     ivec2 far = min(origin + size - 1, u_size - 1);

@@ -139,6 +139,153 @@ float passScale(double wBar, double delta) {
     return float(std::clamp(std::exp2(wBar - delta), double(STARNT_SCALE_MIN), 1.0));
 }
 
+float ruleScale(ScaleRule rule, double wBar, double delta) {
+    switch (rule) {
+        case ScaleRule::Continuous: return passScale(wBar, delta);
+        case ScaleRule::Step: return wBar > 2.0 ? 1.0f : wBar > 1.0 ? 0.5f : 0.25f;
+        case ScaleRule::Snapped: break;
+    }
+    const double snapped = std::exp2(std::round(std::log2(double(passScale(wBar, delta)))));
+    return float(std::clamp(snapped, double(STARNT_SCALE_MIN), 1.0));
+}
+
+namespace {
+
+// loss[0] / loss[1] are the losses at 1/2 and 1/4; 0 at full resolution.
+double lossAt(const std::array<float, 2>& loss, float scale) {
+    return scale >= 1.0f ? 0.0 : scale >= 0.5f ? double(loss[0]) : double(loss[1]);
+}
+
+}  // namespace
+
+double guardPredictedLoss(const ScaleGuard& guard, float scale2, float scale3) {
+    return lossAt(guard.loss2, scale2) + std::max(0.0, lossAt(guard.loss3, scale3) - lossAt(guard.loss3, scale2));
+}
+
+PassScales guardScales(const ScaleGuard& guard, double budget) {
+    const double allowed = budget * double(guard.occupied);
+    const float scales[3] = {1.0f, 0.5f, 0.25f};
+    PassScales best;
+    double bestCost = 2.0;
+    for (float s2 : scales) {
+        for (float s3 : scales) {
+            if (s3 > s2) continue;
+            const double cost = double(s2) * s2 + double(s3) * s3;
+            if (cost < bestCost && guardPredictedLoss(guard, s2, s3) <= allowed) {
+                best = {s2, s3};
+                bestCost = cost;
+            }
+        }
+    }
+    return best;
+}
+
+namespace {
+
+float srgbEncode(float linear) {
+    const float c = std::clamp(linear, 0.0f, 1.0f);
+    return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+float srgbSquaredError(const glm::vec3& a, const glm::vec3& b) {
+    float sum = 0.0f;
+    for (int c = 0; c < 3; ++c) {
+        const float d = srgbEncode(a[c]) - srgbEncode(b[c]);
+        sum += d * d;
+    }
+    return sum / 3.0f;
+}
+
+// The pass shares at one pixel, divided by the transmittance in front of them (what a reduced
+// pass interpolates). `valid` is false where that transmittance is too small to divide by.
+struct Shares {
+    glm::vec3 behind1, behind2;  // (C - a1 C1) / (1 - a1), (C - a1 C1 - (1-a1) a2 C2) / T2
+    bool valid1, valid2;
+};
+
+Shares sharesAt(const glm::vec4& composite, const glm::vec4& nearest, const glm::vec4& second) {
+    const glm::vec3 c = glm::vec3(composite), s2 = c - nearest.a * glm::vec3(nearest);
+    const glm::vec3 s3 = s2 - (1.0f - nearest.a) * second.a * glm::vec3(second);
+    const float t1 = 1.0f - nearest.a, t2 = t1 * (1.0f - second.a);
+    Shares s;
+    s.valid1 = t1 > float(STARNT_GUARD_MIN_TRANSMITTANCE);
+    s.valid2 = t2 > float(STARNT_GUARD_MIN_TRANSMITTANCE);
+    s.behind1 = s.valid1 ? s2 / t1 : glm::vec3(0.0f);
+    s.behind2 = s.valid2 ? s3 / t2 : glm::vec3(0.0f);
+    return s;
+}
+
+}  // namespace
+
+ScaleGuard scaleGuardSums(int width, int height, const std::vector<glm::vec4>& composite,
+                          const std::vector<glm::vec4>& nearest, const std::vector<glm::vec4>& second) {
+    const TileGrid grid = TileGrid::forImage(width, height);
+    auto index = [&](int x, int y) { return size_t(y) * size_t(width) + size_t(x); };
+    auto shares = [&](int x, int y) { return sharesAt(composite[index(x, y)], nearest[index(x, y)], second[index(x, y)]); };
+    ScaleGuard total;
+    for (int ty = 0; ty < grid.tilesY; ++ty) {
+        for (int tx = 0; tx < grid.tilesX; ++tx) {
+            std::array<float, STARNT_GUARD_VALUES> tile{};
+            for (int ly = 0; ly < STARNT_TILE_SIZE; ++ly) {
+                for (int lx = 0; lx < STARNT_TILE_SIZE; ++lx) {
+                    const int x = tx * STARNT_TILE_SIZE + lx, y = ty * STARNT_TILE_SIZE + ly;
+                    if (x >= width || y >= height) continue;
+                    const glm::vec4 n = nearest[index(x, y)], sec = second[index(x, y)];
+                    if (!(n.a > 0.0f)) continue;
+                    const glm::vec3 c = glm::vec3(composite[index(x, y)]);
+                    const glm::vec3 front1 = n.a * glm::vec3(n), front2 = front1 + (1.0f - n.a) * sec.a * glm::vec3(sec);
+                    const float t1 = 1.0f - n.a, t2 = t1 * (1.0f - sec.a);
+                    tile[STARNT_GUARD_OCCUPIED] += 1.0f;
+                    tile[STARNT_GUARD_ENERGY_PASS2] += srgbSquaredError(c, front1);
+                    tile[STARNT_GUARD_ENERGY_PASS3] += srgbSquaredError(c, front2);
+                    for (int k = 0; k < 2; ++k) {
+                        const int step = k == 0 ? 2 : 4;
+                        const int lastX = (width - 1) / step * step, lastY = (height - 1) / step * step;
+                        const int x0 = x / step * step, y0 = y / step * step;
+                        const int x1 = std::min(x0 + step, lastX), y1 = std::min(y0 + step, lastY);
+                        const float fx = x1 > x0 ? float(x - x0) / float(step) : 0.0f;
+                        const float fy = y1 > y0 ? float(y - y0) / float(step) : 0.0f;
+                        const int sx[4] = {x0, x1, x0, x1}, sy[4] = {y0, y0, y1, y1};
+                        const float w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+                        glm::vec3 sum1(0.0f), sum2(0.0f);
+                        float weight1 = 0.0f, weight2 = 0.0f;
+                        for (int i = 0; i < 4; ++i) {
+                            const Shares s = shares(sx[i], sy[i]);
+                            if (s.valid1) sum1 += w[i] * s.behind1, weight1 += w[i];
+                            if (s.valid2) sum2 += w[i] * s.behind2, weight2 += w[i];
+                        }
+                        const Shares own = shares(x, y);
+                        const glm::vec3 behind1 = weight1 > 0.0f ? sum1 / weight1 : own.behind1;
+                        const glm::vec3 behind2 = weight2 > 0.0f ? sum2 / weight2 : own.behind2;
+                        const glm::vec3 rebuilt2 = own.valid1 ? front1 + t1 * behind1 : c;
+                        const glm::vec3 rebuilt3 = own.valid2 ? front2 + t2 * behind2 : c;
+                        tile[size_t(STARNT_GUARD_LOSS_PASS2_HALF + k)] += srgbSquaredError(c, rebuilt2);
+                        tile[size_t(STARNT_GUARD_LOSS_PASS3_HALF + k)] += srgbSquaredError(c, rebuilt3);
+                    }
+                }
+            }
+            total.occupied += tile[STARNT_GUARD_OCCUPIED];
+            total.energy2 += tile[STARNT_GUARD_ENERGY_PASS2];
+            total.energy3 += tile[STARNT_GUARD_ENERGY_PASS3];
+            for (int k = 0; k < 2; ++k) {
+                total.loss2[size_t(k)] += tile[size_t(STARNT_GUARD_LOSS_PASS2_HALF + k)];
+                total.loss3[size_t(k)] += tile[size_t(STARNT_GUARD_LOSS_PASS3_HALF + k)];
+            }
+        }
+    }
+    return total;
+}
+
+ColorImage tileSignalImage(TileSignal signal, int width, int height, const std::vector<glm::vec4>& composite,
+                           const std::vector<glm::vec4>& nearest) {
+    ColorImage image{width, height, std::vector<glm::vec3>(size_t(width) * size_t(height))};
+    for (size_t i = 0; i < image.rgb.size(); ++i) {
+        image.rgb[i] = glm::vec3(composite[i]);
+        if (signal == TileSignal::Back) image.rgb[i] -= nearest[i].a * glm::vec3(nearest[i]);
+    }
+    return image;
+}
+
 int scaledSize(int size, float scale) { return std::max(1, int(std::ceil(double(size) * double(scale) - 1e-9))); }
 
 std::vector<uint8_t> occupiedTiles(const TileGrid& grid, const std::vector<float>& nearestAlpha) {

@@ -9,6 +9,9 @@ namespace {
 
 GLuint groups(int n, int size) { return GLuint((n + size - 1) / size); }
 
+// The readback: the four level counts (uint), then the guard sums (float).
+constexpr size_t kReadbackBytes = 4 * sizeof(uint32_t) + STARNT_GUARD_VALUES * sizeof(float);
+
 gl::Program compute(const char* label, const char* file) {
     return gl::buildComputeProgram(label, "#include \"" + std::string(file) + "\"\n");
 }
@@ -19,9 +22,11 @@ GpuTiles::GpuTiles()
     : evaluate_(compute("tile_evaluate", "methods/neural/tiles/tile_evaluate.comp.glsl")),
       balance_(compute("tile_balance", "methods/neural/tiles/tile_balance.comp.glsl")),
       histogramProgram_(compute("tile_histogram", "methods/neural/tiles/tile_histogram.comp.glsl")),
-      overlay_(compute("tile_overlay", "methods/neural/tiles/tile_overlay.comp.glsl")) {
-    for (auto& r : readbacks_) r.buffer = gl::Buffer(4 * sizeof(uint32_t));
-    histogramBuffer_ = gl::Buffer(4 * sizeof(uint32_t));
+      overlay_(compute("tile_overlay", "methods/neural/tiles/tile_overlay.comp.glsl")),
+      guardTiles_(compute("tile_scale_guard", "methods/neural/tiles/tile_scale_guard.comp.glsl")),
+      guardTotal_(compute("tile_scale_guard_total", "methods/neural/tiles/tile_scale_guard_total.comp.glsl")) {
+    for (auto& r : readbacks_) r.buffer = gl::Buffer(kReadbackBytes);
+    histogramBuffer_ = gl::Buffer(kReadbackBytes);
 }
 
 GpuTiles::~GpuTiles() { clearReadbacks(); }
@@ -44,6 +49,7 @@ void GpuTiles::resize(int width, int height) {
     const size_t bytes = size_t(grid.count()) * sizeof(uint32_t);
     for (auto& m : masks_) m = gl::Buffer(bytes);
     occupancy_ = gl::Buffer(bytes);
+    guardTileSums_ = gl::Buffer(bytes * STARNT_GUARD_VALUES);
     reset();
 }
 
@@ -55,10 +61,12 @@ void GpuTiles::reset() {
     hasHistogram_ = false;
     histogram_ = {};
     wBar_ = 0.0;
+    hasGuard_ = false;
+    guard_ = {};
     updates_ = 0;
 }
 
-void GpuTiles::update(GLuint composite, GLuint nearest) {
+void GpuTiles::update(GLuint composite, GLuint nearest, TileSignal signal, GLuint second) {
     const int other = 1 - current_;
     // Evaluate: current -> other. Balance twice: other -> current -> other. Result in `other`.
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
@@ -70,6 +78,7 @@ void GpuTiles::update(GLuint composite, GLuint nearest) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STARNT_SSBO_TILE_OCCUPANCY, occupancy_.id());
     glUniform2i(evaluate_.uniform("u_size"), width_, height_);
     glUniform2i(evaluate_.uniform("u_tiles"), tilesX_, tilesY_);
+    glUniform1i(evaluate_.uniform("u_backSignal"), signal == TileSignal::Back ? 1 : 0);
     glDispatchCompute(groups(tilesX_, 8), groups(tilesY_, 8), 1);
 
     glUseProgram(balance_.id());
@@ -93,11 +102,27 @@ void GpuTiles::update(GLuint composite, GLuint nearest) {
     glUniform1ui(histogramProgram_.uniform("u_tileCount"), GLuint(tilesX_ * tilesY_));
     glDispatchCompute(groups(tilesX_ * tilesY_, 64), 1, 1);
 
+    if (second) {
+        glUseProgram(guardTiles_.id());
+        glBindTextureUnit(0, composite);
+        glBindTextureUnit(1, nearest);
+        glBindTextureUnit(2, second);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STARNT_SSBO_TILE_GUARD, guardTileSums_.id());
+        glUniform2i(guardTiles_.uniform("u_size"), width_, height_);
+        glUniform2i(guardTiles_.uniform("u_tiles"), tilesX_, tilesY_);
+        glDispatchCompute(GLuint(tilesX_), GLuint(tilesY_), 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        glUseProgram(guardTotal_.id());
+        glUniform1ui(guardTotal_.uniform("u_tileCount"), GLuint(tilesX_ * tilesY_));
+        glDispatchCompute(1, 1, 1);
+    }
+
     // Copy into the next readback slot and fence it; pollHistogram picks it up once finished.
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     Readback& slot = readbacks_[size_t(nextReadback_)];
     if (slot.fence) glDeleteSync(slot.fence);  // the GPU is 3 frames behind: drop the oldest
-    glCopyNamedBufferSubData(histogramBuffer_.id(), slot.buffer.id(), 0, 0, 4 * sizeof(uint32_t));
+    glCopyNamedBufferSubData(histogramBuffer_.id(), slot.buffer.id(), 0, 0, GLsizeiptr(kReadbackBytes));
+    slot.hasGuard = second != 0;
     slot.fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
     readbackSequence_[size_t(nextReadback_)] = ++submitted_;
     nextReadback_ = (nextReadback_ + 1) % int(readbacks_.size());
@@ -117,7 +142,17 @@ bool GpuTiles::pollHistogram() {
     if (newest < 0 || readbackSequence_[size_t(newest)] <= consumedSequence_) return false;
     Readback& r = readbacks_[size_t(newest)];
     uint32_t counts[4];
+    float guard[STARNT_GUARD_VALUES];
     glGetNamedBufferSubData(r.buffer.id(), 0, sizeof counts, counts);
+    if (r.hasGuard) {
+        glGetNamedBufferSubData(r.buffer.id(), sizeof counts, sizeof guard, guard);
+        guard_.occupied = guard[STARNT_GUARD_OCCUPIED];
+        guard_.energy2 = guard[STARNT_GUARD_ENERGY_PASS2];
+        guard_.energy3 = guard[STARNT_GUARD_ENERGY_PASS3];
+        guard_.loss2 = {guard[STARNT_GUARD_LOSS_PASS2_HALF], guard[STARNT_GUARD_LOSS_PASS2_QUARTER]};
+        guard_.loss3 = {guard[STARNT_GUARD_LOSS_PASS3_HALF], guard[STARNT_GUARD_LOSS_PASS3_QUARTER]};
+        hasGuard_ = true;
+    }
     // Older finished slots are superseded by this one.
     for (int i = 0; i < int(readbacks_.size()); ++i) {
         Readback& old = readbacks_[size_t(i)];
@@ -165,7 +200,8 @@ void GpuTiles::renderOverlay(GLuint composite, GLuint overlay) const {
 }
 
 size_t GpuTiles::gpuMemoryBytes() const {
-    size_t bytes = masks_[0].bytes() + masks_[1].bytes() + occupancy_.bytes() + histogramBuffer_.bytes();
+    size_t bytes = masks_[0].bytes() + masks_[1].bytes() + occupancy_.bytes() + histogramBuffer_.bytes() +
+                   guardTileSums_.bytes();
     for (const auto& r : readbacks_) bytes += r.buffer.bytes();
     return bytes;
 }

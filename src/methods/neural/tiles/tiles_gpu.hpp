@@ -11,6 +11,7 @@
 #include "core/gl_util.hpp"
 #include "core/gpu_timer.hpp"
 #include "core/shader.hpp"
+#include "methods/neural/tiles/tiles_cpu.hpp"
 
 namespace starnt::tiles {
 
@@ -27,13 +28,18 @@ public:
     void reset();
 
     // Updates the masks from a real frame: `composite` is the method's full-resolution output,
-    // `nearest` the pass-1 colour (alpha > 0 marks occupied pixels).
-    void update(GLuint composite, GLuint nearest);
+    // `nearest` the pass-1 colour (alpha > 0 marks occupied pixels); `signal` says what D is
+    // measured on. With `second` (the pass-2 colour at full resolution; 0 = none) it also
+    // computes the scale guard's sums, read back with the histogram.
+    void update(GLuint composite, GLuint nearest, TileSignal signal = TileSignal::Back, GLuint second = 0);
     // Takes the newest finished histogram readback, without waiting. True when one arrived.
     bool pollHistogram();
     bool hasHistogram() const { return hasHistogram_; }
     const std::array<uint32_t, 4>& histogram() const { return histogram_; }
     double wBar() const { return wBar_; }
+    // The guard sums of the newest histogram readback whose update computed them.
+    bool hasGuard() const { return hasGuard_; }
+    const ScaleGuard& guard() const { return guard_; }
     // Number of updates run since the last reset (0: the masks are all level 0 from the start).
     int updates() const { return updates_; }
 
@@ -54,12 +60,13 @@ private:
     struct Readback {
         gl::Buffer buffer;
         GLsync fence = nullptr;
+        bool hasGuard = false;
     };
     void clearReadbacks();
 
-    gl::Program evaluate_, balance_, histogramProgram_, overlay_;
+    gl::Program evaluate_, balance_, histogramProgram_, overlay_, guardTiles_, guardTotal_;
     int width_ = 0, height_ = 0, tilesX_ = 0, tilesY_ = 0;
-    gl::Buffer masks_[2], occupancy_, histogramBuffer_;
+    gl::Buffer masks_[2], occupancy_, histogramBuffer_, guardTileSums_;
     int current_ = 0;  // masks_[current_] holds the latest masks
     std::array<Readback, 3> readbacks_;
     int nextReadback_ = 0;
@@ -69,6 +76,8 @@ private:
     bool hasHistogram_ = false;
     std::array<uint32_t, 4> histogram_{};
     double wBar_ = 0.0;
+    bool hasGuard_ = false;
+    ScaleGuard guard_;
     int updates_ = 0;
 };
 
