@@ -96,7 +96,7 @@ TEST(ScaleRules, SnappedContinuousAndStep) {
 
 TEST(ScaleRules, GuardPicksTheCheapestPairWithinTheBudget) {
     ScaleGuard g;
-    g.occupied = 1000.0f;  // budget 0.1 at STARNT_SCALE_GUARD_BUDGET
+    g.occupied = float(0.1 / STARNT_SCALE_GUARD_BUDGET);  // allowed loss: 0.1
     const double budget = STARNT_SCALE_GUARD_BUDGET;
     g.loss2 = {1.0f, 2.0f};
     g.loss3 = {0.05f, 0.09f};

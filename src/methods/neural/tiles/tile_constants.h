@@ -38,10 +38,11 @@
 // resolution) the loss of rendering passes 2/3 at 1/2 or 1/4 is predicted from the full-resolution
 // image: the sRGB squared error of replacing what the passes add by its bilinear reconstruction
 // from every 2nd / 4th pixel (tiles::guardScales). The cheapest scales whose predicted loss adds at
-// most BUDGET to the MSE over the occupied pixels (1e-4: an RMS shift of 0.01, 2.6/255) are used
-// until the next probe. Tuned on the built-in scenes only (docs/DESIGN.md, "Scale guard"); there
-// the prediction matched the measured MSE rise within 5-35 %.
-#define STARNT_SCALE_GUARD_BUDGET 1e-4
+// most BUDGET to the MSE over the occupied pixels (2.5e-5: an RMS shift of 0.005, 1.3/255) are used
+// until the next probe. Chosen on the built-in scenes only, by the rule "a reduction may add at
+// most half of starnt-full's own error on each built-in scene" (docs/DESIGN.md, "Scale guard");
+// there the prediction matched the measured MSE rise within 5-35 %.
+#define STARNT_SCALE_GUARD_BUDGET 2.5e-5
 // Real frames between probe frames once the tiles have settled; the first
 // STARNT_SCALE_SETTLE_FRAMES real frames after a reset are all probes (levels move by one a frame).
 #define STARNT_SCALE_PROBE_INTERVAL 8
