@@ -57,7 +57,7 @@ json readJson(const fs::path& p) {
 }  // namespace
 
 TEST(BenchPlan, VariantsCarryTheirOptions) {
-    EXPECT_EQ(bench::defaultVariantNames().size(), 7u);
+    EXPECT_EQ(bench::defaultVariantNames().size(), 9u);
     EXPECT_EQ(bench::findVariant("starnt-full").options.spatial, std::optional<bool>(false));
     EXPECT_EQ(bench::findVariant("starnt").options.spatial, std::optional<bool>(true));
     EXPECT_EQ(bench::findVariant("starnt").options.temporalInterval, 1);
@@ -67,6 +67,8 @@ TEST(BenchPlan, VariantsCarryTheirOptions) {
     EXPECT_EQ(total.options.temporalInterval, 2);
     EXPECT_EQ(bench::findVariant("starnt-corners").options.inference, MethodOptions::Inference::Corners);
     EXPECT_EQ(bench::findVariant("dfaoit").options.spatial, std::nullopt);  // the method's default: off
+    EXPECT_EQ(bench::findVariant("mboit").options.mboitMoments, "6");
+    EXPECT_EQ(bench::findVariant("mboit-t3").options.mboitMoments, "t3");
     try {
         bench::findVariant("fancy");
         FAIL() << "unknown variant accepted";
@@ -143,7 +145,7 @@ void expectEveryFile(const fs::path& dir) {
     ASSERT_EQ(results["scenes"].size(), 2u);
     for (const auto& scene : results["scenes"]) {
         EXPECT_TRUE(fs::exists(dir / scene["ground_truth"]["image"].get<std::string>()));
-        ASSERT_EQ(scene["methods"].size(), 7u);
+        ASSERT_EQ(scene["methods"].size(), 9u);
         for (const auto& c : scene["methods"]) {
             ASSERT_EQ(c["status"], "ok") << c["variant"] << ": " << c["error"];
             EXPECT_TRUE(fs::exists(dir / c["images"]["image"].get<std::string>())) << c["variant"];
@@ -157,7 +159,7 @@ void expectEveryFile(const fs::path& dir) {
     std::string line;
     std::vector<std::string> lines;
     while (std::getline(csv, line)) lines.push_back(line);
-    ASSERT_EQ(lines.size(), 1u + 2u * 7u);
+    ASSERT_EQ(lines.size(), 1u + 2u * 9u);
     auto fields = [](const std::string& l) { return std::count(l.begin(), l.end(), ',') + 1; };
     for (const auto& l : lines) EXPECT_EQ(fields(l), fields(lines[0])) << l;
 
