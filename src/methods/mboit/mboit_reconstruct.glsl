@@ -121,8 +121,8 @@ float mboitFractionInFront(float b0, vec2 moments[MBOIT_COUNT], float z) {
         for (int i = n; i >= j; --i) d[i] = cdiv(d[i] - d[i - 1], x[i] - x[i - j]);
     }
     // Monomial coefficients (lowest first, real and imaginary parts) of the Newton form:
-    // p <- p * (x - x_i) + d_i. (Whole-vector updates: an in-place loop over an array of
-    // coefficients compiled wrongly on Mesa llvmpipe.)
+    // p <- p * (x - x_i) + d_i. (Whole-vector updates, as in the power case below: an in-place loop
+    // over a coefficient array gave wrong results on Mesa llvmpipe.)
     vec4 re = vec4(d[n].x, 0.0, 0.0, 0.0), im = vec4(d[n].y, 0.0, 0.0, 0.0);
     for (int i = n - 1; i >= 0; --i) {
         vec4 newRe = vec4(d[i].x, re.xyz) - (x[i].x * re - x[i].y * im);
@@ -203,7 +203,8 @@ float mboitFractionInFront(float b0, float moments[MBOIT_COUNT], float z) {
         for (int i = n; i >= j; --i) d[i] = (d[i] - d[i - 1]) / (x[i] - x[i - j]);
     }
     // Monomial coefficients (lowest first) of the Newton form: p <- p * (x - x_i) + d_i. (A whole-
-    // vector update: an in-place loop over an array of coefficients compiled wrongly on llvmpipe.)
+    // vector update: the in-place loop over a float array, p[k] = p[k-1] - p[k] * x_i for k = n..1,
+    // gave wrong coefficients on Mesa llvmpipe (LLVM 15) while its C++ transcription is right.)
     vec4 p = vec4(d[n], 0.0, 0.0, 0.0);
     for (int i = n - 1; i >= 0; --i) p = vec4(d[i], p.xyz) - x[i] * p;
     float sum = p.x;
