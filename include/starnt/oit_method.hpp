@@ -61,6 +61,9 @@ struct MethodOptions {
     int peelLayers = 0;
     // wboit weight function: "eq10" (default, SPEC), "eq7", "eq8", "eq9" (McGuire & Bavoil 2013)
     std::string wboitWeight = "eq10";
+    // mboit (moment-based OIT, Muenstermann et al. 2018): "4" or "6" power moments (default "6"),
+    // "t2" or "t3" trigonometric moments (2 or 3 complex moments); 32-bit float storage
+    std::string mboitMoments = "6";
     // neural methods: weights file; empty = the shipped default for the method
     std::string weightsPath;
 

@@ -64,8 +64,8 @@ void addBenchCommand(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--scenes", a->request.scenes, "suite names, builtin:NAME or scene files (default: the preset's)")->delimiter(',');
     cmd->add_option("--methods", a->request.methods,
-                    "unsorted, wboit, dfaoit, starnt-full, starnt, starnt-total, starnt-corners, abuffer, peel "
-                    "(default: the first seven)")
+                    "unsorted, wboit, mboit, mboit-t3, dfaoit, starnt-full, starnt, starnt-total, starnt-corners, abuffer, peel "
+                    "(default: the first nine)")
         ->delimiter(',');
     cmd->add_option("--out", a->out, "output folder (created; files in it are replaced)")->required();
     cmd->add_option("--suite-dir", a->request.suiteDir, "scene suite folder; built-in scenes when absent")->capture_default_str();

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "app/commands.hpp"
+#include "methods/mboit/mboit_settings.hpp"
 #include "methods/registry.hpp"
 #include "render/method_options.hpp"
 #include "render/offscreen_renderer.hpp"
@@ -81,11 +82,12 @@ void addRenderCommand(CLI::App& app) {
         double alpha = -1.0, alphaCutoff = 0.03, abufferCapMib = 2048;
         bool unlit = false;
         std::string wboitWeight = "eq10", weights;
+        std::string mboitMoments = "6";
     };
     auto a = std::make_shared<Args>();
     CLI::App* cmd = app.add_subcommand("render", "render a scene with one OIT method");
     cmd->add_option("--scene", a->scene, "scene file (.gltf/.glb/.obj) or builtin:NAME")->capture_default_str();
-    cmd->add_option("--method", a->method, "abuffer|peel|unsorted|wboit|dfaoit|starnt")->capture_default_str();
+    cmd->add_option("--method", a->method, "abuffer|peel|unsorted|wboit|mboit|dfaoit|starnt")->capture_default_str();
     cmd->add_option("--width", a->width, "image width")->capture_default_str();
     cmd->add_option("--height", a->height, "image height")->capture_default_str();
     cmd->add_option("--camera", a->camera, "orbit:DEG[,ELEV] or a camera .json (default: auto-framed)");
@@ -96,6 +98,8 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--frames", a->frames, "frames to render; timings are medians without the first")->capture_default_str();
     cmd->add_option("--peel-layers", a->peelLayers, "peel: layers (0 = until empty, exact)")->capture_default_str();
     cmd->add_option("--wboit-weight", a->wboitWeight, "wboit: eq7|eq8|eq9|eq10")->capture_default_str();
+    cmd->add_option("--mboit-moments", a->mboitMoments, "mboit: 4|6 power moments, t2|t3 trigonometric moments")
+        ->capture_default_str();
     cmd->add_option("--abuffer-cap-mib", a->abufferCapMib, "abuffer: memory cap in MiB")->capture_default_str();
     cmd->add_option("--camera-path", a->cameraPath, "sequence camera: orbit:START,END[,ELEV] or a keyframe .json");
     addAccelerationOptions(cmd, a->acceleration);
@@ -114,6 +118,7 @@ void addRenderCommand(CLI::App& app) {
         if (a->alpha != -1.0 && !(a->alpha >= 0.0 && a->alpha <= 1.0)) throw Error("--alpha must be in [0, 1]");
         if (!(a->alphaCutoff >= 0.0 && a->alphaCutoff <= 1.0)) throw Error("--alpha-cutoff must be in [0, 1]");
         if (!(a->abufferCapMib > 0.0)) throw Error("--abuffer-cap-mib must be positive");
+        mboit::parseMomentKind(a->mboitMoments);  // a bad value fails before any work
         MethodOptions options;
         applyAccelerationFlags(a->acceleration, options);
         if (!a->camera.empty() && !a->cameraPath.empty()) throw Error("--camera and --camera-path exclude each other");
@@ -162,6 +167,7 @@ void addRenderCommand(CLI::App& app) {
         job.methodOptions = options;
         job.methodOptions.peelLayers = a->peelLayers;
         job.methodOptions.wboitWeight = a->wboitWeight;
+        job.methodOptions.mboitMoments = a->mboitMoments;
         job.methodOptions.weightsPath = a->weights;
         job.methodOptions.abufferMemoryCapBytes = size_t(a->abufferCapMib * 1024.0 * 1024.0);
         std::string frameLines;

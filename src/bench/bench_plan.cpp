@@ -36,6 +36,10 @@ const std::vector<Variant>& allVariants() {
     static const std::vector<Variant> variants = {
         makeVariant("unsorted", "unsorted", "\"over\" in submission order (the paper's E_random, used by Q)"),
         makeVariant("wboit", "wboit", "weighted blended OIT, McGuire & Bavoil eq. 10 weight"),
+        makeVariant("mboit", "mboit", "moment-based OIT, 6 power moments (Muenstermann et al. 2018)",
+                    [](MethodOptions& o) { o.mboitMoments = std::string("6"); }),
+        makeVariant("mboit-t3", "mboit", "moment-based OIT, 3 trigonometric moments",
+                    [](MethodOptions& o) { o.mboitMoments = std::string("t3"); }),
         makeVariant("dfaoit", "dfaoit", "DFAOIT: 10-input network, every pass at full resolution"),
         makeVariant("starnt-full", "starnt", "STAR-NT network, spatial off (all passes at full resolution)",
                     [](MethodOptions& o) { o.spatial = false; }),
@@ -73,8 +77,8 @@ const std::vector<Variant>& allVariants() {
 }
 
 std::vector<std::string> defaultVariantNames() {
-    return {"unsorted", "wboit", "dfaoit", "starnt-full", "starnt", "starnt-paper", "starnt-total", "starnt-total-warp",
-            "starnt-corners"};
+    return {"unsorted", "wboit", "mboit", "mboit-t3", "dfaoit", "starnt-full", "starnt", "starnt-paper", "starnt-total",
+            "starnt-total-warp", "starnt-corners"};
 }
 
 const Variant& findVariant(const std::string& name) {

@@ -18,7 +18,7 @@ struct Variant {
     std::string description;  // one line for report.md
 };
 
-// Every variant `--methods` accepts, in report order. The first seven are the default set; abuffer
+// Every variant `--methods` accepts, in report order. The first nine are the default set; abuffer
 // and peel (exact methods) are accepted on request, for their timings.
 const std::vector<Variant>& allVariants();
 std::vector<std::string> defaultVariantNames();

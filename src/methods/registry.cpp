@@ -18,6 +18,7 @@ const std::vector<Entry>& entries() {
         {"peel", createPeelMethod},
         {"unsorted", createUnsortedMethod},
         {"wboit", createWboitMethod},
+        {"mboit", createMboitMethod},
         {"dfaoit", createDfaoitMethod},
         {"starnt", createStarntMethod},
     };

@@ -10,6 +10,7 @@ std::unique_ptr<OitMethod> createAbufferMethod(const SurfaceShader&, const Metho
 std::unique_ptr<OitMethod> createPeelMethod(const SurfaceShader&, const MethodOptions&);
 std::unique_ptr<OitMethod> createUnsortedMethod(const SurfaceShader&, const MethodOptions&);
 std::unique_ptr<OitMethod> createWboitMethod(const SurfaceShader&, const MethodOptions&);
+std::unique_ptr<OitMethod> createMboitMethod(const SurfaceShader&, const MethodOptions&);
 std::unique_ptr<OitMethod> createDfaoitMethod(const SurfaceShader&, const MethodOptions&);
 std::unique_ptr<OitMethod> createStarntMethod(const SurfaceShader&, const MethodOptions&);
 
