@@ -57,7 +57,7 @@ json readJson(const fs::path& p) {
 }  // namespace
 
 TEST(BenchPlan, VariantsCarryTheirOptions) {
-    EXPECT_EQ(bench::defaultVariantNames().size(), 11u);
+    EXPECT_EQ(bench::defaultVariantNames().size(), 12u);
     const auto& paper = bench::findVariant("starnt-paper");
     EXPECT_EQ(paper.options.tileSignal, MethodOptions::TileSignal::Composite);
     EXPECT_EQ(paper.options.scaleRule, MethodOptions::ScaleRule::Continuous);
@@ -152,7 +152,7 @@ void expectEveryFile(const fs::path& dir) {
     ASSERT_EQ(results["scenes"].size(), 2u);
     for (const auto& scene : results["scenes"]) {
         EXPECT_TRUE(fs::exists(dir / scene["ground_truth"]["image"].get<std::string>()));
-        ASSERT_EQ(scene["methods"].size(), 11u);
+        ASSERT_EQ(scene["methods"].size(), 12u);
         for (const auto& c : scene["methods"]) {
             ASSERT_EQ(c["status"], "ok") << c["variant"] << ": " << c["error"];
             EXPECT_TRUE(fs::exists(dir / c["images"]["image"].get<std::string>())) << c["variant"];
@@ -166,7 +166,7 @@ void expectEveryFile(const fs::path& dir) {
     std::string line;
     std::vector<std::string> lines;
     while (std::getline(csv, line)) lines.push_back(line);
-    ASSERT_EQ(lines.size(), 1u + 2u * 11u);
+    ASSERT_EQ(lines.size(), 1u + 2u * 12u);
     auto fields = [](const std::string& l) { return std::count(l.begin(), l.end(), ',') + 1; };
     for (const auto& l : lines) EXPECT_EQ(fields(l), fields(lines[0])) << l;
 

@@ -64,6 +64,14 @@ TEST(GlNeural, StarntMatchesCpuReferencePerPixel) {
     }
 }
 
+TEST(GlNeural, HybridMatchesCpuReferencePerPixel) {
+    for (const char* scene : {"tubes", "smoke"}) {
+        Case c = makeCase(scene, 60.0f);
+        expectGpuMatchesCpu(c, renderWith(c, "hybrid"),
+                            [&](const nn::PixelSums& s) { return nn::compositeHybrid(s, kBackground); }, 1e-3f);
+    }
+}
+
 TEST(GlNeural, DfaoitMatchesCpuReferencePerPixel) {
     Case c = makeCase("tubes", 200.0f);
     const nn::Network net = loadMethodNetwork(dfaoitConfig(), {});

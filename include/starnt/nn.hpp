@@ -111,6 +111,8 @@ Network makeUntrained(NetworkKind kind, uint64_t seed);
 // Final pixel colours (CPU reference of the composite shader).
 // STAR-NT: see the top of this file (exact for N <= 3, the network is not evaluated there).
 glm::vec3 compositeStarnt(const Network& net, const PixelSums& s, glm::vec3 background);
+// hybrid (SPEC 7): STAR-NT's composite with the tail in closed form, (1 - t_tail) C_tilde.
+glm::vec3 compositeHybrid(const PixelSums& s, glm::vec3 background);
 // DFAOIT: f(x) + T_all * C_bg; a pixel without fragments (N < 0.5) is the background alone.
 glm::vec3 compositeDfaoit(const Network& net, const PixelSums& s, glm::vec3 background);
 

@@ -45,6 +45,8 @@ const std::vector<Variant>& allVariants() {
                     [](MethodOptions& o) { o.spatial = false; }),
         makeVariant("starnt", "starnt", "STAR-NT, adaptive tiles on (\"w/o temporal\")",
                     [](MethodOptions& o) { o.spatial = true; }),
+        makeVariant("hybrid", "hybrid", "STAR-NT's passes and tiles, tail in closed form (no network): what the network adds",
+                    [](MethodOptions& o) { o.spatial = false; }),
         makeVariant("starnt-paper", "starnt",
                     "STAR-NT as the paper: tiles on the composite, continuous scales, no guard",
                     [](MethodOptions& o) {
@@ -77,7 +79,7 @@ const std::vector<Variant>& allVariants() {
 }
 
 std::vector<std::string> defaultVariantNames() {
-    return {"unsorted", "wboit", "mboit", "mboit-t3", "dfaoit", "starnt-full", "starnt", "starnt-paper", "starnt-total",
+    return {"unsorted", "wboit", "mboit", "mboit-t3", "dfaoit", "starnt-full", "hybrid", "starnt", "starnt-paper", "starnt-total",
             "starnt-total-warp", "starnt-corners"};
 }
 

@@ -21,6 +21,7 @@ const std::vector<Entry>& entries() {
         {"mboit", createMboitMethod},
         {"dfaoit", createDfaoitMethod},
         {"starnt", createStarntMethod},
+        {"hybrid", createHybridMethod},
     };
     return all;
 }
@@ -47,9 +48,12 @@ bool methodUsesTiles(const std::string& name, const MethodOptions& options) {
     const bool corners = options.inference == MethodOptions::Inference::Corners;
     if (name == starntConfig().name) return options.spatial.value_or(starntConfig().spatialByDefault) || corners;
     if (name == dfaoitConfig().name) return options.spatial.value_or(dfaoitConfig().spatialByDefault) || corners;
+    if (name == hybridConfig().name) return options.spatial.value_or(hybridConfig().spatialByDefault) || corners;
     return false;
 }
 
-bool methodHasNearestPass(const std::string& name) { return name == starntConfig().name || name == dfaoitConfig().name; }
+bool methodHasNearestPass(const std::string& name) {
+    return name == starntConfig().name || name == dfaoitConfig().name || name == hybridConfig().name;
+}
 
 }  // namespace starnt

@@ -13,10 +13,12 @@ std::unique_ptr<OitMethod> createWboitMethod(const SurfaceShader&, const MethodO
 std::unique_ptr<OitMethod> createMboitMethod(const SurfaceShader&, const MethodOptions&);
 std::unique_ptr<OitMethod> createDfaoitMethod(const SurfaceShader&, const MethodOptions&);
 std::unique_ptr<OitMethod> createStarntMethod(const SurfaceShader&, const MethodOptions&);
+std::unique_ptr<OitMethod> createHybridMethod(const SurfaceShader&, const MethodOptions&);
 
 struct NeuralMethodConfig;
 const NeuralMethodConfig& starntConfig();
 const NeuralMethodConfig& dfaoitConfig();
+const NeuralMethodConfig& hybridConfig();
 
 // True when `name` with `options` runs the adaptive tiles (a neural method with spatial on, by
 // option or by default, or with corner inference): the methods with a tile overlay.

@@ -109,6 +109,19 @@ glm::vec3 compositeStarnt(const Network& net, const PixelSums& s, glm::vec3 back
     return exactTwoLayers(s) + twoLayerTransmittance(s) * tail + s.transmittance * background;
 }
 
+glm::vec3 compositeHybrid(const PixelSums& s, glm::vec3 background) {
+    glm::vec3 tail(0.0f);
+    if (s.count < 2.5f) {
+        tail = glm::vec3(0.0f);
+    } else if (s.count < 3.5f) {
+        tail = glm::max(tailAlphaColor(s), glm::vec3(0.0f));
+    } else {
+        const auto x = starntFeatures(s);  // t_tail, N, C_tilde
+        tail = (1.0f - x[0]) * glm::vec3(x[2], x[3], x[4]);
+    }
+    return exactTwoLayers(s) + twoLayerTransmittance(s) * tail + s.transmittance * background;
+}
+
 glm::vec3 compositeDfaoit(const Network& net, const PixelSums& s, glm::vec3 background) {
     glm::vec3 transparent(0.0f);
     if (s.count > 0.5f) {

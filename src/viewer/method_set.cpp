@@ -55,6 +55,7 @@ RenderedFrame MethodSet::render(const SceneGpu& scene, const Camera& camera, glm
     glFinish();
     out.frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     out.passMs = timer_.collect();
+    out.passCounters = timer_.collectCounters();
     out.methodStats = primary_->lastFrameStats();
     out.interpolated = out.methodStats.value("interpolated", false);
     if (split_) {

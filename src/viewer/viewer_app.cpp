@@ -385,6 +385,7 @@ private:
         m.cameraMode = camera_.mode();
         m.stats = &stats_;
         m.methodStats = lastFrame_.methodStats;
+        m.passCounters = lastFrame_.passCounters;
         m.tilesAvailable = methods_.primary().tileOverlayTexture() != 0;
         m.errorMapCurrent = errorView_.heatmapFor(sceneGeneration_, camera, size, settings_) != 0;
         m.meanFlip = errorView_.meanFlip();

@@ -11,8 +11,9 @@
 namespace starnt::viewer {
 namespace {
 
-constexpr std::array<const char*, 10> kKeys = {"method",    "split",  "view",      "alpha",    "background",
-                                               "spatial",   "scales", "inference", "temporal", "target-fps"};
+constexpr std::array<const char*, 14> kKeys = {"method",     "split",       "view",        "alpha",     "background",
+                                               "spatial",    "scales",      "inference",   "temporal",  "target-fps",
+                                               "scale-rule", "tile-signal", "scale-guard", "temporal-mode"};
 
 std::string checkedMethod(const std::string& name, const char* key) {
     const auto names = methodNames();
@@ -89,6 +90,14 @@ void ViewerSettings::set(const std::string& key, const std::string& value) {
         parseInferenceOption(value, next.options);
     } else if (key == "temporal") {
         parseTemporalOption(value, next.options);
+    } else if (key == "scale-rule") {
+        parseScaleRuleOption(value, next.options);
+    } else if (key == "tile-signal") {
+        parseTileSignalOption(value, next.options);
+    } else if (key == "scale-guard") {
+        parseScaleGuardOption(value, next.options);
+    } else if (key == "temporal-mode") {
+        parseTemporalModeOption(value, next.options);
     } else if (key == "target-fps") {
         parseTargetFpsOption(parseNumber(value, "target-fps"), next.options);
     } else {
@@ -101,7 +110,9 @@ bool needsNewMethods(const ViewerSettings& a, const ViewerSettings& b) {
     const MethodOptions &x = a.options, &y = b.options;
     return a.method != b.method || a.splitMethod != b.splitMethod || x.spatial != y.spatial ||
            x.fixedScale2 != y.fixedScale2 || x.fixedScale3 != y.fixedScale3 || x.inference != y.inference ||
-           x.temporalInterval != y.temporalInterval || x.temporalAuto != y.temporalAuto || x.targetFps != y.targetFps;
+           x.temporalInterval != y.temporalInterval || x.temporalAuto != y.temporalAuto || x.targetFps != y.targetFps ||
+           x.scaleRule != y.scaleRule || x.tileSignal != y.tileSignal || x.scaleGuard != y.scaleGuard ||
+           x.temporalMode != y.temporalMode || x.mboitMoments != y.mboitMoments;
 }
 
 }  // namespace starnt::viewer

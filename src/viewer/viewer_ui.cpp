@@ -106,10 +106,18 @@ void accelerationSection(ViewerSettings& next, std::string& problem) {
         changed |= ImGui::SliderInt("pass 3 (x25%)", &p3, 1, 4);
         if (changed) setOrReport(next, "scales", std::to_string(p2 * 25) + "," + std::to_string(p3 * 25), problem);
     }
+    std::string rule = scaleRuleText(next.options);
+    if (combo("scale rule", {"snapped", "continuous", "step"}, rule)) setOrReport(next, "scale-rule", rule, problem);
+    std::string signal = tileSignalText(next.options);
+    if (combo("tile signal", {"back", "composite"}, signal)) setOrReport(next, "tile-signal", signal, problem);
+    bool guard = next.options.scaleGuard;
+    if (ImGui::Checkbox("scale guard (probe frames)", &guard)) setOrReport(next, "scale-guard", guard ? "on" : "off", problem);
     std::string inference = next.options.inference == MethodOptions::Inference::Corners ? "corners" : "full";
     if (combo("inference", {"full", "corners"}, inference)) setOrReport(next, "inference", inference, problem);
     std::string temporal = temporalText(next.options);
     if (combo("temporal", {"off", "auto", "2", "3", "4"}, temporal)) setOrReport(next, "temporal", temporal, problem);
+    std::string mode = temporalModeText(next.options);
+    if (combo("interpolated frames", {"refresh", "warp"}, mode)) setOrReport(next, "temporal-mode", mode, problem);
     static float targetFps = 60.0f;  // edited locally; applied when the drag ends (a rebuild each step would stall)
     if (!ImGui::IsAnyItemActive()) targetFps = float(next.options.targetFps);
     ImGui::SliderFloat("target FPS", &targetFps, 1.0f, 240.0f, "%.0f");
@@ -188,6 +196,21 @@ void timingPanel(const UiModel& m) {
             ImGui::Text("%8.3f ms", ms);
         }
         ImGui::EndTable();
+    }
+    if (!m.passCounters.empty()) {
+        ImGui::TextDisabled("work of the last frame (pipeline statistics)");
+        if (ImGui::BeginTable("counters", 3, ImGuiTableFlags_SizingFixedFit)) {
+            for (const auto& [name, c] : m.passCounters) {
+                ImGui::TableNextRow();
+                ImGui::TableNextColumn();
+                ImGui::TextUnformatted(name.c_str());
+                ImGui::TableNextColumn();
+                ImGui::Text("%9.3f M fragments", double(c.fragmentInvocations) / 1e6);
+                ImGui::TableNextColumn();
+                ImGui::Text("%8.3f M vertices", double(c.vertexInvocations) / 1e6);
+            }
+            ImGui::EndTable();
+        }
     }
     ImGui::Separator();
     const nlohmann::json& ms = m.methodStats;

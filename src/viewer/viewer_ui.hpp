@@ -2,6 +2,9 @@
 // (per-pass running medians, frame-time graph, method counters). The panels only read the model
 // and return what the user asked for; the app applies it at the start of the next frame.
 #pragma once
+#include <map>
+
+#include "core/gpu_timer.hpp"
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,6 +28,7 @@ struct UiModel {
     CameraMode cameraMode = CameraMode::Orbit;
     const FrameStatistics* stats = nullptr;
     nlohmann::json methodStats;  // the primary method's lastFrameStats()
+    std::map<std::string, gl::PassCounters> passCounters;  // the primary method's last frame
     bool tilesAvailable = false;
     // Error view: whether a FLIP map for the current inputs exists, and its numbers.
     bool errorMapCurrent = false;
