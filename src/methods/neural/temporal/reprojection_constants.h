@@ -16,5 +16,8 @@
 // Refresh frames: below this transmittance through the kept frame's nearest layer, what lay behind
 // it is not divided out (it was hardly visible); the background stands in for it.
 #define STARNT_TEMPORAL_MIN_TRANSMITTANCE 1e-4
+// Refresh frames resample what lay behind the nearest layer bilinearly over the texels of the
+// source's surface: those whose view depth differs from the source texel's by at most this fraction.
+#define STARNT_TEMPORAL_SAME_SURFACE 0.01
 
 #endif

@@ -38,6 +38,7 @@ namespace {
 
 struct SearchState {
     int bestIndex = -1;
+    glm::vec2 bestPosition{0.0f};
     float bestViewDepth = std::numeric_limits<float>::infinity();
     int farIndex = -1;
     float farDepth = -1.0f;
@@ -60,6 +61,7 @@ void search(const ReprojectionFrame& f, glm::vec2 c, float z, const Reprojection
             if (s.newViewDepth < state.bestViewDepth) {
                 state.bestViewDepth = s.newViewDepth;
                 state.bestIndex = index;
+                state.bestPosition = q;
             }
             return;
         }
@@ -69,7 +71,7 @@ void search(const ReprojectionFrame& f, glm::vec2 c, float z, const Reprojection
 
 }  // namespace
 
-std::vector<int> reprojectionSourcesOnCpu(const ReprojectionFrame& f, const Reprojection& r) {
+std::vector<ReprojectionSource> reprojectionSearchOnCpu(const ReprojectionFrame& f, const Reprojection& r) {
     const int w = f.width, h = f.height;
     const size_t n = size_t(w) * size_t(h);
     if (w < 1 || h < 1 || f.color.size() != n || f.depth.size() != n) {
@@ -99,7 +101,7 @@ std::vector<int> reprojectionSourcesOnCpu(const ReprojectionFrame& f, const Repr
             seeds[size_t(by) * size_t(bw) + size_t(bx)] = m;
         }
 
-    std::vector<int> out(n);
+    std::vector<ReprojectionSource> out(n);
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
             const glm::vec2 c = (glm::vec2(float(x), float(y)) + 0.5f) / glm::vec2(float(w), float(h)) * 2.0f - 1.0f;
@@ -111,9 +113,16 @@ std::vector<int> reprojectionSourcesOnCpu(const ReprojectionFrame& f, const Repr
             if (nearest != here) search(f, c, nearest, r, state);
             if (farthest != here && state.bestIndex < 0) search(f, c, farthest, r, state);
             const int source = state.bestIndex >= 0 ? state.bestIndex : state.farIndex >= 0 ? state.farIndex : y * w + x;
-            out[size_t(y) * size_t(w) + size_t(x)] = source;
+            out[size_t(y) * size_t(w) + size_t(x)] = {source, state.bestIndex >= 0, state.bestPosition};
         }
     }
+    return out;
+}
+
+std::vector<int> reprojectionSourcesOnCpu(const ReprojectionFrame& f, const Reprojection& r) {
+    const std::vector<ReprojectionSource> found = reprojectionSearchOnCpu(f, r);
+    std::vector<int> out(found.size());
+    for (size_t i = 0; i < found.size(); ++i) out[i] = found[i].index;
     return out;
 }
 
@@ -122,6 +131,40 @@ std::vector<glm::vec4> reprojectOnCpu(const ReprojectionFrame& f, const Reprojec
     std::vector<glm::vec4> out(sources.size());
     for (size_t i = 0; i < sources.size(); ++i) out[i] = f.color[size_t(sources[i])];
     return out;
+}
+
+glm::vec3 refreshPixel(const ReprojectionFrame& kept, const std::vector<glm::vec4>& keptNearest, const Reprojection& r,
+                       const ReprojectionSource& source, const glm::vec4& nearest, const glm::vec3& background) {
+    const int w = kept.width, h = kept.height;
+    auto inverseViewDepthAt = [&](int x, int y) {
+        const glm::vec2 ndc = (glm::vec2(float(x), float(y)) + 0.5f) / glm::vec2(float(w), float(h)) * 2.0f - 1.0f;
+        return glm::dot(r.sourceScale, glm::vec4(ndc, kept.depth[size_t(y) * size_t(w) + size_t(x)] * 2.0f - 1.0f, 1.0f));
+    };
+    if (source.consistent && nearest.a > 0.0f) {
+        const glm::vec2 f = source.position - 0.5f;
+        const glm::ivec2 base(int(std::floor(f.x)), int(std::floor(f.y)));
+        const glm::vec2 frac = f - glm::vec2(base);
+        const int sx = source.index % w, sy = source.index / w;
+        const float reference = inverseViewDepthAt(sx, sy);
+        glm::vec3 sum(0.0f);
+        float weight = 0.0f, own = 0.0f;
+        for (int k = 0; k < 4; ++k) {
+            const int tx = std::clamp(base.x + (k & 1), 0, w - 1), ty = std::clamp(base.y + (k >> 1), 0, h - 1);
+            const float wk = ((k & 1) ? frac.x : 1.0f - frac.x) * ((k >> 1) ? frac.y : 1.0f - frac.y);
+            if (std::abs(inverseViewDepthAt(tx, ty) / reference - 1.0f) > float(STARNT_TEMPORAL_SAME_SURFACE)) continue;
+            const size_t t = size_t(ty) * size_t(w) + size_t(tx);
+            const float open = 1.0f - keptNearest[t].a;
+            if (!(open > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE))) continue;
+            sum += wk * (glm::vec3(kept.color[t]) - keptNearest[t].a * glm::vec3(keptNearest[t])) / open;
+            weight += wk;
+            if (tx == sx && ty == sy) own += wk;
+        }
+        if (weight > 0.0f && own < 0.999f * weight) {
+            return nearest.a * glm::vec3(nearest) + (1.0f - nearest.a) * glm::max(sum / weight, glm::vec3(0.0f));
+        }
+    }
+    const size_t s = size_t(source.index);
+    return refreshComposite(glm::vec3(kept.color[s]), keptNearest[s], nearest, background);
 }
 
 glm::vec3 refreshComposite(const glm::vec3& keptComposite, const glm::vec4& keptNearest, const glm::vec4& nearest,

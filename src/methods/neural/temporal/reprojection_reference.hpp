@@ -58,7 +58,14 @@ struct ReprojectionFrame {
 
 // The whole algorithm on the CPU; returns the reprojected colours in GL order.
 std::vector<glm::vec4> reprojectOnCpu(const ReprojectionFrame& frame, const Reprojection& reprojection);
-// The same search, returning each output pixel's source index (GL order) instead of its colour.
+// The same search, returning each output pixel's source: its texel index (GL order), whether it is
+// a consistent source (not a fallback), and then its continuous old window position.
+struct ReprojectionSource {
+    int index = 0;
+    bool consistent = false;
+    glm::vec2 position{0.0f};
+};
+std::vector<ReprojectionSource> reprojectionSearchOnCpu(const ReprojectionFrame& frame, const Reprojection& reprojection);
 std::vector<int> reprojectionSourcesOnCpu(const ReprojectionFrame& frame, const Reprojection& reprojection);
 
 // Refresh frames (SPEC 6, `--temporal-mode refresh`): the nearest layer is rendered fresh at the
@@ -72,5 +79,13 @@ std::vector<int> reprojectionSourcesOnCpu(const ReprojectionFrame& frame, const 
 // gives the fresh layer over the background. GLSL: refreshComposite in reprojection_search.frag.glsl.
 glm::vec3 refreshComposite(const glm::vec3& keptComposite, const glm::vec4& keptNearest, const glm::vec4& nearest,
                            const glm::vec3& background);
+// One refresh pixel as the GPU computes it: where the search found a consistent source and there is
+// a fresh nearest fragment, what lay behind the kept nearest layer is resampled bilinearly at the
+// source position from the 2x2 texels of the source's surface (view depth within
+// STARNT_TEMPORAL_SAME_SURFACE of the source texel's) and composited under the fresh layer; when the
+// source texel carries (nearly) all the weight, or otherwise, refreshComposite at the source texel
+// (so an unchanged pixel stays bit-exact). `keptNearest` is the kept pass-1 colour + alpha.
+glm::vec3 refreshPixel(const ReprojectionFrame& kept, const std::vector<glm::vec4>& keptNearest, const Reprojection& r,
+                       const ReprojectionSource& source, const glm::vec4& nearest, const glm::vec3& background);
 
 }  // namespace starnt::temporal

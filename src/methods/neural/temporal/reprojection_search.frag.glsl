@@ -11,11 +11,29 @@ layout(binding = 0) uniform highp sampler2D u_color;  // last real frame's compo
 layout(binding = 1) uniform highp sampler2D u_depth;  // its pass-1 window depth, 1 = nothing drawn
 layout(binding = 2) uniform highp sampler2D u_seeds;  // (min, max) depth around each pixel block
 
+uniform ivec2 u_size;
+// Rows 0, 1 and 3 of R = newViewProj * inverse(oldViewProj), and row 3 of inverse(oldViewProj).
+uniform vec4 u_row0, u_row1, u_row3, u_sourceScale;
+
 #ifdef STARNT_REFRESH
 // Refresh frames: the kept frame's pass-1 colour, and pass 1 rendered at the new camera.
 layout(binding = 3) uniform highp sampler2D u_keptNearest;
 layout(binding = 4) uniform highp sampler2D u_nearest;
 uniform vec3 u_background;
+
+// What lay behind the kept nearest layer at texel t (valid = its transmittance allows dividing).
+vec3 keptBehind(ivec2 t, out bool valid) {
+    vec4 n = texelFetch(u_keptNearest, t, 0);
+    float open = 1.0 - n.a;
+    valid = open > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE);
+    return valid ? (texelFetch(u_color, t, 0).rgb - n.a * n.rgb) / open : vec3(0.0);
+}
+
+// 1 / (old view depth) at texel t (row 3 of inverse(oldViewProj)).
+float inverseViewDepthAt(ivec2 t) {
+    vec2 ndc = (vec2(t) + 0.5) / vec2(u_size) * 2.0 - 1.0;
+    return dot(u_sourceScale, vec4(ndc, texelFetch(u_depth, t, 0).r * 2.0 - 1.0, 1.0));
+}
 
 // temporal::refreshComposite (reprojection_reference.hpp states it): the fresh nearest layer over
 // what lay behind the kept frame's nearest layer at the source texel.
@@ -29,9 +47,6 @@ vec3 refreshComposite(vec3 keptComposite, vec4 keptNearest, vec4 nearest, vec3 b
 }
 #endif
 
-uniform ivec2 u_size;
-// Rows 0, 1 and 3 of R = newViewProj * inverse(oldViewProj), and row 3 of inverse(oldViewProj).
-uniform vec4 u_row0, u_row1, u_row3, u_sourceScale;
 
 out vec4 o_color;
 
@@ -54,6 +69,7 @@ vec2 sourceFor(vec2 c, float z, out float newViewDepth) {
 // The search state of one pixel: the nearest consistent source so far, and the farthest texel
 // any search visited (the fallback for a disoccluded pixel).
 ivec2 bestTexel;
+vec2 bestPosition;  // the consistent source's old window position (continuous)
 float bestViewDepth;
 ivec2 farTexel;
 float farDepth;
@@ -77,6 +93,7 @@ void search(vec2 c, float z) {
             if (viewDepth < bestViewDepth) {
                 bestViewDepth = viewDepth;
                 bestTexel = t;
+                bestPosition = q;
             }
             return;
         }
@@ -103,6 +120,32 @@ void main() {
 
     ivec2 source = bestTexel.x >= 0 ? bestTexel : farTexel.x >= 0 ? farTexel : p;
 #ifdef STARNT_REFRESH
+    vec4 fresh = texelFetch(u_nearest, p, 0);
+    if (bestTexel.x >= 0 && fresh.a > 0.0) {
+        // temporal::refreshPixel: the behind shares of the 2x2 texels around the source position,
+        // weighted bilinearly, only those of the source's surface (depth-aware bilinear).
+        vec2 f = bestPosition - 0.5;
+        ivec2 base = ivec2(floor(f));
+        vec2 w = f - vec2(base);
+        float reference = inverseViewDepthAt(bestTexel);
+        vec3 sum = vec3(0.0);
+        float weight = 0.0, own = 0.0;
+        for (int k = 0; k < 4; ++k) {
+            ivec2 t = clamp(base + ivec2(k & 1, k >> 1), ivec2(0), u_size - 1);
+            float wk = ((k & 1) != 0 ? w.x : 1.0 - w.x) * ((k >> 1) != 0 ? w.y : 1.0 - w.y);
+            if (abs(inverseViewDepthAt(t) / reference - 1.0) > float(STARNT_TEMPORAL_SAME_SURFACE)) continue;
+            bool valid;
+            vec3 b = keptBehind(t, valid);
+            if (!valid) continue;
+            sum += wk * b;
+            weight += wk;
+            if (t == bestTexel) own += wk;
+        }
+        if (weight > 0.0 && own < 0.999 * weight) {
+            o_color = vec4(fresh.a * fresh.rgb + (1.0 - fresh.a) * max(sum / weight, vec3(0.0)), 1.0);
+            return;
+        }
+    }
     o_color = vec4(refreshComposite(texelFetch(u_color, source, 0).rgb, texelFetch(u_keptNearest, source, 0),
                                     texelFetch(u_nearest, p, 0), u_background), 1.0);
 #else

@@ -44,11 +44,20 @@ Shares sharesAt(ivec2 p) {
     return s;
 }
 
+// tiles::guardSamples: one pixel in STARNT_GUARD_SUBSAMPLE_MASK + 1, by an integer hash.
+bool guardSamples(ivec2 p) {
+    uint h = uint(p.x) * 0x8da6b343u ^ uint(p.y) * 0xd8163841u;
+    h ^= h >> 13;
+    h *= 0x165667b1u;
+    h ^= h >> 16;
+    return (h & STARNT_GUARD_SUBSAMPLE_MASK) == 0u;
+}
+
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     uint local = gl_LocalInvocationIndex;
     for (int i = 0; i < STARNT_GUARD_VALUES; ++i) s_values[i][local] = 0.0;
-    if (p.x < u_size.x && p.y < u_size.y) {
+    if (p.x < u_size.x && p.y < u_size.y && guardSamples(p)) {
         vec4 n = texelFetch(u_nearest, p, 0), sec = texelFetch(u_second, p, 0);
         if (n.a > 0.0) {
             vec3 c = texelFetch(u_composite, p, 0).rgb;

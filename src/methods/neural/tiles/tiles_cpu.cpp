@@ -217,6 +217,14 @@ Shares sharesAt(const glm::vec4& composite, const glm::vec4& nearest, const glm:
 
 }  // namespace
 
+bool guardSamples(int x, int y) {
+    uint32_t h = uint32_t(x) * 0x8da6b343u ^ uint32_t(y) * 0xd8163841u;
+    h ^= h >> 13;
+    h *= 0x165667b1u;
+    h ^= h >> 16;
+    return (h & STARNT_GUARD_SUBSAMPLE_MASK) == 0u;
+}
+
 ScaleGuard scaleGuardSums(int width, int height, const std::vector<glm::vec4>& composite,
                           const std::vector<glm::vec4>& nearest, const std::vector<glm::vec4>& second) {
     const TileGrid grid = TileGrid::forImage(width, height);
@@ -229,7 +237,7 @@ ScaleGuard scaleGuardSums(int width, int height, const std::vector<glm::vec4>& c
             for (int ly = 0; ly < STARNT_TILE_SIZE; ++ly) {
                 for (int lx = 0; lx < STARNT_TILE_SIZE; ++lx) {
                     const int x = tx * STARNT_TILE_SIZE + lx, y = ty * STARNT_TILE_SIZE + ly;
-                    if (x >= width || y >= height) continue;
+                    if (x >= width || y >= height || !guardSamples(x, y)) continue;
                     const glm::vec4 n = nearest[index(x, y)], sec = second[index(x, y)];
                     if (!(n.a > 0.0f)) continue;
                     const glm::vec3 c = glm::vec3(composite[index(x, y)]);

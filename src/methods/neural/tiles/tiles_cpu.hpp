@@ -71,6 +71,7 @@ float ruleScale(ScaleRule rule, double wBar, double delta);
 //   loss_p[k]: the composite against the one whose pass-p share is reconstructed bilinearly from
 //              every 2nd (k = 0) or 4th (k = 1) pixel, as a pass at scale 1/2 or 1/4 samples it.
 // Pass 2's share is C - a1 C1 (all behind the nearest layer), pass 3's C - a1 C1 - (1-a1) a2 C2.
+// Sums run over the pixels guardSamples() picks.
 struct ScaleGuard {
     float occupied = 0.0f;
     float energy2 = 0.0f, energy3 = 0.0f;
@@ -88,6 +89,9 @@ struct PassScales {
 PassScales guardScales(const ScaleGuard& guard, double budget);
 // The predicted loss of one pair (as above), for tests and stats.
 double guardPredictedLoss(const ScaleGuard& guard, float scale2, float scale3);
+
+// True for the pixels the guard evaluates (one in STARNT_GUARD_SUBSAMPLE_MASK + 1, by a hash).
+bool guardSamples(int x, int y);
 
 // Pixels in GL order (rows bottom-first): composite (rgb), pass-1 colour + alpha, pass-2 colour +
 // alpha, all at full resolution. Sums per 16x16 tile in pixel order, then over tiles in order (as
