@@ -47,11 +47,10 @@
 // STARNT_SCALE_SETTLE_FRAMES real frames after a reset are all probes (levels move by one a frame).
 #define STARNT_SCALE_PROBE_INTERVAL 8
 #define STARNT_SCALE_SETTLE_FRAMES 3
-// The guard evaluates one pixel in STARNT_GUARD_SUBSAMPLE, picked by an integer hash of its
-// position (tiles::guardSamples, GLSL guardSamples): an unbiased estimate of the sums that keeps no
-// alignment with the reduced sample grids, at a quarter of the cost (measured on llvmpipe at 720p:
-// the full evaluation took 180-250 ms per probe frame).
-#define STARNT_GUARD_SUBSAMPLE_MASK 3u
+// The guard evaluates one pixel of every 2x2 block, picked by an integer hash of the block
+// (tiles::guardPixelOfBlock): an unbiased estimate of the sums over the four classes of the
+// reduced sample grids, at a quarter of the cost, with one busy invocation per block (llvmpipe runs
+// every lane of a branch; measured at 720p there the per-pixel evaluation took 180-250 ms per probe).
 // Layout of the guard sums (floats after the four histogram counts in the readback buffer).
 #define STARNT_GUARD_OCCUPIED 0
 #define STARNT_GUARD_ENERGY_PASS2 1

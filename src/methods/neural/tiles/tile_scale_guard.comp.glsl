@@ -4,7 +4,7 @@
 #include "shaders/shared_constants.h"
 #include "methods/neural/tiles/tile_constants.h"
 
-layout(local_size_x = 16, local_size_y = 16) in;
+layout(local_size_x = 8, local_size_y = 8) in;  // one invocation per 2x2 block of the 16x16 tile
 layout(binding = 0) uniform highp sampler2D u_composite;  // linear RGB, full resolution
 layout(binding = 1) uniform highp sampler2D u_nearest;    // pass 1: C1, a1
 layout(binding = 2) uniform highp sampler2D u_second;     // pass 2 (full resolution): C2, a2
@@ -12,7 +12,7 @@ layout(std430, binding = STARNT_SSBO_TILE_GUARD) writeonly buffer TileSums { flo
 uniform ivec2 u_size;
 uniform ivec2 u_tiles;
 
-shared float s_values[STARNT_GUARD_VALUES][256];
+shared float s_values[STARNT_GUARD_VALUES][64];
 
 float srgbEncode(float linear) {
     float c = clamp(linear, 0.0, 1.0);
@@ -44,20 +44,21 @@ Shares sharesAt(ivec2 p) {
     return s;
 }
 
-// tiles::guardSamples: one pixel in STARNT_GUARD_SUBSAMPLE_MASK + 1, by an integer hash.
-bool guardSamples(ivec2 p) {
-    uint h = uint(p.x) * 0x8da6b343u ^ uint(p.y) * 0xd8163841u;
+// tiles::guardPixelOfBlock: the one pixel of each 2x2 block the guard evaluates, picked by an
+// integer hash of the block (every invocation works: no idle lanes).
+ivec2 guardPixelOfBlock(ivec2 block) {
+    uint h = uint(block.x) * 0x8da6b343u ^ uint(block.y) * 0xd8163841u;
     h ^= h >> 13;
     h *= 0x165667b1u;
     h ^= h >> 16;
-    return (h & STARNT_GUARD_SUBSAMPLE_MASK) == 0u;
+    return block * 2 + ivec2(int(h & 1u), int((h >> 1) & 1u));
 }
 
 void main() {
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 p = guardPixelOfBlock(ivec2(gl_GlobalInvocationID.xy));
     uint local = gl_LocalInvocationIndex;
     for (int i = 0; i < STARNT_GUARD_VALUES; ++i) s_values[i][local] = 0.0;
-    if (p.x < u_size.x && p.y < u_size.y && guardSamples(p)) {
+    if (p.x < u_size.x && p.y < u_size.y) {
         vec4 n = texelFetch(u_nearest, p, 0), sec = texelFetch(u_second, p, 0);
         if (n.a > 0.0) {
             vec3 c = texelFetch(u_composite, p, 0).rgb;
@@ -96,7 +97,7 @@ void main() {
     // One invocation per value sums the tile in pixel order (the CPU reference's order).
     if (local < uint(STARNT_GUARD_VALUES)) {
         float sum = 0.0;
-        for (int i = 0; i < 256; ++i) sum += s_values[local][i];
+        for (int i = 0; i < 64; ++i) sum += s_values[local][i];
         uint tile = gl_WorkGroupID.y * uint(u_tiles.x) + gl_WorkGroupID.x;
         tileSums[tile * uint(STARNT_GUARD_VALUES) + local] = sum;
     }

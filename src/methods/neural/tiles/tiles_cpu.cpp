@@ -217,13 +217,15 @@ Shares sharesAt(const glm::vec4& composite, const glm::vec4& nearest, const glm:
 
 }  // namespace
 
-bool guardSamples(int x, int y) {
-    uint32_t h = uint32_t(x) * 0x8da6b343u ^ uint32_t(y) * 0xd8163841u;
+glm::ivec2 guardPixelOfBlock(int blockX, int blockY) {
+    uint32_t h = uint32_t(blockX) * 0x8da6b343u ^ uint32_t(blockY) * 0xd8163841u;
     h ^= h >> 13;
     h *= 0x165667b1u;
     h ^= h >> 16;
-    return (h & STARNT_GUARD_SUBSAMPLE_MASK) == 0u;
+    return {blockX * 2 + int(h & 1u), blockY * 2 + int((h >> 1) & 1u)};
 }
+
+bool guardSamples(int x, int y) { return guardPixelOfBlock(x / 2, y / 2) == glm::ivec2(x, y); }
 
 ScaleGuard scaleGuardSums(int width, int height, const std::vector<glm::vec4>& composite,
                           const std::vector<glm::vec4>& nearest, const std::vector<glm::vec4>& second) {
@@ -234,10 +236,12 @@ ScaleGuard scaleGuardSums(int width, int height, const std::vector<glm::vec4>& c
     for (int ty = 0; ty < grid.tilesY; ++ty) {
         for (int tx = 0; tx < grid.tilesX; ++tx) {
             std::array<float, STARNT_GUARD_VALUES> tile{};
-            for (int ly = 0; ly < STARNT_TILE_SIZE; ++ly) {
-                for (int lx = 0; lx < STARNT_TILE_SIZE; ++lx) {
-                    const int x = tx * STARNT_TILE_SIZE + lx, y = ty * STARNT_TILE_SIZE + ly;
-                    if (x >= width || y >= height || !guardSamples(x, y)) continue;
+            // One pixel per 2x2 block, blocks in the shader's local invocation order.
+            for (int by = 0; by < STARNT_TILE_SIZE / 2; ++by) {
+                for (int bx = 0; bx < STARNT_TILE_SIZE / 2; ++bx) {
+                    const glm::ivec2 chosen = guardPixelOfBlock(tx * STARNT_TILE_SIZE / 2 + bx, ty * STARNT_TILE_SIZE / 2 + by);
+                    const int x = chosen.x, y = chosen.y;
+                    if (x >= width || y >= height) continue;
                     const glm::vec4 n = nearest[index(x, y)], sec = second[index(x, y)];
                     if (!(n.a > 0.0f)) continue;
                     const glm::vec3 c = glm::vec3(composite[index(x, y)]);

@@ -90,7 +90,10 @@ PassScales guardScales(const ScaleGuard& guard, double budget);
 // The predicted loss of one pair (as above), for tests and stats.
 double guardPredictedLoss(const ScaleGuard& guard, float scale2, float scale3);
 
-// True for the pixels the guard evaluates (one in STARNT_GUARD_SUBSAMPLE_MASK + 1, by a hash).
+// The pixel of 2x2 block (blockX, blockY) the guard evaluates, picked by an integer hash of the
+// block: one pixel in four, evenly over the classes of the reduced sample grids.
+glm::ivec2 guardPixelOfBlock(int blockX, int blockY);
+// True for the pixels the guard evaluates.
 bool guardSamples(int x, int y);
 
 // Pixels in GL order (rows bottom-first): composite (rgb), pass-1 colour + alpha, pass-2 colour +
