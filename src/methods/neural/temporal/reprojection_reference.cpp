@@ -140,22 +140,36 @@ glm::vec3 refreshPixel(const ReprojectionFrame& kept, const std::vector<glm::vec
         const glm::vec2 ndc = (glm::vec2(float(x), float(y)) + 0.5f) / glm::vec2(float(w), float(h)) * 2.0f - 1.0f;
         return glm::dot(r.sourceScale, glm::vec4(ndc, kept.depth[size_t(y) * size_t(w) + size_t(x)] * 2.0f - 1.0f, 1.0f));
     };
-    if (source.consistent && nearest.a > 0.0f) {
+    // (B, 1 / view depth) of a texel as reprojection_behind.frag.glsl stores it; false where the
+    // kept nearest layer hid what lay behind.
+    auto behindAt = [&](int x, int y, glm::vec3& b, float& inverseDepth) {
+        const size_t t = size_t(y) * size_t(w) + size_t(x);
+        const float open = 1.0f - keptNearest[t].a;
+        if (!(open > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE))) return false;
+        inverseDepth = inverseViewDepthAt(x, y);
+        b = (glm::vec3(kept.color[t]) - keptNearest[t].a * glm::vec3(keptNearest[t])) / open;
+        return true;
+    };
+    glm::vec3 unused;
+    float reference = 0.0f;
+    if (source.consistent && nearest.a > 0.0f && behindAt(source.index % w, source.index / w, unused, reference) &&
+        reference > 0.0f) {
         const glm::vec2 f = source.position - 0.5f;
         const glm::ivec2 base(int(std::floor(f.x)), int(std::floor(f.y)));
         const glm::vec2 frac = f - glm::vec2(base);
         const int sx = source.index % w, sy = source.index / w;
-        const float reference = inverseViewDepthAt(sx, sy);
         glm::vec3 sum(0.0f);
         float weight = 0.0f, own = 0.0f;
         for (int k = 0; k < 4; ++k) {
             const int tx = std::clamp(base.x + (k & 1), 0, w - 1), ty = std::clamp(base.y + (k >> 1), 0, h - 1);
             const float wk = ((k & 1) ? frac.x : 1.0f - frac.x) * ((k >> 1) ? frac.y : 1.0f - frac.y);
-            if (std::abs(inverseViewDepthAt(tx, ty) / reference - 1.0f) > float(STARNT_TEMPORAL_SAME_SURFACE)) continue;
-            const size_t t = size_t(ty) * size_t(w) + size_t(tx);
-            const float open = 1.0f - keptNearest[t].a;
-            if (!(open > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE))) continue;
-            sum += wk * (glm::vec3(kept.color[t]) - keptNearest[t].a * glm::vec3(keptNearest[t])) / open;
+            glm::vec3 b;
+            float inverseDepth = 0.0f;
+            if (!behindAt(tx, ty, b, inverseDepth) || !(inverseDepth > 0.0f) ||
+                std::abs(inverseDepth / reference - 1.0f) > float(STARNT_TEMPORAL_SAME_SURFACE)) {
+                continue;
+            }
+            sum += wk * b;
             weight += wk;
             if (tx == sx && ty == sy) own += wk;
         }

@@ -20,20 +20,7 @@ uniform vec4 u_row0, u_row1, u_row3, u_sourceScale;
 layout(binding = 3) uniform highp sampler2D u_keptNearest;
 layout(binding = 4) uniform highp sampler2D u_nearest;
 uniform vec3 u_background;
-
-// What lay behind the kept nearest layer at texel t (valid = its transmittance allows dividing).
-vec3 keptBehind(ivec2 t, out bool valid) {
-    vec4 n = texelFetch(u_keptNearest, t, 0);
-    float open = 1.0 - n.a;
-    valid = open > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE);
-    return valid ? (texelFetch(u_color, t, 0).rgb - n.a * n.rgb) / open : vec3(0.0);
-}
-
-// 1 / (old view depth) at texel t (row 3 of inverse(oldViewProj)).
-float inverseViewDepthAt(ivec2 t) {
-    vec2 ndc = (vec2(t) + 0.5) / vec2(u_size) * 2.0 - 1.0;
-    return dot(u_sourceScale, vec4(ndc, texelFetch(u_depth, t, 0).r * 2.0 - 1.0, 1.0));
-}
+layout(binding = 5) uniform highp sampler2D u_behind;  // reprojection_behind.frag.glsl: (B, 1 / view depth)
 
 // temporal::refreshComposite (reprojection_reference.hpp states it): the fresh nearest layer over
 // what lay behind the kept frame's nearest layer at the source texel.
@@ -127,17 +114,15 @@ void main() {
         vec2 f = bestPosition - 0.5;
         ivec2 base = ivec2(floor(f));
         vec2 w = f - vec2(base);
-        float reference = inverseViewDepthAt(bestTexel);
+        float reference = texelFetch(u_behind, bestTexel, 0).a;
         vec3 sum = vec3(0.0);
         float weight = 0.0, own = 0.0;
-        for (int k = 0; k < 4; ++k) {
+        for (int k = 0; k < 4 && reference > 0.0; ++k) {
             ivec2 t = clamp(base + ivec2(k & 1, k >> 1), ivec2(0), u_size - 1);
             float wk = ((k & 1) != 0 ? w.x : 1.0 - w.x) * ((k >> 1) != 0 ? w.y : 1.0 - w.y);
-            if (abs(inverseViewDepthAt(t) / reference - 1.0) > float(STARNT_TEMPORAL_SAME_SURFACE)) continue;
-            bool valid;
-            vec3 b = keptBehind(t, valid);
-            if (!valid) continue;
-            sum += wk * b;
+            vec4 b = texelFetch(u_behind, t, 0);
+            if (!(b.a > 0.0) || abs(b.a / reference - 1.0) > float(STARNT_TEMPORAL_SAME_SURFACE)) continue;
+            sum += wk * b.rgb;
             weight += wk;
             if (t == bestTexel) own += wk;
         }

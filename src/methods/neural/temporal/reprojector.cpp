@@ -27,6 +27,7 @@ Reprojector::Reprojector()
       dilateSeeds_(buildPass("reprojection_dilate_seeds", "reprojection_seeds.frag.glsl")),
       search_(buildPass("reprojection_search", "reprojection_search.frag.glsl")),
       searchRefresh_(buildPass("reprojection_refresh", "reprojection_search.frag.glsl", "#define STARNT_REFRESH 1\n")),
+      behindProgram_(buildPass("reprojection_behind", "reprojection_behind.frag.glsl")),
       emptyVao_(gl::makeEmptyVertexArray()) {}
 
 // Binds a framebuffer drawing into `texture` (attached on every call: a texture name cached
@@ -93,6 +94,18 @@ void Reprojector::capture(GLuint colorTexture, GLuint depthTexture, int width, i
     glUniform2i(dilateSeeds_.uniform("u_sourceSize"), blocksX, blocksY);
     glBindTextureUnit(0, blockMinMax_.id());
     gl::drawFullscreenTriangle(emptyVao_);
+    if (hasNearest_) {
+        if (behind_.width() != width || behind_.height() != height) behind_ = gl::Texture2D(GL_RGBA32F, width, height);
+        drawInto(behind_.id(), width, height);
+        glUseProgram(behindProgram_.id());
+        glUniform2i(behindProgram_.uniform("u_size"), width, height);
+        const Reprojection r = makeReprojection(viewProj, viewProj);
+        glUniform4fv(behindProgram_.uniform("u_sourceScale"), 1, glm::value_ptr(r.sourceScale));
+        glBindTextureUnit(0, color_.id());
+        glBindTextureUnit(1, depth_.id());
+        glBindTextureUnit(3, keptNearest_.id());
+        gl::drawFullscreenTriangle(emptyVao_);
+    }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     viewProj_ = viewProj;
     hasFrame_ = true;
@@ -127,6 +140,7 @@ void Reprojector::reprojectRefresh(const glm::mat4& newViewProj, GLuint nearestT
     setSearchUniforms(searchRefresh_, newViewProj);
     glBindTextureUnit(3, keptNearest_.id());
     glBindTextureUnit(4, nearestTexture);
+    glBindTextureUnit(5, behind_.id());
     glUniform3fv(searchRefresh_.uniform("u_background"), 1, glm::value_ptr(background));
     gl::drawFullscreenTriangle(emptyVao_);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -35,16 +35,17 @@ public:
 
     void reset() { hasFrame_ = false; }  // forgets the frame, keeps the allocations
     size_t gpuMemoryBytes() const {
-        return color_.bytes() + depth_.bytes() + keptNearest_.bytes() + blockMinMax_.bytes() + seeds_.bytes();
+        return color_.bytes() + depth_.bytes() + keptNearest_.bytes() + behind_.bytes() + blockMinMax_.bytes() +
+               seeds_.bytes();
     }
 
 private:
     void drawInto(GLuint texture, int width, int height);
     void setSearchUniforms(const gl::Program& program, const glm::mat4& newViewProj) const;
 
-    gl::Program blockSeeds_, dilateSeeds_, search_, searchRefresh_;
+    gl::Program blockSeeds_, dilateSeeds_, search_, searchRefresh_, behindProgram_;
     gl::VertexArrayHandle emptyVao_;
-    gl::Texture2D color_, depth_, keptNearest_;
+    gl::Texture2D color_, depth_, keptNearest_, behind_;
     bool hasNearest_ = false;
     gl::Texture2D blockMinMax_, seeds_;  // RG32F (min, max) depth per block, then dilated
     gl::FramebufferHandle framebuffer_;
