@@ -96,30 +96,33 @@ glm::vec3 dfaoitTarget(const FragmentList& sorted) {
     return glm::vec3(color);
 }
 
-glm::vec3 compositeStarnt(const Network& net, const PixelSums& s, glm::vec3 background) {
+namespace {
+
+// The composite both tail models share: the two peeled layers exactly, the tail exactly for N <= 3
+// (the third fragment follows from the sums), `deepTail` for N > 3, then the background.
+template <typename DeepTail>
+glm::vec3 compositeThreeLayersExact(const PixelSums& s, glm::vec3 background, DeepTail deepTail) {
     glm::vec3 tail(0.0f);
     if (s.count < 2.5f) {
         tail = glm::vec3(0.0f);
     } else if (s.count < 3.5f) {
         tail = glm::max(tailAlphaColor(s), glm::vec3(0.0f));
     } else {
-        const auto x = starntFeatures(s);
-        tail = net.forward(x.data());
+        tail = deepTail(starntFeatures(s));
     }
     return exactTwoLayers(s) + twoLayerTransmittance(s) * tail + s.transmittance * background;
 }
 
+}  // namespace
+
+glm::vec3 compositeStarnt(const Network& net, const PixelSums& s, glm::vec3 background) {
+    return compositeThreeLayersExact(s, background, [&](const auto& x) { return net.forward(x.data()); });
+}
+
 glm::vec3 compositeHybrid(const PixelSums& s, glm::vec3 background) {
-    glm::vec3 tail(0.0f);
-    if (s.count < 2.5f) {
-        tail = glm::vec3(0.0f);
-    } else if (s.count < 3.5f) {
-        tail = glm::max(tailAlphaColor(s), glm::vec3(0.0f));
-    } else {
-        const auto x = starntFeatures(s);  // t_tail, N, C_tilde
-        tail = (1.0f - x[0]) * glm::vec3(x[2], x[3], x[4]);
-    }
-    return exactTwoLayers(s) + twoLayerTransmittance(s) * tail + s.transmittance * background;
+    // x = (t_tail, N, C_tilde): the alpha-weighted mean tail colour under the tail's opacity.
+    return compositeThreeLayersExact(s, background,
+                                     [](const auto& x) { return (1.0f - x[0]) * glm::vec3(x[2], x[3], x[4]); });
 }
 
 glm::vec3 compositeDfaoit(const Network& net, const PixelSums& s, glm::vec3 background) {
