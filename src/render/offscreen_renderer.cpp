@@ -149,6 +149,8 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
         {"frame_ms_mean", mean(frameMs)},
         {"real_frame_ms", realMs.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(realMs))},
         {"interpolated_frame_ms", interpolatedMs.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(interpolatedMs))},
+        {"real_frame_ms_mean", realMs.empty() ? nlohmann::json(nullptr) : nlohmann::json(mean(realMs))},
+        {"interpolated_frame_ms_mean", interpolatedMs.empty() ? nlohmann::json(nullptr) : nlohmann::json(mean(interpolatedMs))},
         {"pass_ms", passes},
         {"scale_pass2", 1.0},
         {"scale_pass3", 1.0},
