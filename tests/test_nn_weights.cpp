@@ -24,7 +24,7 @@ Network sampleNetwork(NetworkKind kind) {
         net.inputScale[i] = 1.0f / (7.0f + static_cast<float>(i));
     }
     net.layers[0].weights[0] = 1e-30f;  // tiny and extreme values survive too
-    net.layers[0].weights[1] = -3.4e38f;
+    net.layers[0].weights[1] = -999999.94f;  // the largest magnitude a weights file may hold is 1e6
     net.layers[1].bias[3] = 0.1f;
     net.trainingSamples = 12345678901ULL;
     net.validationMse = 0.00123456789;

@@ -79,10 +79,12 @@ CapturedFrame TestScene::capture(const SurfaceOptions& surface) const {
 
 namespace starnt::test {
 
-CliRun run(const std::string& args) {
+CliRun run(const std::string& args) { return run(args, ""); }
+
+CliRun run(const std::string& args, const std::string& shellPrefix) {
     namespace fs = std::filesystem;
     fs::path dir = makeTempDir("cli_io");
-    std::string cmd = std::string(STARNT_CLI) + " " + args + " >" + (dir / "out").string() + " 2>" + (dir / "err").string();
+    std::string cmd = shellPrefix + std::string(STARNT_CLI) + " " + args + " >" + (dir / "out").string() + " 2>" + (dir / "err").string();
     int status = std::system(cmd.c_str());
     CliRun r;
     r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

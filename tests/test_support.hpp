@@ -57,6 +57,8 @@ struct CliRun {
     std::string out, err;
 };
 CliRun run(const std::string& args);
+// The same behind a shell prefix, e.g. "ulimit -v 1000000; " or "STARNT_PROGRESS_SECONDS=0 ".
+CliRun run(const std::string& args, const std::string& shellPrefix);
 
 // A bad invocation: non-zero exit (no crash), `mentions` on stderr, `mustNotExist` not written and
 // no temporary file left in its folder.

@@ -27,8 +27,13 @@ struct Image {
 float linearToSrgb(float linear);
 float srgbToLinear(float encoded);
 
+// Largest image loadImage reads: 16384 pixels on a side and 8192 x 8192 pixels in all (an image
+// in memory takes 16 bytes a pixel: 1 GiB at the limit; `compare` holds two).
+inline constexpr int kMaxImageSide = 16384;
+inline constexpr long long kMaxImagePixels = 8192LL * 8192LL;
+
 // Reads PNG (sRGB, decoded to linear) or EXR (linear). Throws starnt::Error on a missing,
-// unreadable or unsupported file.
+// unreadable, unsupported or too large (see above) file, and on a path that is not a regular file.
 Image loadImage(const std::string& path);
 
 // Writes by extension (.png or .exr). Throws starnt::Error; never leaves a partial file.
@@ -38,5 +43,30 @@ void saveExr(const Image& image, const std::string& path);  // linear float RGBA
 
 // Writes `contents` to `path` atomically (temp file + rename). Used for every output file.
 void writeFileAtomic(const std::string& path, const std::string& contents);
+
+// The bytes saveImage would write to `path` (format by extension).
+std::string encodeImage(const Image& image, const std::string& path);
+
+// Output files of one command that appear together or not at all. stage() writes each file at
+// once under a temporary name beside it (PATH.tmp-PID); commit() renames them all into place;
+// an OutputFiles destroyed without commit() (an error on the way) removes its temporaries. A
+// rename failing during commit() removes the files already renamed, so none is left.
+class OutputFiles {
+public:
+    OutputFiles() = default;
+    OutputFiles(const OutputFiles&) = delete;
+    OutputFiles& operator=(const OutputFiles&) = delete;
+    ~OutputFiles();
+    void stage(const std::string& path, const std::string& contents);
+    void stageImage(const Image& image, const std::string& path) { stage(path, encodeImage(image, path)); }
+    void commit();
+    size_t size() const { return staged_.size(); }
+
+private:
+    struct Entry {
+        std::string temporary, path;
+    };
+    std::vector<Entry> staged_;
+};
 
 }  // namespace starnt

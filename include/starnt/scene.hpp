@@ -18,6 +18,7 @@ struct Texture {
     int width = 0;
     int height = 0;
     std::vector<uint8_t> rgba8;  // as stored in the file: colour channels sRGB-encoded
+    std::string name;            // where it came from (file and image), for messages
 };
 
 struct Material {
@@ -57,7 +58,8 @@ struct Scene {
     size_t vertexCount() const;
 };
 
-// Loads "builtin:NAME" or a .gltf/.glb/.obj path. Validates the result (see validateScene).
+// Loads "builtin:NAME" or a .gltf/.glb/.obj path. Validates the result (see validateScene). Running
+// out of memory while loading is reported as starnt::Error naming the file.
 Scene loadScene(const std::string& spec);
 
 // Loaders for one format each; they also validate.
@@ -80,8 +82,12 @@ struct BuiltinPane {
 };
 std::vector<BuiltinPane> builtinPanes();
 
+// Largest vertex coordinate a scene may have: beyond, the bounds' radius (a squared length in
+// float) overflows and the image is silently blank.
+inline constexpr double kMaxSceneCoordinate = 1e18;
+
 // Checks a scene and normalises it. Throws starnt::Error for: indices out of range, index count
-// not a multiple of 3, NaN/Inf positions, attribute arrays of the wrong length, material or
+// not a multiple of 3, NaN/Inf positions or |coordinate| > kMaxSceneCoordinate, attribute arrays of the wrong length, material or
 // texture indices out of range, a scene with no renderable triangle. Zero-area triangles in an
 // otherwise valid mesh are removed (they cover no pixel) and counted in the return value; a
 // scene whose triangles are ALL zero-area is an error.

@@ -7,6 +7,8 @@
 #include "bench/bench_output.hpp"
 #include "bench/bench_plan.hpp"
 #include "bench/bench_runner.hpp"
+#include "render/method_options.hpp"
+#include "render/offscreen_renderer.hpp"
 #include "starnt/error.hpp"
 
 namespace starnt::app {
@@ -69,11 +71,13 @@ void addBenchCommand(CLI::App& app) {
         ->delimiter(',');
     cmd->add_option("--out", a->out, "output folder (created; files in it are replaced)")->required();
     cmd->add_option("--suite-dir", a->request.suiteDir, "scene suite folder; built-in scenes when absent")->capture_default_str();
-    cmd->add_option("--width", a->request.width, "override the preset's width");
-    cmd->add_option("--height", a->request.height, "override the preset's height");
-    cmd->add_option("--frames", a->request.frames, "override the preset's frame count (timings skip frame 1)");
+    cmd->add_option("--width", a->request.width, "override the preset's width")->check(CLI::Range(1, kMaxImageSize));
+    cmd->add_option("--height", a->request.height, "override the preset's height")->check(CLI::Range(1, kMaxImageSize));
+    cmd->add_option("--frames", a->request.frames, "override the preset's frame count (timings skip frame 1)")
+        ->check(CLI::Range(1, 10000));
     cmd->add_option("--camera-path", a->request.cameraPath, "override the preset's path: orbit:START,END[,ELEV] or keyframe .json");
-    cmd->add_option("--abuffer-cap-mib", a->request.abufferCapMib, "A-buffer memory cap in MiB (default 2048)");
+    cmd->add_option("--abuffer-cap-mib", a->request.abufferCapMib, "A-buffer memory cap in MiB (default 2048)")
+        ->check(CLI::Range(0.0, kMaxAbufferCapMib));  // 0: the default
     cmd->add_option("--python", a->python, "Python with matplotlib for the plots")->capture_default_str();
     cmd->add_flag("--no-plots", a->noPlots, "skip the plots");
     cmd->callback([a] {

@@ -21,8 +21,14 @@ void addCompareCommand(CLI::App& app) {
     cmd->add_option("--test", args->test, "test image (.png sRGB or .exr linear)")->required();
     cmd->add_flag("--json", args->json, "print {\"mse\": ..., \"flip\": ...}");
     cmd->add_option("--flip-map", args->flipMap, "write the FLIP error map (magma colours) to this PNG");
-    cmd->add_option("--ppd", args->ppd, "FLIP pixels per degree (default 67.02)");
+    cmd->add_option("--ppd", args->ppd, "FLIP pixels per degree, 1..1000 (default 67.02)");
     cmd->callback([args] {
+        if (!(args->ppd >= kFlipMinPixelsPerDegree && args->ppd <= kFlipMaxPixelsPerDegree)) {
+            char buf[160];
+            std::snprintf(buf, sizeof buf, "--ppd %g: pixels per degree must be within %g..%g", args->ppd,
+                          kFlipMinPixelsPerDegree, kFlipMaxPixelsPerDegree);
+            throw Error(buf);
+        }
         Image ref = loadImage(args->reference);
         Image test = loadImage(args->test);
         if (ref.width != test.width || ref.height != test.height) {
@@ -31,8 +37,13 @@ void addCompareCommand(CLI::App& app) {
                         std::to_string(test.height));
         }
         const double mse = mseSrgb(ref, test);
-        FlipResult flipResult = flip(ref, test, args->ppd);
-        if (!args->flipMap.empty()) saveImage(flipHeatmap(flipResult.errorMap), args->flipMap);
+        FlipResult flipResult;
+        if (args->flipMap.empty()) {
+            flipResult.mean = flipMean(ref, test, args->ppd);  // no full-size error map
+        } else {
+            flipResult = flip(ref, test, args->ppd);
+            saveImage(flipHeatmap(flipResult.errorMap), args->flipMap);
+        }
         if (args->json) {
             std::printf("%s\n", nlohmann::json{{"mse", mse}, {"flip", flipResult.mean}}.dump().c_str());
         } else {

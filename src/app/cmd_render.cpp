@@ -5,12 +5,14 @@
 #include <sstream>
 
 #include "app/commands.hpp"
+#include "app/render_progress.hpp"
 #include "methods/mboit/mboit_settings.hpp"
 #include "methods/registry.hpp"
 #include "render/method_options.hpp"
 #include "render/offscreen_renderer.hpp"
 #include "starnt/error.hpp"
 #include "starnt/gl_context.hpp"
+#include "starnt/nn.hpp"
 
 namespace starnt::app {
 namespace {
@@ -32,6 +34,7 @@ void checkOutputPath(const std::string& path, const std::string& wantedExt, cons
     if (!dir.empty() && !std::filesystem::is_directory(dir, ec)) {
         throw Error(std::string(flag) + " " + path + ": folder " + dir.string() + " does not exist");
     }
+    if (std::filesystem::is_directory(path, ec)) throw Error(std::string(flag) + " " + path + ": is a directory");
 }
 
 // Checks a numbered-output pattern: exactly one %d or %0Nd (N 1..9) and no other '%'.
@@ -91,7 +94,7 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--width", a->width, "image width")->capture_default_str();
     cmd->add_option("--height", a->height, "image height")->capture_default_str();
     cmd->add_option("--camera", a->camera, "orbit:DEG[,ELEV] or a camera .json (default: auto-framed)");
-    cmd->add_option("--alpha", a->alpha, "override every material's alpha (0..1)");
+    CLI::Option* alphaOption = cmd->add_option("--alpha", a->alpha, "override every material's alpha (0..1)");
     cmd->add_option("--alpha-cutoff", a->alphaCutoff, "discard fragments with alpha below this")->capture_default_str();
     cmd->add_option("--background", a->background, "background colour R,G,B (linear, 0..1)")->capture_default_str();
     cmd->add_flag("--unlit", a->unlit, "output base colour unshaded for every material");
@@ -112,13 +115,22 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--exr", a->exr, "also write linear float EXR");
     cmd->add_option("--stats", a->stats, "write statistics JSON");
     const CLI::Option* temporalModeOption = cmd->get_option("--temporal-mode");
-    cmd->callback([a, temporalModeOption] {
+    cmd->callback([a, alphaOption, temporalModeOption] {
         checkImageSize(a->width, a->height);
         if (a->frames < 1 || a->frames > 100000) throw Error("--frames must be in 1..100000");
-        if (a->alpha != -1.0 && !(a->alpha >= 0.0 && a->alpha <= 1.0)) throw Error("--alpha must be in [0, 1]");
+        if (alphaOption->count() > 0 && !(a->alpha >= 0.0 && a->alpha <= 1.0)) {
+            throw Error("--alpha " + alphaOption->as<std::string>() + ": must be in [0, 1]");
+        }
         if (!(a->alphaCutoff >= 0.0 && a->alphaCutoff <= 1.0)) throw Error("--alpha-cutoff must be in [0, 1]");
-        if (!(a->abufferCapMib > 0.0)) throw Error("--abuffer-cap-mib must be positive");
         mboit::parseMomentKind(a->mboitMoments);  // a bad value fails before any work
+        const size_t abufferCap = abufferCapBytes(a->abufferCapMib, "--abuffer-cap-mib");
+        if (!a->weights.empty()) {
+            if (a->method != "starnt" && a->method != "dfaoit") {
+                throw Error("--weights " + a->weights + ": method " + a->method +
+                            " has no network (only starnt and dfaoit read a weights file)");
+            }
+            nn::loadWeights(a->weights, nn::parseKind(a->method));  // a bad file fails before any rendering
+        }
         MethodOptions options;
         applyAccelerationFlags(a->acceleration, options);
         if (!a->camera.empty() && !a->cameraPath.empty()) throw Error("--camera and --camera-path exclude each other");
@@ -162,38 +174,65 @@ void addRenderCommand(CLI::App& app) {
         if (!a->cameraPath.empty()) job.path = parseCameraPathSpec(a->cameraPath, scene.bounds(), aspect);
         job.referenceMethod = a->referenceMethod;
         job.readTileOverlay = !a->tilesImage.empty();
-        if (a->alpha >= 0.0) job.surface.alphaOverride = float(a->alpha);
+        if (alphaOption->count() > 0) job.surface.alphaOverride = float(a->alpha);
         job.surface.forceUnlit = a->unlit;
         job.methodOptions = options;
         job.methodOptions.peelLayers = a->peelLayers;
         job.methodOptions.wboitWeight = a->wboitWeight;
         job.methodOptions.mboitMoments = a->mboitMoments;
         job.methodOptions.weightsPath = a->weights;
-        job.methodOptions.abufferMemoryCapBytes = size_t(a->abufferCapMib * 1024.0 * 1024.0);
+        job.methodOptions.abufferMemoryCapBytes = abufferCap;
         std::string frameLines;
         const bool numberedExr = isFramePattern(a->exr);
         if (numbered || numberedExr) job.readEveryFrame = true;
+        // Every output is staged under a temporary name and renamed only when all are written, so a
+        // failure (a later frame, the stats file) leaves none of them.
+        OutputFiles outputs;
+        RenderProgress progress(stderr, a->frames);
+        std::vector<double> timedMs[2];  // [interpolated]: frame times without the first frame
         job.onFrame = [&](const FrameRecord& record) {
             frameLines += record.stats.dump() + "\n";
-            if (numbered) saveImage(*record.image, framePath(a->out, record.index));
-            if (numberedExr) saveImage(*record.image, framePath(a->exr, record.index));
+            if (numbered) outputs.stageImage(*record.image, framePath(a->out, record.index));
+            if (numberedExr) outputs.stageImage(*record.image, framePath(a->exr, record.index));
+            if (record.index > 0 || a->frames == 1) {
+                timedMs[record.stats.value("interpolated", false) ? 1 : 0].push_back(record.stats.value("frame_ms", 0.0));
+            }
+            progress.frameDone(record.index);
         };
         RenderOutput out = renderScene(sceneGpu, job);
         if (!a->tilesImage.empty()) {
             if (!out.tileOverlay) throw Error("--tiles-image: method " + a->method + " produced no tile overlay");
-            saveImage(*out.tileOverlay, a->tilesImage);
+            outputs.stageImage(*out.tileOverlay, a->tilesImage);
         }
 
         out.stats["scene"] = a->scene;
         out.stats["triangles"] = scene.triangleCount();
         out.stats["gl_renderer"] = context.info().renderer;
-        if (!numbered) saveImage(out.image, a->out);
-        if (!a->exr.empty() && !numberedExr) saveImage(out.image, a->exr);
-        if (!a->frameStats.empty()) writeFileAtomic(a->frameStats, frameLines);
-        if (!a->stats.empty()) writeFileAtomic(a->stats, out.stats.dump(2) + "\n");
-        std::printf("%s: %s %dx%d, frame %.2f ms (median of %d), max %u fragments/pixel -> %s\n", a->method.c_str(),
-                    a->scene.c_str(), a->width, a->height, out.stats["frame_ms"].get<double>(),
-                    out.stats["timed_frames"].get<int>(), out.stats["max_fragments"].get<unsigned>(), a->out.c_str());
+        if (!numbered) outputs.stageImage(out.image, a->out);
+        if (!a->exr.empty() && !numberedExr) outputs.stageImage(out.image, a->exr);
+        if (!a->frameStats.empty()) outputs.stage(a->frameStats, frameLines);
+        if (!a->stats.empty()) outputs.stage(a->stats, out.stats.dump(2) + "\n");
+        outputs.commit();
+        auto meanOf = [](const std::vector<double>& v) {
+            double s = 0.0;
+            for (double x : v) s += x;
+            return v.empty() ? 0.0 : s / double(v.size());
+        };
+        if (!timedMs[1].empty()) {
+            // Temporal run: the median lands on interpolated frames; give the means instead.
+            const size_t timed = timedMs[0].size() + timedMs[1].size();
+            std::printf("%s: %s %dx%d, frame %.2f ms (mean of %zu), real frames %.2f ms (mean of %zu), interpolated "
+                        "%.2f ms (mean of %zu), max %u fragments/pixel -> %s\n",
+                        a->method.c_str(), a->scene.c_str(), a->width, a->height,
+                        (meanOf(timedMs[0]) * double(timedMs[0].size()) + meanOf(timedMs[1]) * double(timedMs[1].size())) /
+                            double(timed),
+                        timed, meanOf(timedMs[0]), timedMs[0].size(), meanOf(timedMs[1]), timedMs[1].size(),
+                        out.stats["max_fragments"].get<unsigned>(), a->out.c_str());
+        } else {
+            std::printf("%s: %s %dx%d, frame %.2f ms (median of %d), max %u fragments/pixel -> %s\n", a->method.c_str(),
+                        a->scene.c_str(), a->width, a->height, out.stats["frame_ms"].get<double>(),
+                        out.stats["timed_frames"].get<int>(), out.stats["max_fragments"].get<unsigned>(), a->out.c_str());
+        }
     });
 }
 

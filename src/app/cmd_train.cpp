@@ -1,5 +1,10 @@
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
+#include <fcntl.h>
+#include <filesystem>
+#include <unistd.h>
 
 #include "app/commands.hpp"
 #include "reference/training_data.hpp"
@@ -17,6 +22,23 @@ void progressBar(const char* label, double fraction, const std::string& suffix) 
     std::fprintf(stderr, "\r%-10s [%.*s%*s] %3d%% %s", label, filled, "##############################", width - filled, "",
                  int(fraction * 100.0 + 0.5), suffix.c_str());
     std::fflush(stderr);
+}
+
+// Training takes minutes: check --out first (a .json file in an existing folder we can write).
+void checkWeightsOutput(const std::string& out) {
+    namespace fs = std::filesystem;
+    std::string ext = fs::path(out).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != ".json") throw Error("--out " + out + ": a weights file must be a .json file");
+    std::error_code ec;
+    if (fs::is_directory(out, ec)) throw Error("--out " + out + ": is a directory");
+    const fs::path dir = fs::path(out).parent_path().empty() ? fs::path(".") : fs::path(out).parent_path();
+    if (!fs::is_directory(dir, ec)) throw Error("--out " + out + ": folder " + dir.string() + " does not exist");
+    const std::string probe = out + ".tmp-probe-" + std::to_string(::getpid());
+    const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd < 0) throw Error("--out " + out + ": cannot write in folder " + dir.string() + ": " + std::strerror(errno));
+    ::close(fd);
+    ::unlink(probe.c_str());
 }
 
 }  // namespace
@@ -40,6 +62,7 @@ void addTrainCommand(CLI::App& app) {
     cmd->add_option("--capture-height", a->captureHeight, "capture resolution height")->capture_default_str();
     cmd->callback([a] {
         const nn::NetworkKind kind = nn::parseKind(a->network);
+        checkWeightsOutput(a->out);
         if (a->samples < 1000 || a->samples > 10'000'000'000ull) throw Error("--samples must be in 1000..1e10");
         if (a->captureWidth < 8 || a->captureHeight < 8 || a->captureWidth > 1024 || a->captureHeight > 1024) {
             throw Error("--capture-width/--capture-height must be in 8..1024");

@@ -1,6 +1,8 @@
 // starnt: render, compare, train and benchmark OIT methods (SPEC section 9).
 #include <cstdio>
 #include <exception>
+#include <new>
+#include <string>
 
 #include "app/commands.hpp"
 #include "starnt/error.hpp"
@@ -21,10 +23,31 @@ int main(int argc, char** argv) {
     app.add_subcommand("scenes", "list the built-in scenes (use as --scene builtin:NAME)")->callback([] {
         for (const auto& s : starnt::builtinSceneNames()) std::printf("builtin:%s\n", s.c_str());
     });
+    if (argc > 1 && argv[1][0] != '-') {
+        bool known = false;
+        for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+            known = known || sub->check_name(argv[1]);
+        if (!known) {
+            std::fprintf(stderr, "starnt: error: unknown command '%s' (expected render, compare, train, bench, view, "
+                                 "methods or scenes; see starnt --help)\n", argv[1]);
+            return 1;
+        }
+    }
     try {
         app.parse(argc, argv);
+    } catch (const CLI::Success& e) {
+        return app.exit(e);  // --help (and the like): usage on stdout, exit 0
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);  // usage errors: message on stderr, non-zero exit (0 for --help)
+        // Usage errors: one line like every other error (SPEC 9), pointing at --help.
+        std::string message = e.what();
+        for (char& c : message)
+            if (c == '\n' || c == '\r') c = ' ';
+        while (!message.empty() && message.back() == ' ') message.pop_back();
+        std::fprintf(stderr, "starnt: error: %s (see starnt --help)\n", message.c_str());
+        return e.get_exit_code() != 0 ? e.get_exit_code() : 1;
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "starnt: error: out of memory\n");
+        return 1;
     } catch (const starnt::Error& e) {
         std::fprintf(stderr, "starnt: error: %s\n", e.what());
         return 1;

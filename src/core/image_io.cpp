@@ -23,6 +23,7 @@
 #include <iterator>
 #include <memory>
 #include <sstream>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace starnt {
@@ -47,6 +48,16 @@ void checkWritable(const Image& image, const std::string& path) {
                     " floats, expected " + std::to_string(image.pixelCount() * 4));
 }
 
+std::string encodePng(const Image& image, const std::string& path);
+std::string encodeExr(const Image& image, const std::string& path);
+
+void checkImageDimensions(long long w, long long h, const std::string& path) {
+    if (w > kMaxImageSide || h > kMaxImageSide || w * h > kMaxImagePixels)
+        throw Error("image " + path + " is " + std::to_string(w) + "x" + std::to_string(h) +
+                    ": larger than this tool reads (at most " + std::to_string(kMaxImageSide) + " pixels on a side and " +
+                    std::to_string(kMaxImagePixels) + " pixels in all, i.e. 8192x8192)");
+}
+
 std::string readWholeFile(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error("cannot open image " + path + ": " + std::strerror(errno));
@@ -63,6 +74,7 @@ Image loadPng(const std::string& path) {
     int w = 0, h = 0, comp = 0;
     if (!stbi_info_from_memory(bytes, len, &w, &h, &comp))
         throw Error("cannot read PNG " + path + ": " + stbi_failure_reason());
+    checkImageDimensions(w, h, path);
 
     Image img;
     if (stbi_is_16_bit_from_memory(bytes, len)) {
@@ -101,6 +113,7 @@ Image loadExr(const std::string& path) {
         const int w = dw.max.x - dw.min.x + 1;
         const int h = dw.max.y - dw.min.y + 1;
         if (w <= 0 || h <= 0) throw Error("cannot read EXR " + path + ": empty data window");
+        checkImageDimensions(w, h, path);
         Image img(w, h);
         const Imf::ChannelList& channels = file.header().channels();
         // Luminance-only files (channel Y, no R/G/B) are read as grey.
@@ -148,20 +161,32 @@ float srgbToLinear(float encoded) {
 }
 
 Image loadImage(const std::string& path) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) throw Error("cannot open image " + path + ": " + std::strerror(errno));
+    if (S_ISDIR(st.st_mode)) throw Error("cannot read image " + path + ": is a directory, not an image file");
+    if (!S_ISREG(st.st_mode)) throw Error("cannot read image " + path + ": not a regular file");
     const std::string ext = lowerExtension(path);
     if (ext == ".png") return loadPng(path);
     if (ext == ".exr") return loadExr(path);
     throw Error("cannot read image " + path + ": unsupported extension '" + ext + "' (expected .png or .exr)");
 }
 
-void saveImage(const Image& image, const std::string& path) {
+void saveImage(const Image& image, const std::string& path) { writeFileAtomic(path, encodeImage(image, path)); }
+
+void savePng(const Image& image, const std::string& path) { writeFileAtomic(path, encodePng(image, path)); }
+
+void saveExr(const Image& image, const std::string& path) { writeFileAtomic(path, encodeExr(image, path)); }
+
+std::string encodeImage(const Image& image, const std::string& path) {
     const std::string ext = lowerExtension(path);
-    if (ext == ".png") return savePng(image, path);
-    if (ext == ".exr") return saveExr(image, path);
+    if (ext == ".png") return encodePng(image, path);
+    if (ext == ".exr") return encodeExr(image, path);
     throw Error("cannot write image " + path + ": unsupported extension '" + ext + "' (expected .png or .exr)");
 }
 
-void savePng(const Image& image, const std::string& path) {
+namespace {
+
+std::string encodePng(const Image& image, const std::string& path) {
     checkWritable(image, path);
     std::vector<unsigned char> bytes(image.rgba.size());
     for (size_t i = 0; i < bytes.size(); ++i) {
@@ -174,11 +199,11 @@ void savePng(const Image& image, const std::string& path) {
     if (!stbi_write_png_to_func(appendToString, &encoded, image.width, image.height, 4, bytes.data(),
                                 image.width * 4))
         throw Error("cannot write PNG " + path + ": encoding failed");
-    writeFileAtomic(path, encoded);
+    return encoded;
 }
 
 // EXR output holds 32-bit FLOAT R, G, B, A channels (ZIP compressed), so a round trip is exact.
-void saveExr(const Image& image, const std::string& path) {
+std::string encodeExr(const Image& image, const std::string& path) {
     checkWritable(image, path);
     std::string encoded;
     try {
@@ -201,11 +226,11 @@ void saveExr(const Image& image, const std::string& path) {
     } catch (const std::exception& e) {
         throw Error("cannot write EXR " + path + ": " + e.what());
     }
-    writeFileAtomic(path, encoded);
+    return encoded;
 }
 
-void writeFileAtomic(const std::string& path, const std::string& contents) {
-    const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+// Writes `contents` to `tmp` (created or truncated); on failure removes it and throws naming `path`.
+void writeTemporary(const std::string& tmp, const std::string& path, const std::string& contents) {
     const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
     if (fd < 0) throw Error("cannot write " + path + ": " + std::strerror(errno));
     auto fail = [&](const std::string& what, int err) {
@@ -224,7 +249,47 @@ void writeFileAtomic(const std::string& path, const std::string& contents) {
         done += size_t(n);
     }
     if (::close(fd) != 0) fail("close failed", errno);
-    if (::rename(tmp.c_str(), path.c_str()) != 0) fail("rename failed", errno);
+}
+
+std::string temporaryName(const std::string& path) { return path + ".tmp-" + std::to_string(::getpid()); }
+
+}  // namespace
+
+void writeFileAtomic(const std::string& path, const std::string& contents) {
+    OutputFiles out;
+    out.stage(path, contents);
+    out.commit();
+}
+
+OutputFiles::~OutputFiles() {
+    for (const Entry& e : staged_) ::unlink(e.temporary.c_str());
+}
+
+void OutputFiles::stage(const std::string& path, const std::string& contents) {
+    const std::string tmp = temporaryName(path);
+    writeTemporary(tmp, path, contents);
+    for (const Entry& e : staged_)
+        if (e.path == path) return;  // staged again: the temporary now holds the new contents
+    staged_.push_back({tmp, path});
+}
+
+void OutputFiles::commit() {
+    // A target that is a folder would fail its rename after others succeeded: refuse them all first.
+    for (const Entry& e : staged_) {
+        struct stat st {};
+        if (::stat(e.path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
+            throw Error("cannot write " + e.path + ": is a directory");
+    }
+    for (size_t i = 0; i < staged_.size(); ++i) {
+        if (::rename(staged_[i].temporary.c_str(), staged_[i].path.c_str()) != 0) {
+            const int err = errno;
+            for (size_t k = 0; k < i; ++k) ::unlink(staged_[k].path.c_str());  // none or all
+            const std::string failed = staged_[i].path;
+            staged_.erase(staged_.begin(), staged_.begin() + std::ptrdiff_t(i));  // the rest are removed by ~OutputFiles
+            throw Error("cannot write " + failed + ": rename failed: " + std::strerror(err));
+        }
+    }
+    staged_.clear();
 }
 
 }  // namespace starnt

@@ -23,6 +23,10 @@
 //    weights to -1 (the Gaussian factor across the derivative direction is normalised to sum 1,
 //    which gives the same sums for the 2D kernel).
 //  - XYZ uses the sRGB/D65 matrix; the reference white is XYZ of linear RGB (1, 1, 1).
+//  - The image is processed in bands of rows, each read with a halo of the larger filter radius
+//    (rows clamped to the image), so the result is exactly the full-image result while the working
+//    memory is a band's (about 2 Mpixel) instead of a dozen full-size float planes.
+//  - Pixels per degree are limited to kFlipMinPixelsPerDegree..kFlipMaxPixelsPerDegree (1..1000).
 //  - The remapped colour error is clamped to [0, 1] (a safety net: in the RGB cube green/blue is the
 //    maximum pair the paper uses; no other pair is expected to exceed it).
 #include "starnt/error.hpp"
@@ -32,6 +36,7 @@
 #include <array>
 #include <bit>
 #include <cstdint>
+#include <cstdio>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -290,9 +295,17 @@ void normaliseSigned(std::vector<double>& k) {
     for (double& v : k) v = v > 0 ? v / pos : (v < 0 ? v / -neg : 0.0);
 }
 
+// ceil(extent) as a kernel radius in pixels. flip() checks ppd (<= kFlipMaxPixelsPerDegree) first, so
+// the radii stay below 140 pixels; the check here keeps the conversion to int defined regardless.
+int kernelRadius(double extent) {
+    const double r = std::ceil(extent);
+    if (!(r >= 0.0 && r <= 4096.0)) throw Error("flip: filter radius " + std::to_string(r) + " pixels out of range");
+    return int(r);
+}
+
 FeatureKernels featureKernels(double ppd) {
     const double sigma = 0.5 * kW * ppd;
-    const int r = int(std::ceil(3.0 * sigma));
+    const int r = kernelRadius(3.0 * sigma);
     std::vector<double> g, d1, d2;
     double gs = 0.0;
     for (int i = -r; i <= r; ++i) {
@@ -334,32 +347,51 @@ std::string sizeText(const Image& im) { return std::to_string(im.width) + "x" + 
 
 }  // namespace
 
-FlipResult flip(const Image& reference, const Image& test, double pixelsPerDegree) {
+namespace {
+
+// Rows clamp(y0 - halo) .. clamp(y1 + halo - 1) of `img` as an image of their own: the rows a band
+// [y0, y1) of the result reads through filters of radius <= halo, with the image's clamp-to-edge
+// borders already applied, so filtering the band gives exactly the full image's values there.
+Image bandOf(const Image& img, int y0, int y1, int halo) {
+    Image band;
+    band.width = img.width;
+    band.height = (y1 - y0) + 2 * halo;
+    const size_t rowFloats = size_t(img.width) * 4;
+    band.rgba.resize(size_t(band.height) * rowFloats);
+    for (int r = 0; r < band.height; ++r) {
+        const int sy = std::clamp(y0 - halo + r, 0, img.height - 1);
+        std::copy_n(img.rgba.begin() + std::ptrdiff_t(size_t(sy) * rowFloats), rowFloats,
+                    band.rgba.begin() + std::ptrdiff_t(size_t(r) * rowFloats));
+    }
+    return band;
+}
+
+// The FLIP error of every pixel, computed in bands of rows (each with a halo of the filters'
+// radius) so the working memory is a band's, not the image's; the error map is written when asked.
+double flipBands(const Image& reference, const Image& test, double pixelsPerDegree, Image* errorMap) {
     if (reference.width != test.width || reference.height != test.height)
         throw Error("flip: image sizes differ: reference " + sizeText(reference) + ", test " + sizeText(test));
     if (reference.width <= 0 || reference.height <= 0)
         throw Error("flip: empty images (" + sizeText(reference) + ")");
     if (reference.rgba.size() != reference.pixelCount() * 4 || test.rgba.size() != test.pixelCount() * 4)
         throw Error("flip: pixel buffer size does not match the image size");
-    if (!(pixelsPerDegree > 0.0) || !std::isfinite(pixelsPerDegree))
-        throw Error("flip: pixels per degree must be positive, got " + std::to_string(pixelsPerDegree));
+    if (!std::isfinite(pixelsPerDegree) || !(pixelsPerDegree >= kFlipMinPixelsPerDegree) ||
+        !(pixelsPerDegree <= kFlipMaxPixelsPerDegree)) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "flip: pixels per degree must be within %g..%g, got %g", kFlipMinPixelsPerDegree,
+                      kFlipMaxPixelsPerDegree, pixelsPerDegree);
+        throw Error(buf);
+    }
 
     const int w = reference.width, h = reference.height;
     double bMax = 0.0;
     for (const auto& channel : kCsf)
         for (const CsfTerm& t : channel) bMax = std::max(bMax, t.b);
-    const int csfRadius =
-        int(std::ceil(3.0 * std::sqrt(bMax / (2.0 * std::numbers::pi * std::numbers::pi)) * pixelsPerDegree));
+    const int csfRadius = kernelRadius(3.0 * std::sqrt(bMax / (2.0 * std::numbers::pi * std::numbers::pi)) * pixelsPerDegree);
     std::array<std::vector<SeparableTerm>, 3> csf;
     for (size_t c = 0; c < 3; ++c) csf[c] = csfTerms(kCsf[c], csfRadius, pixelsPerDegree);
-
-    const Prepared ref = prepare(reference, csf);
-    const Prepared tst = prepare(test, csf);
-
     const FeatureKernels fk = featureKernels(pixelsPerDegree);
-    Plane edgeR, pointR, edgeT, pointT;
-    featureMagnitudes(ref.luminance, w, h, fk, edgeR, pointR);
-    featureMagnitudes(tst.luminance, w, h, fk, edgeT, pointT);
+    const int halo = std::max(csfRadius, int(fk.gauss.size() / 2));
 
     const double dMax = maxColourDistance();
     const float cutoff = float(kPc * dMax);
@@ -367,30 +399,56 @@ FlipResult flip(const Image& reference, const Image& test, double pixelsPerDegre
     const float highSlope = float((1.0 - kPt) / (dMax - kPc * dMax));
     const float invSqrt2 = float(1.0 / std::numbers::sqrt2);
 
-    FlipResult result;
-    result.errorMap = Image(w, h, 1.0f);
+    if (errorMap) *errorMap = Image(w, h, 1.0f);
+    // About 2 Mpixel per band (plus halo), at least 4 halos tall to keep the halo overhead small.
+    const int bandRows = std::min(h, std::max({16, 4 * halo, int((size_t(1) << 21) / size_t(w))}));
     double sum = 0.0;
-    const size_t n = reference.pixelCount();
-    for (size_t i = 0; i < n; ++i) {
-        float labR[3], labT[3];
-        filteredToHuntLab(ref, i, labR);
-        filteredToHuntLab(tst, i, labT);
-        const float d = std::pow(hyab(labR, labT), float(kQc));
-        float colourErr = d < cutoff ? lowSlope * d : float(kPt) + (d - cutoff) * highSlope;
-        colourErr = std::clamp(colourErr, 0.0f, 1.0f);
+    for (int y0 = 0; y0 < h; y0 += bandRows) {
+        const int y1 = std::min(h, y0 + bandRows);
+        const Image refBand = bandOf(reference, y0, y1, halo);
+        const Image tstBand = bandOf(test, y0, y1, halo);
+        const int bh = refBand.height;
+        const Prepared ref = prepare(refBand, csf);
+        const Prepared tst = prepare(tstBand, csf);
+        Plane edgeR, pointR, edgeT, pointT;
+        featureMagnitudes(ref.luminance, w, bh, fk, edgeR, pointR);
+        featureMagnitudes(tst.luminance, w, bh, fk, edgeT, pointT);
 
-        const float de = std::fabs(edgeR[i] - edgeT[i]);
-        const float dp = std::fabs(pointR[i] - pointT[i]);
-        static_assert(kQf == 0.5, "the feature exponent is applied as a square root");
-        const float featureErr = std::min(1.0f, std::sqrt(std::max(de, dp) * invSqrt2));
+        const size_t first = size_t(halo) * size_t(w), last = first + size_t(y1 - y0) * size_t(w);
+        for (size_t i = first; i < last; ++i) {
+            float labR[3], labT[3];
+            filteredToHuntLab(ref, i, labR);
+            filteredToHuntLab(tst, i, labT);
+            const float d = std::pow(hyab(labR, labT), float(kQc));
+            float colourErr = d < cutoff ? lowSlope * d : float(kPt) + (d - cutoff) * highSlope;
+            colourErr = std::clamp(colourErr, 0.0f, 1.0f);
 
-        const float e = featureErr == 0.0f ? colourErr : std::pow(colourErr, 1.0f - featureErr);
-        float* px = &result.errorMap.rgba[i * 4];
-        px[0] = px[1] = px[2] = e;
-        sum += double(e);
+            const float de = std::fabs(edgeR[i] - edgeT[i]);
+            const float dp = std::fabs(pointR[i] - pointT[i]);
+            static_assert(kQf == 0.5, "the feature exponent is applied as a square root");
+            const float featureErr = std::min(1.0f, std::sqrt(std::max(de, dp) * invSqrt2));
+
+            const float e = featureErr == 0.0f ? colourErr : std::pow(colourErr, 1.0f - featureErr);
+            if (errorMap) {
+                float* px = &errorMap->rgba[(size_t(y0) * size_t(w) + (i - first)) * 4];
+                px[0] = px[1] = px[2] = e;
+            }
+            sum += double(e);
+        }
     }
-    result.mean = sum / double(n);
+    return sum / double(reference.pixelCount());
+}
+
+}  // namespace
+
+FlipResult flip(const Image& reference, const Image& test, double pixelsPerDegree) {
+    FlipResult result;
+    result.mean = flipBands(reference, test, pixelsPerDegree, &result.errorMap);
     return result;
+}
+
+double flipMean(const Image& reference, const Image& test, double pixelsPerDegree) {
+    return flipBands(reference, test, pixelsPerDegree, nullptr);
 }
 
 Image flipHeatmap(const Image& errorMap) {

@@ -8,6 +8,7 @@
 //   "seed": 1, "training_samples": 10000000, "validation_mse": 0.0012,
 //   "layers": [{"weights": [out*in floats, row-major], "bias": [out floats]}, ...]
 // }
+// Every number must be finite with |value| <= 1e6 (kMaxMagnitude).
 // Floats are written with 17 significant digits (nlohmann's double output), so a float survives
 // the round trip exactly.
 #include <cmath>
@@ -25,6 +26,10 @@ namespace {
 
 constexpr const char* kFormat = "starnt-weights";
 constexpr int kVersion = 1;
+// Largest magnitude accepted for any weight, bias, input offset or input scale. The shipped networks
+// stay below 20 and the trainer's largest input scale is 1e6 (1 / a standard deviation of 1e-6);
+// with every value within 1e6 and inputs within 1e3, no layer's sum can leave float range.
+constexpr double kMaxMagnitude = 1e6;
 
 const char* activationName(Network::Layer::Activation a) { return a == Network::Layer::ReLU ? "relu" : "sigmoid"; }
 
@@ -41,8 +46,15 @@ void checkFiniteArray(const std::vector<float>& values, size_t expected, const s
                       const std::string& field) {
     if (values.size() != expected)
         fail(what, field + " has " + std::to_string(values.size()) + " values, expected " + std::to_string(expected));
-    for (size_t i = 0; i < values.size(); ++i)
+    for (size_t i = 0; i < values.size(); ++i) {
         if (!std::isfinite(values[i])) fail(what, field + "[" + std::to_string(i) + "] is not a finite float");
+        if (std::fabs(values[i]) > kMaxMagnitude) {
+            std::ostringstream msg;
+            msg << field << "[" << i << "] = " << values[i] << " is beyond the plausible range (|value| <= "
+                << kMaxMagnitude << ")";
+            fail(what, msg.str());
+        }
+    }
 }
 
 // Reads a JSON array of numbers as floats; non-numbers and values outside float range fail.
@@ -57,6 +69,12 @@ std::vector<float> readFloats(const nlohmann::json& j, const std::string& what, 
         const float f = static_cast<float>(d);
         if (!std::isfinite(d) || !std::isfinite(f))
             fail(what, field + "[" + std::to_string(i) + "] is not a finite float (" + v.dump() + ")");
+        if (std::fabs(d) > kMaxMagnitude) {
+            std::ostringstream msg;
+            msg << field << "[" << i << "] = " << v.dump() << " is beyond the plausible range (|value| <= " << kMaxMagnitude
+                << ")";
+            fail(what, msg.str());
+        }
         out.push_back(f);
     }
     return out;

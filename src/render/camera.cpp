@@ -87,8 +87,19 @@ Camera parseCameraSpec(const std::string& spec, const Bounds& bounds, float aspe
         if (j.contains("fov_y_deg")) cam.fovYDeg = j.at("fov_y_deg").get<float>();
         if (!(cam.fovYDeg > 0.5f && cam.fovYDeg < 179.0f)) throw Error("camera file " + spec + ": fov_y_deg must be in (0.5, 179)");
         if (glm::length(cam.position - cam.target) < 1e-9f) throw Error("camera file " + spec + ": position equals target");
-        if (glm::length(glm::cross(glm::normalize(cam.target - cam.position), cam.up)) < 1e-6f) {
-            throw Error("camera file " + spec + ": 'up' is parallel to the view direction");
+        auto text = [](const glm::vec3& v) {
+            std::ostringstream s;
+            s << "[" << v.x << ", " << v.y << ", " << v.z << "]";
+            return s.str();
+        };
+        if (!(glm::length(cam.up) > 1e-12f)) {
+            throw Error("camera file " + spec + ": 'up' " + text(cam.up) + " is a zero vector (e.g. use [0, 1, 0])");
+        }
+        const glm::vec3 viewDir = glm::normalize(cam.target - cam.position);
+        if (glm::length(glm::cross(viewDir, glm::normalize(cam.up))) < 1e-4f) {
+            throw Error("camera file " + spec + ": 'up' " + text(cam.up) +
+                        " is parallel to the view direction from 'position' to 'target' " + text(viewDir) +
+                        " (choose an 'up' across the view)");
         }
         fitClipPlanes(cam, bounds);
         if (j.contains("near")) cam.nearPlane = j.at("near").get<float>();

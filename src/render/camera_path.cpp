@@ -32,6 +32,12 @@ glm::vec3 catmullRom(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& 
                    (-p0 + 3.0f * p1 - 3.0f * p2 + p3) * u3);
 }
 
+glm::vec3 fallbackUp(const glm::vec3& up) {
+    const glm::vec3 a = glm::abs(up);
+    const glm::vec3 axis = (a.x <= a.y && a.x <= a.z) ? glm::vec3(1, 0, 0) : (a.y <= a.z ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1));
+    return glm::normalize(glm::cross(up, axis));
+}
+
 void fitClipPlanes(Camera& cam, const Bounds& bounds) {
     const float r = std::max(bounds.radius(), 1e-6f);
     const float d = glm::length(cam.position - bounds.center());
@@ -92,6 +98,11 @@ Camera CameraPath::at(double t) const {
     cam.fovYDeg = key(i).fovYDeg + (key(i + 1).fovYDeg - key(i).fovYDeg) * u;
     cam.up = up_;
     if (glm::length(cam.position - cam.target) < 1e-9f) cam.target = cam.position + (key(i + 1).target - key(i + 1).position);
+    // Between keys the view can pass straight along 'up' (keys themselves are checked), where lookAt
+    // has no defined roll. Such a frame uses a fallback up perpendicular to 'up': cross(up, A) with A
+    // the world axis least aligned with 'up' (for up = +Y: -Z, as orbit cameras use at the poles).
+    const glm::vec3 dir = cam.target - cam.position;
+    if (glm::length(glm::cross(glm::normalize(dir), up_)) < 1e-4f) cam.up = fallbackUp(up_);
     fitClipPlanes(cam, bounds_);
     return cam;
 }

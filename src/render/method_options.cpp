@@ -1,6 +1,7 @@
 #include "render/method_options.hpp"
 
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 #include "starnt/error.hpp"
@@ -81,6 +82,15 @@ void parseTemporalModeOption(const std::string& text, MethodOptions& options) {
 void parseTargetFpsOption(double fps, MethodOptions& options) {
     if (!std::isfinite(fps) || !(fps > 0.0) || fps > 1000.0) throw Error("--target-fps must be in (0, 1000]");
     options.targetFps = fps;
+}
+
+size_t abufferCapBytes(double mib, const std::string& flag) {
+    if (!std::isfinite(mib) || !(mib > 0.0) || !(mib <= kMaxAbufferCapMib)) {
+        std::ostringstream msg;
+        msg << std::setprecision(10) << flag << " " << mib << ": the A-buffer memory cap must be positive and at most " << kMaxAbufferCapMib << " MiB";
+        throw Error(msg.str());
+    }
+    return size_t(mib * 1024.0 * 1024.0);  // <= 2^40: exact and in range
 }
 
 std::string spatialText(const MethodOptions& options) {

@@ -1,6 +1,7 @@
 // Text forms of the acceleration options (SPEC section 9), shared by `render`, `bench` and `view`
 // so every front end accepts and rejects exactly the same spellings.
 #pragma once
+#include <cstddef>
 #include <string>
 
 #include "starnt/oit_method.hpp"
@@ -25,6 +26,11 @@ void parseScaleGuardOption(const std::string& text, MethodOptions& options);
 void parseTemporalModeOption(const std::string& text, MethodOptions& options);
 // Target frame rate for --temporal auto: finite and in (0, 1000].
 void parseTargetFpsOption(double fps, MethodOptions& options);
+
+// The A-buffer memory cap from MiB (`flag` names the option in the message): finite, positive and at
+// most kMaxAbufferCapMib (1 TiB), converted without wrapping (1e30 used to become a cap of 0).
+inline constexpr double kMaxAbufferCapMib = 1024.0 * 1024.0;
+size_t abufferCapBytes(double mib, const std::string& flag);
 
 // The inverse, for stats and the viewer: e.g. "on"/"off", "auto" or "100,50", "auto" or "2".
 std::string spatialText(const MethodOptions& options);

@@ -176,6 +176,8 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
         {"frame_ms_mean", mean(frameMs)},
         {"real_frame_ms", realMs.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(realMs))},
         {"interpolated_frame_ms", interpolatedMs.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(interpolatedMs))},
+        {"real_frame_ms_mean", realMs.empty() ? nlohmann::json(nullptr) : nlohmann::json(mean(realMs))},
+        {"interpolated_frame_ms_mean", interpolatedMs.empty() ? nlohmann::json(nullptr) : nlohmann::json(mean(interpolatedMs))},
         {"pass_ms", passes},
         {"pass_counters", countersJson(counterSums, frameMs.size())},
         {"pass_counters_source", timer.countersAvailable() ? "GL_ARB_pipeline_statistics_query, mean per timed frame"

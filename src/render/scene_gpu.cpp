@@ -2,7 +2,11 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <cstdio>
+#include <string>
+
 #include "core/shader.hpp"
+#include "starnt/error.hpp"
 #include "shaders/shared_constants.h"
 
 namespace starnt {
@@ -20,12 +24,34 @@ SurfaceShader SceneGpu::surfaceShader() {
 }
 
 SceneGpu::SceneGpu(const Scene& scene) : materials_(scene.materials) {
-    for (const Texture& t : scene.textures) {
+    GLint maxSize = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    for (size_t i = 0; i < scene.textures.size(); ++i) {
+        const Texture& t = scene.textures[i];
+        const std::string label = "texture " + std::to_string(i) + (t.name.empty() ? "" : " (" + t.name + ")");
+        if (t.width > maxSize || t.height > maxSize) {
+            if (!textures_.empty()) glDeleteTextures(GLsizei(textures_.size()), textures_.data());
+            throw Error(label + " is " + std::to_string(t.width) + "x" + std::to_string(t.height) +
+                        " pixels: larger than this GL driver's GL_MAX_TEXTURE_SIZE of " + std::to_string(maxSize) +
+                        " (scale the image down)");
+        }
+        while (glGetError() != GL_NO_ERROR) {
+        }
         GLuint id = 0;
         glCreateTextures(GL_TEXTURE_2D, 1, &id);
         int levels = 1;
         while ((std::max(t.width, t.height) >> levels) > 0) ++levels;
         glTextureStorage2D(id, levels, GL_SRGB8_ALPHA8, t.width, t.height);
+        if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
+            glDeleteTextures(1, &id);
+            if (!textures_.empty()) glDeleteTextures(GLsizei(textures_.size()), textures_.data());
+            throw Error(label + " (" + std::to_string(t.width) + "x" + std::to_string(t.height) +
+                        "): the GL driver cannot allocate it (GL error 0x" + [e] {
+                            char b[16];
+                            std::snprintf(b, sizeof b, "%04x", unsigned(e));
+                            return std::string(b);
+                        }() + ")");
+        }
         glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
         glTextureSubImage2D(id, 0, 0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, t.rgba8.data());
         glGenerateTextureMipmap(id);

@@ -29,6 +29,7 @@ struct GltfContext {
     const std::string& path;
     const tinygltf::Model& model;
     Scene& scene;
+    size_t dataBytes = 0;               // the file and its buffers: bounds accessors without a buffer view
     std::map<int, int> textureOfImage;  // glTF image index -> Scene::textures index
     int defaultMaterial = -1;           // Scene::materials index of the default material, lazily added
 };
@@ -137,8 +138,12 @@ AccessorView viewAccessor(const GltfContext& ctx, int index, const std::string& 
     if (v.components == 0) throw Error(at + " has an invalid type " + std::to_string(acc.type));
     const size_t elementSize = csize * size_t(v.components);
     if (acc.bufferView < 0) {  // glTF: no bufferView means all zeros
-        if (acc.count > (size_t(1) << 26))
-            throw Error(at + " has no buffer view and an implausible count " + std::to_string(acc.count));
+        // Nothing in the file backs such an accessor, so a count is only plausible up to the size of
+        // the file and its buffers (a 735-byte file claiming 2^26 vertices took 1.3 GB before).
+        if (acc.count > ctx.dataBytes)
+            throw Error(at + " has no buffer view and claims " + std::to_string(acc.count) +
+                        " elements, more than the " + std::to_string(ctx.dataBytes) +
+                        " bytes of the file and its buffers");
         return v;
     }
     if (size_t(acc.bufferView) >= model.bufferViews.size())
@@ -248,7 +253,9 @@ int sceneTexture(GltfContext& ctx, int textureIndex, const std::string& at) {
     const tinygltf::Image& img = model.images[size_t(source)];
     int result = -1;
     if (img.image.empty()) {
-        detail::warn(at + ": image " + std::to_string(source) + " could not be decoded; material has no texture");
+        throw Error(at + ": image " + std::to_string(source) +
+                    (img.uri.empty() ? std::string() : " ('" + img.uri.substr(0, 200) + "')") +
+                    " could not be decoded (missing file or unsupported format)");
     } else {
         ctx.scene.textures.push_back(detail::toRgba8(img.image.data(), img.image.size(), img.width, img.height,
                                                      img.component, img.bits,
@@ -453,7 +460,53 @@ Scene loadGltf(const std::string& path) {
         if (f.read(magic, 4) && std::memcmp(magic, "glTF", 4) == 0) binary = true;
     }
 
+    if (binary) {
+        // GLB header: magic, version (uint32 LE), length. tinygltf reads version 1 files as version 2.
+        std::ifstream f(path, std::ios::binary);
+        unsigned char header[12] = {};
+        if (f.read(reinterpret_cast<char*>(header), 12) && std::memcmp(header, "glTF", 4) == 0) {
+            const uint32_t version = uint32_t(header[4]) | uint32_t(header[5]) << 8 | uint32_t(header[6]) << 16 |
+                                     uint32_t(header[7]) << 24;
+            if (version != 2)
+                throw Error(path + ": GLB container version " + std::to_string(version) +
+                            " is not supported (only glTF 2.0 binary files, version 2)");
+        }
+    }
+
     tinygltf::TinyGLTF loader;
+    // Buffer and image files go through here so a uri naming a folder is an error, not an exception
+    // from deep inside the stream library.
+    tinygltf::FsCallbacks fs{};
+    fs.FileExists = &tinygltf::FileExists;
+    fs.ExpandFilePath = &tinygltf::ExpandFilePath;
+    fs.WriteWholeFile = &tinygltf::WriteWholeFile;
+    fs.ReadWholeFile = [](std::vector<unsigned char>* out, std::string* err, const std::string& file, void* user) {
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(file, ec)) {
+            if (err) *err += "'" + file + "' is " + (std::filesystem::is_directory(file, ec) ? "a directory" : "not a regular file") + "\n";
+            return false;
+        }
+        try {
+            return tinygltf::ReadWholeFile(out, err, file, user);
+        } catch (const std::exception& e) {
+            if (err) *err += "cannot read '" + file + "': " + e.what() + "\n";
+            return false;
+        }
+    };
+    fs.user_data = nullptr;
+    loader.SetFsCallbacks(fs);
+    // tinygltf's decoder, with the image's uri added to its message.
+    loader.SetImageLoader(
+        [](tinygltf::Image* image, const int index, std::string* err, std::string* warn, int reqW, int reqH,
+           const unsigned char* bytes, int size, void* user) {
+            const bool ok = tinygltf::LoadImageData(image, index, err, warn, reqW, reqH, bytes, size, user);
+            if (!ok && err && image && !image->uri.empty() && image->uri.rfind("data:", 0) != 0) {
+                while (!err->empty() && err->back() == '\n') err->pop_back();
+                *err += " (uri '" + image->uri.substr(0, 200) + "')\n";
+            }
+            return ok;
+        },
+        nullptr);
     tinygltf::Model model;
     std::string err, warnings;
     const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warnings, path)
@@ -465,10 +518,21 @@ Scene loadGltf(const std::string& path) {
             if (c == '\n') c = ';';
         throw Error(path + ": cannot parse glTF: " + (msg.empty() ? "unknown tinygltf error" : msg));
     }
+    if (!err.empty()) {
+        // tinygltf reports some invalid values (e.g. a baseColorFactor of 3 numbers) in `err` and
+        // carries on with defaults: an error here too.
+        std::string msg = err;
+        while (!msg.empty() && (msg.back() == '\n' || msg.back() == ' ')) msg.pop_back();
+        for (char& c : msg)
+            if (c == '\n') c = ';';
+        throw Error(path + ": invalid glTF: " + msg);
+    }
 
     Scene scene;
     scene.name = std::filesystem::path(path).stem().string();
-    GltfContext ctx{path, model, scene, {}, -1};
+    GltfContext ctx{path, model, scene};
+    ctx.dataBytes = size_t(std::filesystem::file_size(path, ec));
+    for (const tinygltf::Buffer& b : model.buffers) ctx.dataBytes += b.data.size();
     convertMaterials(ctx);
 
     std::vector<int> roots;
@@ -483,7 +547,21 @@ Scene loadGltf(const std::string& path) {
             if (!children.count(int(i))) roots.push_back(int(i));
     }
     std::vector<int> nodePath;
-    for (int r : roots) addNode(ctx, r, glm::mat4(1.0f), nodePath);
+    try {
+        for (int r : roots) addNode(ctx, r, glm::mat4(1.0f), nodePath);
+    } catch (const std::bad_alloc&) {
+        // Say how large the file claims to be: the triangles of every node's mesh, from the accessors.
+        size_t claimed = 0;
+        for (const tinygltf::Node& n : model.nodes) {
+            if (n.mesh < 0 || size_t(n.mesh) >= model.meshes.size()) continue;
+            for (const tinygltf::Primitive& p : model.meshes[size_t(n.mesh)].primitives) {
+                const int a = p.indices >= 0 ? p.indices : (p.attributes.count("POSITION") ? p.attributes.at("POSITION") : -1);
+                if (a >= 0 && size_t(a) < model.accessors.size()) claimed += model.accessors[size_t(a)].count / 3;
+            }
+        }
+        throw Error(path + ": out of memory while loading the scene (" + std::to_string(claimed) +
+                    " triangles in its meshes, " + std::to_string(scene.triangleCount()) + " loaded so far)");
+    }
 
     if (scene.materials.empty()) defaultMaterial(ctx);
     validateScene(scene, path);

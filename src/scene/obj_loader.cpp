@@ -1,9 +1,15 @@
 // Wavefront OBJ loader on top of tinyobjloader (polygons triangulated as fans). One Scene mesh per
 // (shape, material). Texture coordinates are converted to the glTF convention used by Scene
 // (v = 0 at the first/top row of the image), i.e. v' = 1 - v.
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <tuple>
+#include <set>
+#include <sstream>
 #include <unordered_map>
 
 #include <stb_image.h>
@@ -53,6 +59,112 @@ int loadObjTexture(Scene& scene, std::map<std::string, int>& cache, const std::f
     return result;
 }
 
+// tinyobjloader reads a number it cannot parse ("nan", "1.2.3", "abc") as 0 and does not say so,
+// and keeps relative face indices that reach before the first vertex. This pass reads the text
+// once more and rejects such lines, naming file, line and value: every number on v/vt/vn lines (and
+// the colour and opacity lines of the MTL files) must parse completely and be finite, positions
+// within |x| <= kMaxSceneCoordinate, and face indices must be non-zero and not reach before vertex 1.
+std::string lineLabel(const std::string& path, size_t line) { return path + ":" + std::to_string(line); }
+
+double parseNumber(const std::string& token, const std::string& at, const std::string& what) {
+    const char* begin = token.c_str();
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(begin, &end);
+    if (end == begin || *end != '\0') throw Error(at + ": " + what + " '" + token + "' is not a number");
+    if (!std::isfinite(v) || (errno == ERANGE && std::fabs(v) > 1.0))
+        throw Error(at + ": " + what + " '" + token + "' is not a finite number");
+    return v;
+}
+
+void checkMtlNumbers(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    if (!in) return;  // tinyobjloader reports missing material libraries as a warning
+    std::string line;
+    size_t number = 0;
+    while (std::getline(in, line)) {
+        ++number;
+        std::istringstream words(line);
+        std::string key;
+        if (!(words >> key)) continue;
+        static const std::set<std::string> numeric = {"Ka", "Kd", "Ks", "Ke", "Tf", "d", "Tr", "Ns", "Ni"};
+        if (!numeric.count(key)) continue;
+        std::string token;
+        while (words >> token) {
+            if (token == "spectral" || token == "xyz") break;  // other Tf/Kd forms: left to tinyobjloader
+            parseNumber(token, lineLabel(file.string(), number), key + " value");
+        }
+    }
+}
+
+// Returns the number of triangles the faces make (an n-gon makes n - 2).
+size_t checkObjText(const std::string& path, const std::filesystem::path& dir) {
+    std::ifstream in(path);
+    if (!in) throw Error(path + ": cannot open OBJ file");
+    std::string line;
+    size_t number = 0;
+    long long vertices = 0, texcoords = 0, normals = 0;
+    std::set<std::string> libraries;
+    size_t triangles = 0;
+    while (std::getline(in, line)) {
+        ++number;
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream words(line);
+        std::string key;
+        if (!(words >> key)) continue;
+        if (key == "v" || key == "vt" || key == "vn") {
+            const std::string at = lineLabel(path, number);
+            std::string token;
+            int column = 0;
+            while (words >> token) {
+                if (token[0] == '#') break;
+                const double v = parseNumber(token, at, key + " coordinate");
+                if (key == "v" && column < 3 && std::fabs(v) > kMaxSceneCoordinate)
+                    throw Error(at + ": vertex " + std::to_string(vertices + 1) + " coordinate " + token +
+                                " is beyond the supported range (|x| <= 1e18)");
+                ++column;
+            }
+            (key == "v" ? vertices : key == "vt" ? texcoords : normals) += 1;
+        } else if (key == "f") {
+            const std::string at = lineLabel(path, number);
+            std::string token;
+            size_t corners = 0;
+            while (words >> token) {
+                if (token[0] == '#') break;
+                ++corners;
+                // v, v/vt, v//vn or v/vt/vn
+                size_t start = 0;
+                for (int part = 0; part < 3 && start <= token.size(); ++part) {
+                    const size_t slash = token.find('/', start);
+                    const std::string field = token.substr(start, slash == std::string::npos ? std::string::npos : slash - start);
+                    if (!field.empty()) {
+                        char* end = nullptr;
+                        const long long idx = std::strtoll(field.c_str(), &end, 10);
+                        const char* kinds[3] = {"vertex", "texture coordinate", "normal"};
+                        const char* plural[3] = {"vertices", "texture coordinates", "normals"};
+                        const long long defined = part == 0 ? vertices : part == 1 ? texcoords : normals;
+                        if (*end != '\0' || idx == 0)
+                            throw Error(at + ": face " + kinds[part] + " index '" + field + "' in '" + token +
+                                        "' is not a valid index (1-based, or negative for relative)");
+                        if (idx < 0 && -idx > defined)
+                            throw Error(at + ": face " + kinds[part] + " index " + field + " is out of range: only " +
+                                        std::to_string(defined) + " " + (defined == 1 ? kinds[part] : plural[part]) +
+                                        " are defined before this line");
+                    }
+                    if (slash == std::string::npos) break;
+                    start = slash + 1;
+                }
+            }
+            if (corners >= 3) triangles += corners - 2;
+        } else if (key == "mtllib") {
+            std::string name;
+            while (words >> name) libraries.insert(name);
+        }
+    }
+    for (const std::string& lib : libraries) checkMtlNumbers(dir / lib);
+    return triangles;
+}
+
 struct VertexKey {
     int v, vt, vn;
     bool operator==(const VertexKey& o) const { return v == o.v && vt == o.vt && vn == o.vn; }
@@ -66,10 +178,26 @@ struct VertexKeyHash {
 
 }  // namespace
 
+namespace {
+Scene loadCheckedObj(const std::string& path, const std::filesystem::path& dir);
+}
+
 Scene loadObj(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) throw Error(path + ": file not found");
     const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+    const size_t triangles = checkObjText(path, dir);
+    try {
+        return loadCheckedObj(path, dir);
+    } catch (const std::bad_alloc&) {
+        throw Error(path + ": out of memory while loading the scene (" + std::to_string(triangles) +
+                    " triangles in its faces): the scene is too large for this machine");
+    }
+}
+
+namespace {
+
+Scene loadCheckedObj(const std::string& path, const std::filesystem::path& dir) {
 
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
@@ -211,5 +339,7 @@ Scene loadObj(const std::string& path) {
     validateScene(scene, path);
     return scene;
 }
+
+}  // namespace
 
 }  // namespace starnt

@@ -41,6 +41,7 @@ Texture toRgba8(const unsigned char* pixels, size_t byteCount, int width, int he
         return static_cast<uint8_t>((uint32_t(v) * 255u + 32767u) / 65535u);
     };
     Texture t;
+    t.name = context;
     t.width = width;
     t.height = height;
     t.rgba8.resize(texels * 4);
@@ -99,17 +100,27 @@ Scene loadScene(const std::string& spec) {
         return s;
     }
     std::error_code ec;
+    if (std::filesystem::is_directory(spec, ec))
+        throw Error(spec + ": is a directory; --scene needs a .gltf, .glb or .obj file (or builtin:NAME)");
     if (!std::filesystem::is_regular_file(spec, ec))
         throw Error(spec + ": scene file not found (expected a .gltf, .glb or .obj file, or builtin:NAME)");
     const std::string ext = detail::lowerExtension(spec);
     Scene s;
-    if (ext == ".gltf" || ext == ".glb") {
-        s = loadGltf(spec);
-    } else if (ext == ".obj") {
-        s = loadObj(spec);
-    } else {
-        throw Error(spec + ": unknown scene file extension '" + ext +
-                    "' (expected .gltf, .glb or .obj, or builtin:NAME)");
+    try {
+        if (ext == ".gltf" || ext == ".glb") {
+            s = loadGltf(spec);
+        } else if (ext == ".obj") {
+            s = loadObj(spec);
+        } else {
+            throw Error(spec + ": unknown scene file extension '" + ext +
+                        "' (expected .gltf, .glb or .obj, or builtin:NAME)");
+        }
+    } catch (const std::bad_alloc&) {
+        const size_t triangles = s.triangleCount();  // 0 unless the loader had returned
+        const auto bytes = std::filesystem::file_size(spec, ec);
+        throw Error(spec + ": out of memory while loading the scene (" + (ec ? std::string("?") : std::to_string(bytes)) +
+                    "-byte file" + (triangles ? ", " + std::to_string(triangles) + " triangles" : "") +
+                    "): the scene is too large for this machine");
     }
     return s;
 }
@@ -167,10 +178,16 @@ size_t validateScene(Scene& scene, const std::string& source) {
                 throw Error(meshLabel(source, m) + ": index " + std::to_string(i) + " = " +
                             std::to_string(mesh.indices[i]) + " is out of range (" + std::to_string(n) +
                             " vertices)");
-        for (size_t v = 0; v < n; ++v)
-            if (!finite3(mesh.positions[v]))
+        for (size_t v = 0; v < n; ++v) {
+            const glm::vec3& p = mesh.positions[v];
+            if (!finite3(p))
                 throw Error(meshLabel(source, m) + ": vertex " + std::to_string(v) +
                             " has a NaN or infinite position");
+            if (std::max({std::fabs(double(p.x)), std::fabs(double(p.y)), std::fabs(double(p.z))}) > kMaxSceneCoordinate)
+                throw Error(meshLabel(source, m) + ": vertex " + std::to_string(v) + " position (" +
+                            std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) +
+                            ") is beyond the supported range (|coordinate| <= 1e18)");
+        }
         for (size_t v = 0; v < mesh.normals.size(); ++v)
             if (!finite3(mesh.normals[v]))
                 throw Error(meshLabel(source, m) + ": vertex " + std::to_string(v) +

@@ -1,0 +1,508 @@
+// Inputs from the user campaign that broke the error contract (SPEC 9: one line `starnt: error:
+// ...`, non-zero exit, no output files left): each is rejected where the data enters, with the file,
+// field and value in the message. Numbered by the item of the hardening round that found them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+#include <nlohmann/json.hpp>
+
+#include "scene_test_helpers.hpp"
+#include "starnt/camera.hpp"
+#include "starnt/camera_path.hpp"
+#include "starnt/error.hpp"
+#include "starnt/image.hpp"
+#include "starnt/metrics.hpp"
+#include "starnt/nn.hpp"
+#include "starnt/scene.hpp"
+#include "test_support.hpp"
+
+namespace fs = std::filesystem;
+using namespace starnt;
+using namespace starnt::test;
+using nlohmann::json;
+
+namespace {
+
+#define EXPECT_CONTAINS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << "text: " << (text)
+
+template <class F>
+std::string errorOf(F&& fn) {
+    try {
+        fn();
+    } catch (const Error& e) {
+        return e.what();
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << "expected starnt::Error, got another exception: " << e.what();
+        return {};
+    }
+    ADD_FAILURE() << "expected starnt::Error, nothing was thrown";
+    return {};
+}
+
+// A failed run: non-zero exit, one `starnt: error:` line on stderr mentioning every part.
+void expectOneLineError(const CliRun& r, const std::vector<std::string>& parts, const std::string& what) {
+    EXPECT_NE(r.exitCode, 0) << what;
+    EXPECT_NE(r.exitCode, -1) << "crashed: " << what;
+    EXPECT_EQ(r.err.rfind("starnt: error: ", 0), 0u) << what << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << what << ": " << r.err;
+    EXPECT_EQ(r.err.find("internal error"), std::string::npos) << what << ": " << r.err;
+    for (const auto& p : parts) EXPECT_NE(r.err.find(p), std::string::npos) << what << ": " << r.err << " lacks " << p;
+}
+
+std::string smallPng(const fs::path& dir, const std::string& name, int w = 16, int h = 12) {
+    const std::string path = (dir / name).string();
+    savePng(Image(w, h, 0.5f), path);
+    return path;
+}
+
+// A PNG whose header claims w x h (no pixel data): enough for the size check before decoding.
+void writePngHeader(const fs::path& path, uint32_t w, uint32_t h) {
+    std::vector<uint8_t> b = {0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a, 0, 0, 0, 13, 'I', 'H', 'D', 'R'};
+    for (uint32_t v : {w, h})
+        for (int i = 3; i >= 0; --i) b.push_back(uint8_t(v >> (8 * i)));
+    for (uint8_t v : {8, 6, 0, 0, 0}) b.push_back(v);  // 8-bit RGBA
+    uint32_t crc = 0xffffffffu;
+    for (size_t i = 12; i < b.size(); ++i) {
+        crc ^= b[i];
+        for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+    }
+    crc ^= 0xffffffffu;
+    for (int i = 3; i >= 0; --i) b.push_back(uint8_t(crc >> (8 * i)));
+    writeBytes(path, b);
+}
+
+json shippedWeights() {
+    std::ifstream f(fs::path(STARNT_SOURCE_DIR) / "src/methods/starnt/starnt_weights.json");
+    return json::parse(f);
+}
+
+}  // namespace
+
+// ---- 1. FLIP pixels per degree ----------------------------------------------------------------
+
+TEST(Hardening, CompareRejectsAbsurdPixelsPerDegree) {
+    const fs::path dir = makeTempDir("ppd");
+    const std::string a = smallPng(dir, "a.png"), b = smallPng(dir, "b.png");
+    for (const char* ppd : {"1e12", "1e10", "1e8", "1001", "0.5", "0", "-3", "nan", "inf"}) {
+        expectOneLineError(run("compare --reference " + a + " --test " + b + " --ppd " + ppd), {"--ppd", "1..1000"}, ppd);
+    }
+    CliRun ok = run("compare --reference " + a + " --test " + b + " --ppd 1000 --json");
+    EXPECT_EQ(ok.exitCode, 0) << ok.err;
+    // The library refuses them too (the radius computation overflowed at 1e12).
+    EXPECT_CONTAINS(errorOf([] { flip(Image(4, 4), Image(4, 4), 1e12); }), "1..1000");
+    EXPECT_CONTAINS(errorOf([] { flipMean(Image(4, 4), Image(4, 4), 1e8); }), "1e+08");
+}
+
+// ---- 10. FLIP in bands: same result, band-sized memory ------------------------------------------
+
+TEST(Hardening, FlipMeanMatchesFlipAndBandsAreSeamless) {
+    // Tall enough for two bands (about 2 Mpixel each): the content repeats every 64 rows, so away
+    // from the top and bottom edges the error map repeats too, across the band boundary included.
+    const int w = 8, h = 300000, period = 64;
+    Image a(w, h, 1.0f), b(w, h, 1.0f);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const int k = (y % period) * 7 + x * 3 + c;
+                a.pixel(x, y)[c] = float((k * 37) % 101) / 100.0f;
+                b.pixel(x, y)[c] = float((k * 53) % 97) / 96.0f;
+            }
+    const FlipResult r = flip(a, b);
+    EXPECT_EQ(flipMean(a, b), r.mean);
+    const int boundary = 262144;  // 2^21 / 8 rows: the first band's end
+    for (int y = boundary - 20; y < boundary + 20; ++y)
+        for (int x = 0; x < w; ++x) ASSERT_EQ(r.errorMap.pixel(x, y)[0], r.errorMap.pixel(x, y - 64 * 100)[0]) << x << "," << y;
+}
+
+// ---- 2. MiB values that wrapped --------------------------------------------------------------
+
+TEST(Hardening, AbufferCapOutOfRangeIsRejected) {
+    const fs::path dir = makeTempDir("cap");
+    const std::string out = (dir / "x.png").string();
+    for (const char* v : {"1e30", "0", "-5", "nan", "2e6"}) {
+        const CliRun r = run("render --scene builtin:panes --method abuffer --width 16 --height 12 --abuffer-cap-mib " +
+                             std::string(v) + " --out " + out);
+        expectOneLineError(r, {"--abuffer-cap-mib", "positive and at most 1048576 MiB"}, v);
+        EXPECT_FALSE(fs::exists(out));
+    }
+    expectOneLineError(run("bench --abuffer-cap-mib 1e30 --out " + (dir / "b").string()), {"--abuffer-cap-mib"}, "bench");
+}
+
+// ---- 3. Bad input that exited 0 ----------------------------------------------------------------
+
+TEST(Hardening, ObjWithUnparsableOrNonFiniteNumbers) {
+    const fs::path dir = makeTempDir("objnum");
+    const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    writeText(dir / "nan.obj", "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n");
+    std::string msg = errorOf([&] { loadScene((dir / "nan.obj").string()); });
+    EXPECT_CONTAINS(msg, "nan.obj:2");
+    EXPECT_CONTAINS(msg, "'nan'");
+    writeText(dir / "junk.obj", "v 0 0 0\nv 1 0 0\nv 0 1.2.3 0\nf 1 2 3\n");
+    msg = errorOf([&] { loadScene((dir / "junk.obj").string()); });
+    EXPECT_CONTAINS(msg, "junk.obj:3");
+    EXPECT_CONTAINS(msg, "'1.2.3' is not a number");
+    writeText(dir / "inf.obj", "v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n");
+    EXPECT_CONTAINS(errorOf([&] { loadScene((dir / "inf.obj").string()); }), "not a finite number");
+    writeText(dir / "uv.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt abc 0\nf 1/1 2/1 3/1\n");
+    EXPECT_CONTAINS(errorOf([&] { loadScene((dir / "uv.obj").string()); }), "vt coordinate 'abc'");
+    // MTL colour.
+    writeText(dir / "m.mtl", "newmtl red\nKd 1 nan 0\nd 0.5\n");
+    writeText(dir / "mtl.obj", "mtllib m.mtl\nusemtl red\n" + tri);
+    msg = errorOf([&] { loadScene((dir / "mtl.obj").string()); });
+    EXPECT_CONTAINS(msg, "m.mtl:2");
+    EXPECT_CONTAINS(msg, "Kd value 'nan'");
+    writeText(dir / "d.mtl", "newmtl red\nKd 1 0 0\nd zero\n");
+    writeText(dir / "d.obj", "mtllib d.mtl\nusemtl red\n" + tri);
+    EXPECT_CONTAINS(errorOf([&] { loadScene((dir / "d.obj").string()); }), "d value 'zero'");
+    // Through the command line: one line, no image.
+    const std::string out = (dir / "x.png").string();
+    expectOneLineError(run("render --width 16 --height 12 --scene " + (dir / "nan.obj").string() + " --out " + out),
+                       {"nan.obj:2"}, "cli");
+    EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(Hardening, WeightsWithAbsurdMagnitudes) {
+    const fs::path dir = makeTempDir("wmag");
+    struct Case {
+        const char* name;
+        std::function<void(json&)> change;
+        const char* mentions;
+    };
+    const std::vector<Case> cases = {
+        {"w1e30.json", [](json& j) { j["layers"][0]["weights"][3] = 1e30; }, "layers[0].weights[3]"},
+        {"w3e38.json", [](json& j) { j["layers"][2]["bias"][1] = 3e38; }, "layers[2].bias[1]"},
+        {"scale.json", [](json& j) { j["input_scale"][0] = 1e38; }, "input_scale[0]"},
+        {"offset.json", [](json& j) { j["input_offset"][4] = -2e6; }, "input_offset[4]"},
+    };
+    for (const Case& c : cases) {
+        json j = shippedWeights();
+        c.change(j);
+        writeText(dir / c.name, j.dump());
+        const std::string msg = errorOf([&] { nn::loadWeights(dir / c.name); });
+        EXPECT_CONTAINS(msg, c.name);
+        EXPECT_CONTAINS(msg, c.mentions);
+        EXPECT_CONTAINS(msg, "|value| <= 1e+06");
+    }
+    // The shipped file is well inside.
+    json j = shippedWeights();
+    writeText(dir / "good.json", j.dump());
+    EXPECT_NO_THROW(nn::loadWeights(dir / "good.json"));
+    // Through render: an error before rendering, no image.
+    const std::string out = (dir / "x.png").string();
+    expectOneLineError(run("render --scene builtin:panes --method starnt --width 16 --height 12 --weights " +
+                           (dir / "scale.json").string() + " --out " + out),
+                       {"scale.json", "input_scale[0]"}, "render");
+    EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(Hardening, WeightsForAMethodWithoutNetworkAndNegativeAlpha) {
+    const fs::path dir = makeTempDir("wnet");
+    const std::string out = (dir / "x.png").string();
+    const std::string weights = (fs::path(STARNT_SOURCE_DIR) / "src/methods/starnt/starnt_weights.json").string();
+    const std::string base = "render --scene builtin:panes --width 16 --height 12 --out " + out + " ";
+    expectOneLineError(run(base + "--method wboit --weights " + weights), {"--weights", "wboit", "no network"}, "wboit");
+    EXPECT_FALSE(fs::exists(out));
+    for (const char* alpha : {"-1", "-0.5", "1.5", "nan"}) {
+        expectOneLineError(run(base + "--method wboit --alpha " + alpha), {"--alpha", alpha}, alpha);
+        EXPECT_FALSE(fs::exists(out));
+    }
+    EXPECT_EQ(run(base + "--method wboit --alpha 0").exitCode, 0);
+}
+
+TEST(Hardening, GltfInvalidMaterialVersionAndTexture) {
+    const fs::path dir = makeTempDir("gltfbad");
+    GltfBuilder g = oneTriangle();
+    g.json["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorFactor", {1, 0.5, 0.2}}}}}});
+    g.json["meshes"][0]["primitives"][0]["material"] = 0;
+    g.writeGltf(dir / "rgb.gltf");
+    std::string msg = errorOf([&] { loadScene((dir / "rgb.gltf").string()); });
+    EXPECT_CONTAINS(msg, "rgb.gltf");
+    EXPECT_CONTAINS(msg, "baseColorFactor");
+
+    oneTriangle().writeGlb(dir / "v1.glb");
+    auto bytes = readBytes(dir / "v1.glb");
+    bytes[4] = 1;  // container version 1
+    writeBytes(dir / "v1.glb", bytes);
+    msg = errorOf([&] { loadScene((dir / "v1.glb").string()); });
+    EXPECT_CONTAINS(msg, "v1.glb");
+    EXPECT_CONTAINS(msg, "version 1");
+
+    GltfBuilder t = oneTriangle();
+    writeText(dir / "broken.png", "this is not a png");
+    t.json["images"] = json::array({{{"uri", "broken.png"}}});
+    t.json["textures"] = json::array({{{"source", 0}}});
+    t.json["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+    t.json["meshes"][0]["primitives"][0]["material"] = 0;
+    t.writeGltf(dir / "tex.gltf");
+    msg = errorOf([&] { loadScene((dir / "tex.gltf").string()); });
+    EXPECT_CONTAINS(msg, "tex.gltf");
+    EXPECT_CONTAINS(msg, "broken.png");
+}
+
+TEST(Hardening, BenchAndTrainCheckTheirOptionsFirst) {
+    const fs::path dir = makeTempDir("benchtrain");
+    for (const char* opt : {"--width 0", "--height -4", "--width 20000", "--frames 0"}) {
+        const CliRun r = run(std::string("bench ") + opt + " --out " + (dir / "b").string());
+        expectOneLineError(r, {std::string(opt).substr(0, std::string(opt).find(' '))}, opt);
+    }
+    EXPECT_FALSE(fs::exists(dir / "b"));
+    expectOneLineError(run("train --network starnt --out " + (dir / "x.txt").string()), {"x.txt", ".json"}, "txt");
+    expectOneLineError(run("train --network starnt --out /proc/starnt_weights.json"), {"/proc", "cannot write"}, "proc");
+    expectOneLineError(run("train --network starnt --out " + (dir / "nope/w.json").string()), {"does not exist"}, "dir");
+    for (const auto& e : fs::directory_iterator(dir)) ADD_FAILURE() << "left behind: " << e.path();
+}
+
+// ---- 4. Exceptions from deep inside instead of a message ---------------------------------------
+
+TEST(Hardening, DirectoriesWhereFilesBelong) {
+    const fs::path dir = makeTempDir("dirs");
+    fs::create_directories(dir / "bufdir");
+    GltfBuilder g = oneTriangle();
+    json j = g.finalJson(true);
+    j["buffers"][0]["uri"] = "bufdir";
+    writeText(dir / "bufdir.gltf", j.dump());
+    std::string msg = errorOf([&] { loadScene((dir / "bufdir.gltf").string()); });
+    EXPECT_CONTAINS(msg, "bufdir.gltf");
+    EXPECT_CONTAINS(msg, "is a directory");
+
+    const std::string a = smallPng(dir, "a.png");
+    expectOneLineError(run("compare --reference " + a + " --test " + (dir / "bufdir").string()), {"bufdir", "is a directory"},
+                       "compare");
+    fs::create_directories(dir / "d.png");
+    expectOneLineError(run("compare --reference " + (dir / "d.png").string() + " --test " + a), {"d.png", "is a directory"},
+                       "compare png");
+    expectOneLineError(run("render --width 16 --height 12 --scene " + (dir / "bufdir").string() + " --out " +
+                           (dir / "x.png").string()),
+                       {"bufdir", "is a directory"}, "scene");
+}
+
+TEST(Hardening, ImagesBeyondTheSizeLimit) {
+    const fs::path dir = makeTempDir("bigimg");
+    writePngHeader(dir / "huge.png", 16384, 16384);
+    writePngHeader(dir / "wide.png", 16385, 1);
+    for (const char* name : {"huge.png", "wide.png"}) {
+        const std::string msg = errorOf([&] { loadImage((dir / name).string()); });
+        EXPECT_CONTAINS(msg, name);
+        EXPECT_CONTAINS(msg, "8192x8192");
+        expectOneLineError(run("compare --reference " + (dir / name).string() + " --test " + (dir / name).string()),
+                           {name, "larger than"}, name);
+    }
+}
+
+TEST(Hardening, SceneExhaustingMemoryNamesFileAndTriangles) {
+#if defined(__SANITIZE_ADDRESS__)
+    GTEST_SKIP() << "AddressSanitizer reserves more address space than the ulimit this test sets";
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+    GTEST_SKIP() << "AddressSanitizer reserves more address space than the ulimit this test sets";
+#endif
+#endif
+    // A 1.2 MB buffer of 100k triangles instanced by 3000 nodes: 300 million triangles to bake.
+    const fs::path dir = makeTempDir("oom");
+    std::vector<float> pos;
+    for (int t = 0; t < 100000; ++t) {
+        const float x = float(t % 300), y = float(t / 300);
+        for (float v : {x, y, 0.0f, x + 1, y, 0.0f, x, y + 1, 0.0f}) pos.push_back(v);
+    }
+    GltfBuilder g = oneTriangle(pos, {});
+    json nodes = json::array();
+    json roots = json::array();
+    for (int i = 0; i < 3000; ++i) {
+        nodes.push_back({{"mesh", 0}, {"translation", {0, 0, double(i)}}});
+        roots.push_back(i);
+    }
+    g.json["nodes"] = nodes;
+    g.json["scenes"] = json::array({{{"nodes", roots}}});
+    g.writeGlb(dir / "huge.glb");
+    const CliRun r = run("render --width 16 --height 12 --scene " + (dir / "huge.glb").string() + " --out " +
+                             (dir / "x.png").string(),
+                         "ulimit -v 1500000; ");
+    expectOneLineError(r, {"huge.glb", "out of memory", "300000000 triangles"}, "oom");
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+// ---- 5. Geometry and cameras -------------------------------------------------------------------
+
+TEST(Hardening, AbsurdCoordinatesAreRejected) {
+    const fs::path dir = makeTempDir("coords");
+    oneTriangle({0, 0, 0, 1e19f, 0, 0, 0, 1, 0}).writeGlb(dir / "far.glb");
+    std::string msg = errorOf([&] { loadScene((dir / "far.glb").string()); });
+    EXPECT_CONTAINS(msg, "far.glb");
+    EXPECT_CONTAINS(msg, "vertex 1");
+    EXPECT_CONTAINS(msg, "1e18");
+    writeText(dir / "far.obj", "v 0 0 0\nv 1 0 0\nv 0 -2e19 0\nf 1 2 3\n");
+    msg = errorOf([&] { loadScene((dir / "far.obj").string()); });
+    EXPECT_CONTAINS(msg, "far.obj:3");
+    EXPECT_CONTAINS(msg, "vertex 3");
+    // Large but representable scenes still load.
+    oneTriangle({0, 0, 0, 1e17f, 0, 0, 0, 1e17f, 0}).writeGlb(dir / "big.glb");
+    EXPECT_NO_THROW(loadScene((dir / "big.glb").string()));
+}
+
+TEST(Hardening, CameraUpZeroOrAlongTheView) {
+    const fs::path dir = makeTempDir("camup");
+    const Bounds b{glm::vec3(-1.0f), glm::vec3(1.0f)};
+    writeText(dir / "zero.json", R"({"position": [0, 0, 5], "target": [0, 0, 0], "up": [0, 0, 0]})");
+    std::string msg = errorOf([&] { parseCameraSpec((dir / "zero.json").string(), b, 1.0f); });
+    EXPECT_CONTAINS(msg, "zero.json");
+    EXPECT_CONTAINS(msg, "'up' [0, 0, 0] is a zero vector");
+    writeText(dir / "par.json", R"({"position": [0, 5, 0], "target": [0, 0, 0], "up": [0, 2, 0]})");
+    msg = errorOf([&] { parseCameraSpec((dir / "par.json").string(), b, 1.0f); });
+    EXPECT_CONTAINS(msg, "par.json");
+    EXPECT_CONTAINS(msg, "'up' [0, 2, 0] is parallel to the view direction");
+    const std::string out = (dir / "x.png").string();
+    expectOneLineError(run("render --scene builtin:panes --width 16 --height 12 --camera " + (dir / "zero.json").string() +
+                           " --out " + out),
+                       {"zero.json", "'up'"}, "cli");
+    EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(Hardening, KeyframePathThroughThePoleUsesFallbackUp) {
+    // Halfway between the keys the camera looks straight down the up axis.
+    const Bounds b{glm::vec3(-1.0f), glm::vec3(1.0f)};
+    const CameraPath path =
+        CameraPath::keyframes({{{-1, 5, 0}, {0, 0, 0}, 45.0f}, {{1, 5, 0}, {0, 0, 0}, 45.0f}}, b, glm::vec3(0, 1, 0));
+    const Camera mid = path.at(0.5);
+    EXPECT_NEAR(mid.position.x, 0.0f, 1e-6f);
+    EXPECT_EQ(mid.up, glm::vec3(0, 0, -1));
+    const glm::mat4 view = mid.view();
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) EXPECT_TRUE(std::isfinite(view[c][r])) << c << "," << r;
+    EXPECT_EQ(path.at(0.2).up, glm::vec3(0, 1, 0));  // elsewhere: the path's own up
+}
+
+TEST(Hardening, TextureWiderThanTheGlLimit) {
+    const fs::path dir = makeTempDir("bigtex");
+    savePng(Image(16385, 1, 0.5f), (dir / "wide.png").string());
+    GltfBuilder t = oneTriangle();
+    const std::vector<float> uv = {0, 0, 1, 0, 0, 1};
+    t.json["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = t.data(uv, kF32, 3, "VEC2");
+    t.json["images"] = json::array({{{"uri", "wide.png"}}});
+    t.json["textures"] = json::array({{{"source", 0}}});
+    t.json["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+    t.json["meshes"][0]["primitives"][0]["material"] = 0;
+    t.writeGltf(dir / "wide.gltf");
+    const std::string out = (dir / "x.png").string();
+    expectOneLineError(run("render --width 16 --height 12 --scene " + (dir / "wide.gltf").string() + " --out " + out),
+                       {"16385x1", "GL_MAX_TEXTURE_SIZE", "wide.gltf"}, "texture");
+    EXPECT_FALSE(fs::exists(out));
+}
+
+// ---- 6. Command-line parse errors: one line ----------------------------------------------------
+
+TEST(Hardening, ParseErrorsAreOneLine) {
+    const fs::path dir = makeTempDir("parse");
+    const std::string out = (dir / "x.png").string();
+    expectOneLineError(run("render --scene builtin:panes --width abc --out " + out), {"--width"}, "number");
+    expectOneLineError(run("render --scene builtin:panes --bogus-flag --out " + out), {"--bogus-flag"}, "unknown flag");
+    expectOneLineError(run(""), {"subcommand"}, "no subcommand");
+    expectOneLineError(run("render --scene builtin:panes"), {"--out"}, "missing --out");
+    expectOneLineError(run("frobnicate"), {"frobnicate"}, "unknown subcommand");
+    const CliRun help = run("render --help");
+    EXPECT_EQ(help.exitCode, 0);
+    EXPECT_NE(help.out.find("--scene"), std::string::npos);
+}
+
+// ---- 7. Unclear messages -----------------------------------------------------------------------
+
+TEST(Hardening, ClearMessagesForRelativeFaceIndicesAndUnbackedAccessors) {
+    const fs::path dir = makeTempDir("clear");
+    writeText(dir / "neg.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -10 -11 -12\n");
+    std::string msg = errorOf([&] { loadScene((dir / "neg.obj").string()); });
+    EXPECT_CONTAINS(msg, "neg.obj:4");
+    EXPECT_CONTAINS(msg, "vertex index -10 is out of range: only 3 vertices are defined");
+    writeText(dir / "zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n");
+    EXPECT_CONTAINS(errorOf([&] { loadScene((dir / "zero.obj").string()); }), "index '0'");
+
+    // POSITION without a buffer view claiming 2^26 vertices in a file of a few hundred bytes.
+    GltfBuilder g = oneTriangle();
+    g.json["accessors"][0].erase("bufferView");
+    g.json["accessors"][0].erase("byteOffset");
+    g.json["accessors"][0]["count"] = 1 << 26;
+    g.json["meshes"][0]["primitives"][0].erase("indices");
+    g.writeGltf(dir / "claim.gltf");
+    ASSERT_LT(fs::file_size(dir / "claim.gltf"), 2000u);
+    msg = errorOf([&] { loadScene((dir / "claim.gltf").string()); });
+    EXPECT_CONTAINS(msg, "claim.gltf");
+    EXPECT_CONTAINS(msg, "no buffer view and claims 67108864 elements");
+}
+
+// ---- 8. No output left behind ------------------------------------------------------------------
+
+TEST(Hardening, FailedRenderLeavesNoneOfItsOutputs) {
+    const fs::path dir = makeTempDir("leftover");
+    fs::create_directories(dir / "stats.json");
+    const CliRun r = run("render --scene builtin:panes --method wboit --width 16 --height 12 --out " + (dir / "a.png").string() +
+                         " --exr " + (dir / "a.exr").string() + " --stats " + (dir / "stats.json").string());
+    expectOneLineError(r, {"stats.json", "is a directory"}, "stats dir");
+    EXPECT_FALSE(fs::exists(dir / "a.png"));
+    EXPECT_FALSE(fs::exists(dir / "a.exr"));
+
+    // A sequence whose third frame cannot be written: no frame is left.
+    fs::create_directories(dir / "seq");
+    fs::create_directories(dir / "seq/f_0002.png");
+    const CliRun s = run("render --scene builtin:panes --method wboit --width 16 --height 12 --frames 4 "
+                         "--camera-path orbit:0,30 --out " + (dir / "seq/f_%04d.png").string());
+    expectOneLineError(s, {"f_0002.png", "is a directory"}, "sequence");
+    for (const auto& e : fs::directory_iterator(dir / "seq"))
+        EXPECT_EQ(e.path().filename(), "f_0002.png") << "left behind: " << e.path();
+    for (const auto& e : fs::directory_iterator(dir))
+        EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+TEST(Hardening, OutputFilesAppearTogetherOrNotAtAll) {
+    const fs::path dir = makeTempDir("outfiles");
+    {
+        OutputFiles out;
+        out.stage((dir / "a.txt").string(), "a");
+        out.stage((dir / "b.txt").string(), "b");
+        EXPECT_FALSE(fs::exists(dir / "a.txt"));
+        fs::create_directories(dir / "b.txt");  // the target turns into a folder before commit
+        EXPECT_CONTAINS(errorOf([&] { out.commit(); }), "b.txt");
+    }
+    EXPECT_FALSE(fs::exists(dir / "a.txt"));
+    fs::remove(dir / "b.txt");
+    {
+        OutputFiles out;
+        out.stage((dir / "c.txt").string(), "c");
+    }  // never committed
+    {
+        OutputFiles out;
+        out.stage((dir / "d.txt").string(), "d1");
+        out.stage((dir / "d.txt").string(), "d2");
+        out.commit();
+    }
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+    EXPECT_EQ(names, std::vector<std::string>{"d.txt"});
+    std::ifstream f(dir / "d.txt");
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(f), {}), "d2");
+}
+
+// ---- 9. Progress and the temporal summary ------------------------------------------------------
+
+TEST(Hardening, LongRendersShowProgressAndTemporalMeans) {
+    const fs::path dir = makeTempDir("progress");
+    const CliRun r = run("render --scene builtin:panes --method wboit --width 16 --height 12 --frames 6 --out " +
+                             (dir / "a.png").string(),
+                         "STARNT_PROGRESS_SECONDS=0 ");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_CONTAINS(r.err, "render: frame 3/6");
+    EXPECT_CONTAINS(r.err, "render: frame 6/6");
+    const CliRun quiet = run("render --scene builtin:panes --method wboit --width 16 --height 12 --frames 3 --out " +
+                             (dir / "b.png").string());
+    EXPECT_EQ(quiet.err.find("render: frame"), std::string::npos) << quiet.err;  // short: no progress
+
+    const CliRun t = run("render --scene builtin:panes --method starnt --temporal 2 --width 32 --height 24 --frames 7 "
+                         "--camera-path orbit:0,20 --out " + (dir / "t.png").string() + " --stats " + (dir / "t.json").string());
+    ASSERT_EQ(t.exitCode, 0) << t.err;
+    EXPECT_CONTAINS(t.out, "(mean of 6), real frames");
+    EXPECT_CONTAINS(t.out, "interpolated");
+    std::ifstream f(dir / "t.json");
+    const json stats = json::parse(f);
+    EXPECT_TRUE(stats["real_frame_ms_mean"].is_number());
+    EXPECT_TRUE(stats["interpolated_frame_ms_mean"].is_number());
+}
