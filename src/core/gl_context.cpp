@@ -174,10 +174,14 @@ HeadlessGlContext::HeadlessGlContext() : impl_(std::make_unique<Impl>()) {
 #endif
 }
 
-HeadlessGlContext::~HeadlessGlContext() {
+void keepGlDriverLoadedAtExit() {
 #ifdef STARNT_SANITIZE
-    pinLoadedLibraries();  // before eglTerminate unloads the driver (processes that end the context)
+    pinLoadedLibraries();
 #endif
+}
+
+HeadlessGlContext::~HeadlessGlContext() {
+    keepGlDriverLoadedAtExit();  // before eglTerminate unloads the driver (processes that end the context)
     if (impl_->display != EGL_NO_DISPLAY) {
         eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         if (impl_->context != EGL_NO_CONTEXT) eglDestroyContext(impl_->display, impl_->context);
