@@ -38,5 +38,9 @@ private:
 // SSBOs, compute shaders, float render targets). Called by HeadlessGlContext and usable by an
 // engine that brings its own context.
 void checkGlRequirements();
+// Sanitizer builds (STARNT_SANITIZE): keeps the loaded GL driver libraries mapped until exit, so
+// LeakSanitizer can name the driver's leaks and tests/lsan.supp suppress them; call it before a
+// context ends (eglTerminate / glfwTerminate unload the driver). Does nothing in other builds.
+void keepGlDriverLoadedAtExit();
 
 }  // namespace starnt

@@ -9,8 +9,29 @@
 
 #include "starnt/error.hpp"
 
+#ifdef STARNT_SANITIZE
+#include <dlfcn.h>
+#include <link.h>
+#endif
+
 namespace starnt {
 namespace {
+
+#ifdef STARNT_SANITIZE
+// Sanitizer builds only: eglTerminate unloads the driver (libgallium, LLVM, ...), and LeakSanitizer
+// then reports the driver's leaks at exit as "<unknown module>", which tests/lsan.supp cannot match
+// by library name. Marking every loaded library RTLD_NODELETE keeps them mapped until exit. Done
+// when a context ends (the command line's case): pinning in processes that keep their context
+// made LeakSanitizer's thread tracer crash at exit.
+void pinLoadedLibraries() {
+    dl_iterate_phdr(
+        [](dl_phdr_info* info, size_t, void*) {
+            if (info->dlpi_name && info->dlpi_name[0] != '\0') dlopen(info->dlpi_name, RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
+            return 0;
+        },
+        nullptr);
+}
+#endif
 
 bool hasExtension(const char* list, const char* name) {
     if (!list) return false;
@@ -153,7 +174,14 @@ HeadlessGlContext::HeadlessGlContext() : impl_(std::make_unique<Impl>()) {
 #endif
 }
 
+void keepGlDriverLoadedAtExit() {
+#ifdef STARNT_SANITIZE
+    pinLoadedLibraries();
+#endif
+}
+
 HeadlessGlContext::~HeadlessGlContext() {
+    keepGlDriverLoadedAtExit();  // before eglTerminate unloads the driver (processes that end the context)
     if (impl_->display != EGL_NO_DISPLAY) {
         eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         if (impl_->context != EGL_NO_CONTEXT) eglDestroyContext(impl_->display, impl_->context);

@@ -71,6 +71,7 @@ GlfwWindow::GlfwWindow(int width, int height, const std::string& title) {
 }
 
 GlfwWindow::~GlfwWindow() {
+    keepGlDriverLoadedAtExit();
     glfwDestroyWindow(window_);
     glfwTerminate();
 }
