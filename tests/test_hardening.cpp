@@ -28,19 +28,6 @@ namespace {
 
 #define EXPECT_CONTAINS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << "text: " << (text)
 
-template <class F>
-std::string errorOf(F&& fn) {
-    try {
-        fn();
-    } catch (const Error& e) {
-        return e.what();
-    } catch (const std::exception& e) {
-        ADD_FAILURE() << "expected starnt::Error, got another exception: " << e.what();
-        return {};
-    }
-    ADD_FAILURE() << "expected starnt::Error, nothing was thrown";
-    return {};
-}
 
 // A failed run: non-zero exit, one `starnt: error:` line on stderr mentioning every part.
 void expectOneLineError(const CliRun& r, const std::vector<std::string>& parts, const std::string& what) {

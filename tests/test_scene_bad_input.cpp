@@ -16,19 +16,6 @@ using nlohmann::json;
 namespace {
 
 // Runs `fn`, expects starnt::Error, and returns its message (empty, with a failure, otherwise).
-template <class F>
-std::string errorOf(F&& fn) {
-    try {
-        fn();
-    } catch (const Error& e) {
-        return e.what();
-    } catch (const std::exception& e) {
-        ADD_FAILURE() << "expected starnt::Error, got another exception: " << e.what();
-        return {};
-    }
-    ADD_FAILURE() << "expected starnt::Error, nothing was thrown";
-    return {};
-}
 
 #define EXPECT_CONTAINS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << "message: " << (text)
 

@@ -1,6 +1,9 @@
 // Helpers shared by the tests: where the suite scenes are, temporary folders, a GL context and a
 // ready-to-render test scene.
 #pragma once
+#include <gtest/gtest.h>
+
+#include "starnt/error.hpp"
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -63,5 +66,25 @@ CliRun run(const std::string& args, const std::string& shellPrefix);
 // A bad invocation: non-zero exit (no crash), `mentions` on stderr, `mustNotExist` not written and
 // no temporary file left in its folder.
 void expectCleanFailure(const std::string& args, const std::filesystem::path& mustNotExist, const std::string& mentions);
+
+}  // namespace starnt::test
+
+namespace starnt::test {
+
+// The message of the starnt::Error `fn` throws; a test failure (and "") when it throws nothing or
+// another exception.
+template <class F>
+std::string errorOf(F&& fn) {
+    try {
+        fn();
+    } catch (const Error& e) {
+        return e.what();
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << "expected starnt::Error, got another exception: " << e.what();
+        return {};
+    }
+    ADD_FAILURE() << "expected starnt::Error, nothing was thrown";
+    return {};
+}
 
 }  // namespace starnt::test
