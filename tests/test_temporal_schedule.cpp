@@ -73,18 +73,59 @@ TEST(TemporalSchedule, AutoIsPlainRenderingWithoutMeasurementOrBelowTarget) {
     EXPECT_EQ(pattern(s, 3), "RRR");
 }
 
-TEST(TemporalSchedule, AutoIsFloorOfRateOverTarget) {
+TEST(TemporalSchedule, AutoIsFloorOfRateOverTargetUntilInterpolatedFramesAreMeasured) {
     struct Case {
         double ms, target;
         int want;
     };
     // 125/60 = 2.08, 200/60 = 3.33, 100/60 = 1.67, 100/30 = 3.33, 100/25 = 4, 62.5/30 = 2.08.
-    for (Case c : {Case{8.0, 60.0, 2}, Case{5.0, 60.0, 3}, Case{10.0, 60.0, 1}, Case{10.0, 30.0, 3},
+    // No interpolated frame is measured yet, so k is at least 2 (one must run to be measured).
+    for (Case c : {Case{8.0, 60.0, 2}, Case{5.0, 60.0, 3}, Case{10.0, 60.0, 2}, Case{10.0, 30.0, 3},
                    Case{10.0, 25.0, 4}, Case{16.0, 30.0, 2}}) {
         TemporalSchedule s(autoInterval(c.target));
         s.recordRealFrameMs(c.ms);
         EXPECT_EQ(s.interval(), c.want) << c.ms << " ms at target " << c.target;
     }
+}
+
+TEST(TemporalSchedule, AutoFitsTheGroupInOneTargetFrameWithMeasuredInterpolatedCost) {
+    struct Case {
+        double real, interpolated;
+        int want;
+    };
+    // T = 16.67 ms. k = 1 + floor((T - R) / I): 8.67/6 = 1.44, 8.67/3 = 2.89, 11.67/6 = 1.94,
+    // 11.67/5.5 = 2.12, 6.67/6 = 1.11, 6.67/7 = 0.95, 8.67/0.5 = 17.3 (clamped to 4).
+    for (Case c : {Case{8, 6, 2}, Case{8, 3, 3}, Case{5, 6, 2}, Case{5, 5.5, 3}, Case{10, 6, 2}, Case{10, 7, 1},
+                   Case{8, 0.5, 4}, Case{8, 0.0, 4}}) {
+        TemporalSchedule s(autoInterval(60.0));
+        s.recordRealFrameMs(c.real);
+        s.recordInterpolatedFrameMs(c.interpolated);
+        EXPECT_EQ(s.interval(), c.want) << c.real << " ms real, " << c.interpolated << " ms interpolated";
+    }
+    // A cheap interpolated frame does not rescue a real frame below the target rate.
+    TemporalSchedule slow(autoInterval(60.0));
+    slow.recordRealFrameMs(20.0);
+    slow.recordInterpolatedFrameMs(0.1);
+    EXPECT_EQ(slow.interval(), 1);
+}
+
+TEST(TemporalSchedule, AutoCountsInterpolatedFramesAtRealCostUntilOneIsMeasured) {
+    TemporalSchedule s(autoInterval(60.0));
+    s.recordRealFrameMs(5.0);
+    EXPECT_EQ(s.averageInterpolatedFrameMs(), 0.0);
+    EXPECT_EQ(s.interval(), 3);  // floor(200 / 60), SPEC's rule
+    s.recordInterpolatedFrameMs(6.0);  // a refresh frame costing more than the real one's share
+    EXPECT_EQ(s.interval(), 2);
+    for (int i = 0; i < 8; ++i) s.recordInterpolatedFrameMs(1.0);  // the window forgets the 6
+    EXPECT_DOUBLE_EQ(s.averageInterpolatedFrameMs(), 1.0);
+    EXPECT_EQ(s.interval(), 4);
+    s.recordInterpolatedFrameMs(-1.0);  // ignored, as for real frames
+    s.recordInterpolatedFrameMs(std::numeric_limits<double>::quiet_NaN());
+    EXPECT_DOUBLE_EQ(s.averageInterpolatedFrameMs(), 1.0);
+    s.reset();
+    EXPECT_EQ(s.averageInterpolatedFrameMs(), 0.0);
+    s.recordRealFrameMs(5.0);
+    EXPECT_EQ(s.interval(), 3);
 }
 
 TEST(TemporalSchedule, AutoNeverExceedsFour) {

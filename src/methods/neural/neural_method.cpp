@@ -64,6 +64,7 @@ public:
                                 {"temporal_interval", temporal_.interval()},
                                 {"temporal_mode", temporal_.refreshes() ? "refresh" : "warp"},
                                 {"real_frame_ms_average", temporal_.averageRealFrameMs()},
+                                {"interpolated_frame_ms_average", temporal_.averageInterpolatedFrameMs()},
                                 {"scale_pass2", scale2_},
                                 {"scale_pass3", scale3_},
                                 {"pass2_size", {passes_.pass2Size().width, passes_.pass2Size().height}},

@@ -10,7 +10,10 @@ TemporalFrames::TemporalFrames(const MethodOptions& options)
       refresh_(options.temporalMode == MethodOptions::TemporalMode::Refresh) {}
 
 bool TemporalFrames::beginFrame(int width, int height) {
-    if (auto ms = clock_.take()) schedule_.recordRealFrameMs(*ms);
+    if (auto m = clock_.take()) {
+        if (m->real) schedule_.recordRealFrameMs(m->ms);
+        else schedule_.recordInterpolatedFrameMs(m->ms);
+    }
     // A frame of another size cannot be reprojected from the kept one.
     if (reprojector_.hasFrame() && (width != reprojector_.width() || height != reprojector_.height())) reset();
     bool real = schedule_.nextFrameIsReal();
@@ -21,7 +24,7 @@ bool TemporalFrames::beginFrame(int width, int height) {
     }
     lastInterpolated_ = !real;
     // Only the fixed schedule needs no timing; measuring costs a glFinish on software.
-    if (real && schedule_.isAuto()) clock_.start();
+    if (schedule_.isAuto()) clock_.start(real);
     return real;
 }
 
@@ -36,15 +39,21 @@ void TemporalFrames::endRealFrame(GLuint compositeTexture, GLuint nearestDepthTe
 
 void TemporalFrames::interpolate(const glm::mat4& viewProj, GLuint outputTexture, gl::GpuPassTimer* timer) {
     if (!lastInterpolated_) throw Error("internal: TemporalFrames::interpolate on a real frame");
-    gl::ScopedPass timing(timer, "reproject");
-    reprojector_.reproject(viewProj, outputTexture);
+    {
+        gl::ScopedPass timing(timer, "reproject");
+        reprojector_.reproject(viewProj, outputTexture);
+    }
+    clock_.stop();
 }
 
 void TemporalFrames::interpolateRefresh(const glm::mat4& viewProj, GLuint nearestTexture, const glm::vec3& background,
                                         GLuint outputTexture, gl::GpuPassTimer* timer) {
     if (!lastInterpolated_) throw Error("internal: TemporalFrames::interpolateRefresh on a real frame");
-    gl::ScopedPass timing(timer, "reproject");
-    reprojector_.reprojectRefresh(viewProj, nearestTexture, background, outputTexture);
+    {
+        gl::ScopedPass timing(timer, "reproject");
+        reprojector_.reprojectRefresh(viewProj, nearestTexture, background, outputTexture);
+    }
+    clock_.stop();
 }
 
 void TemporalFrames::reset() {

@@ -1,6 +1,6 @@
 // The temporal part of a neural method (SPEC section 6) behind one small interface: which frames
 // are real, a copy of the last real frame, its reprojection on interpolated frames, and the
-// real-frame timing that `--temporal auto` needs.
+// real- and interpolated-frame timing that `--temporal auto` needs.
 //
 //   TemporalFrames temporal(options);                    // with a current GL context
 //   if (temporal.beginFrame(w, h)) {                     // real frame: full pipeline
@@ -13,7 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "core/gpu_timer.hpp"
-#include "methods/neural/temporal/real_frame_clock.hpp"
+#include "methods/neural/temporal/frame_clock.hpp"
 #include "methods/neural/temporal/reprojector.hpp"
 #include "methods/neural/temporal/temporal_schedule.hpp"
 
@@ -50,8 +50,11 @@ public:
     bool lastWasInterpolated() const { return lastInterpolated_; }
     // The interval of the current group (1 real + interval-1 interpolated frames).
     int interval() const { return schedule_.groupInterval(); }
-    // Mean of the recent real-frame times auto mode uses (0 before the first measurement).
+    // Means of the recent real- and interpolated-frame times auto mode uses (0 before the first
+    // measurement). An interpolated frame is timed from beginFrame to the end of interpolate /
+    // interpolateRefresh, so a refresh frame's pass 1 counts.
     double averageRealFrameMs() const { return schedule_.averageRealFrameMs(); }
+    double averageInterpolatedFrameMs() const { return schedule_.averageInterpolatedFrameMs(); }
     // Forgets the kept frame and the timing; the next frame is real.
     void reset();
     size_t gpuMemoryBytes() const { return reprojector_.gpuMemoryBytes(); }
@@ -59,7 +62,7 @@ public:
 private:
     TemporalSchedule schedule_;
     temporal::Reprojector reprojector_;
-    temporal::RealFrameClock clock_;
+    temporal::FrameClock clock_;
     bool lastInterpolated_ = false;
     bool refresh_ = false;
 };

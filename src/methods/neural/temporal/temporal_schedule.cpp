@@ -29,37 +29,47 @@ bool TemporalSchedule::nextFrameIsReal() {
     return true;
 }
 
-void TemporalSchedule::recordRealFrameMs(double ms) {
+void TemporalSchedule::Window::add(double ms) {
     if (!std::isfinite(ms) || ms < 0.0) return;
-    samples_[size_t(nextSample_)] = ms;
-    nextSample_ = (nextSample_ + 1) % kAverageWindow;
-    sampleCount_ = std::min(sampleCount_ + 1, kAverageWindow);
+    samples_[size_t(next_)] = ms;
+    next_ = (next_ + 1) % kAverageWindow;
+    count_ = std::min(count_ + 1, kAverageWindow);
 }
 
-double TemporalSchedule::averageRealFrameMs() const {
-    if (sampleCount_ == 0) return 0.0;
+double TemporalSchedule::Window::mean() const {
+    if (count_ == 0) return 0.0;
     double sum = 0.0;
-    for (int i = 0; i < sampleCount_; ++i) sum += samples_[size_t(i)];
-    return sum / sampleCount_;
+    for (int i = 0; i < count_; ++i) sum += samples_[size_t(i)];
+    return sum / count_;
 }
+
+void TemporalSchedule::recordRealFrameMs(double ms) { real_.add(ms); }
+void TemporalSchedule::recordInterpolatedFrameMs(double ms) { interpolated_.add(ms); }
 
 int TemporalSchedule::interval() const {
     if (!auto_) return fixedInterval_;
-    if (sampleCount_ == 0) return 1;
-    const double ms = averageRealFrameMs();
-    if (ms <= 0.0) return kMaxInterval;  // immeasurably fast
-    const double ratio = (1000.0 / ms) / targetFps_;
-    // Compare before converting: a huge ratio must not overflow the int.
-    if (!(ratio < double(kMaxInterval))) return kMaxInterval;
-    return std::max(1, int(std::floor(ratio)));
+    if (real_.empty()) return 1;
+    const double targetMs = 1000.0 / targetFps_;
+    const double real = real_.mean();
+    if (real > targetMs) return 1;  // below the target rate: plain rendering
+    // Until an interpolated frame was timed, count it at a real frame's cost (the paper's rule),
+    // but interpolate at least once so that its cost gets measured: without a measurement a rate
+    // between the target and twice the target would keep k = 1 for ever.
+    if (interpolated_.empty()) return std::clamp(int(std::min(targetMs / std::max(real, 1e-9), 4.0)), 2, kMaxInterval);
+    const double interpolated = interpolated_.mean();
+    if (interpolated <= 0.0) return kMaxInterval;  // immeasurably fast
+    // Compare before converting: a huge quotient must not overflow the int.
+    const double extra = std::floor((targetMs - real) / interpolated);
+    if (!(extra < double(kMaxInterval - 1))) return kMaxInterval;
+    return 1 + int(extra);
 }
 
 void TemporalSchedule::reset() {
     started_ = false;
     framesIntoGroup_ = 0;
     groupInterval_ = 0;
-    sampleCount_ = 0;
-    nextSample_ = 0;
+    real_.clear();
+    interpolated_.clear();
 }
 
 }  // namespace starnt

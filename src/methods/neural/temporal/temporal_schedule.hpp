@@ -4,9 +4,18 @@
 // Frames come in groups: one real frame, then interval - 1 interpolated frames. The interval of a
 // group is fixed when its real frame is issued, so it changes only at real frames.
 //   fixed K:  interval = K (1 = every frame real).
-//   auto:     interval = clamp(floor(fps_real / targetFps), 1, 4), fps_real = 1000 / (mean of the
-//             last kAverageWindow real-frame times in ms); 1 before any measurement, so rendering
-//             below the target rate (or not yet measured) is plain rendering.
+//   auto:     the largest interval k <= 4 whose group (one real frame of R ms, k - 1 interpolated
+//             frames of I ms) fits in one target frame time T = 1000 / targetFps:
+//                 R + (k - 1) I <= T   ->   k = clamp(1 + floor((T - R) / I), 1, 4),
+//             R and I the means of the last kAverageWindow real and interpolated frames. Real
+//             frames then come at least at the target rate and the interpolated ones raise the
+//             displayed rate. SPEC section 6's k = floor(fps_real / targetFps) is this rule with
+//             I = R (every frame counted at a real frame's cost); it applies until an interpolated
+//             frame was measured, except that k is then at least 2: one interpolated frame must run
+//             to be measured (at a rate between T and T/2 the paper's rule would never try one).
+//             A refresh frame renders pass 1, so it is not nearly free: its measured cost keeps k
+//             lower than a warp frame's does. R > T (below the target) or no measurement yet:
+//             k = 1, plain rendering.
 #pragma once
 #include <array>
 
@@ -28,12 +37,15 @@ public:
     // One real frame's duration in milliseconds (auto mode reads it; fixed mode ignores it).
     // Non-finite or negative values are ignored; 0 counts as "very fast".
     void recordRealFrameMs(double ms);
+    // The same for an interpolated frame.
+    void recordInterpolatedFrameMs(double ms);
     // The interval the next group would get: fixed K, or the auto rule on the measurements so far.
     int interval() const;
     // The interval of the group the current frame belongs to (0 before the first frame).
     int groupInterval() const { return groupInterval_; }
-    // Mean real-frame time used by auto (0 when nothing was measured yet).
-    double averageRealFrameMs() const;
+    // Mean real- and interpolated-frame times used by auto (0 when nothing was measured yet).
+    double averageRealFrameMs() const { return real_.mean(); }
+    double averageInterpolatedFrameMs() const { return interpolated_.mean(); }
     bool isAuto() const { return auto_; }
     // Forgets the position in the group (next frame real) and the measurements.
     void reset();
@@ -45,9 +57,21 @@ private:
     bool started_ = false;
     int framesIntoGroup_ = 0;  // 0 = the current frame is the group's real frame
     int groupInterval_ = 0;
-    std::array<double, kAverageWindow> samples_{};
-    int sampleCount_ = 0;  // samples stored, at most kAverageWindow
-    int nextSample_ = 0;   // ring position
+    // The last kAverageWindow durations of one kind of frame (a plain window mean: bounded memory,
+    // exact in tests).
+    class Window {
+    public:
+        void add(double ms);
+        double mean() const;
+        bool empty() const { return count_ == 0; }
+        void clear() { count_ = next_ = 0; }
+
+    private:
+        std::array<double, kAverageWindow> samples_{};
+        int count_ = 0;  // samples stored, at most kAverageWindow
+        int next_ = 0;   // ring position
+    };
+    Window real_, interpolated_;
 };
 
 }  // namespace starnt

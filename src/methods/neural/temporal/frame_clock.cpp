@@ -1,4 +1,4 @@
-#include "methods/neural/temporal/real_frame_clock.hpp"
+#include "methods/neural/temporal/frame_clock.hpp"
 
 #include <chrono>
 
@@ -17,15 +17,16 @@ gl::QueryHandle makeQuery() {
 
 }  // namespace
 
-RealFrameClock::RealFrameClock(bool wallClock) : wallClock_(wallClock) {
+FrameClock::FrameClock(bool wallClock) : wallClock_(wallClock) {
     if (!wallClock_) {
         begin_ = makeQuery();
         end_ = makeQuery();
     }
 }
 
-void RealFrameClock::start() {
+void FrameClock::start(bool real) {
     if (wallClock_) {
+        real_ = real;
         glFinish();  // earlier frames' work must not count
         startMs_ = wallMs();
         running_ = true;
@@ -34,15 +35,16 @@ void RealFrameClock::start() {
     poll();  // collects the previous pair if it is done
     if (inFlight_) return;  // still busy: this frame goes unmeasured
     glQueryCounter(begin_.id(), GL_TIMESTAMP);
+    real_ = real;
     running_ = true;
 }
 
-void RealFrameClock::stop() {
+void FrameClock::stop() {
     if (!running_) return;
     running_ = false;
     if (wallClock_) {
         glFinish();
-        ready_ = wallMs() - startMs_;
+        ready_ = Measurement{wallMs() - startMs_, real_};
         return;
     }
     glQueryCounter(end_.id(), GL_TIMESTAMP);
@@ -50,7 +52,7 @@ void RealFrameClock::stop() {
     inFlight_ = true;
 }
 
-void RealFrameClock::poll() {
+void FrameClock::poll() {
     if (inFlight_) {
         GLint available = 0;
         glGetQueryObjectiv(end_.id(), GL_QUERY_RESULT_AVAILABLE, &available);
@@ -58,15 +60,15 @@ void RealFrameClock::poll() {
             GLuint64 t0 = 0, t1 = 0;
             glGetQueryObjectui64v(begin_.id(), GL_QUERY_RESULT, &t0);
             glGetQueryObjectui64v(end_.id(), GL_QUERY_RESULT, &t1);
-            ready_ = t1 > t0 ? double(t1 - t0) * 1e-6 : 0.0;
+            ready_ = Measurement{t1 > t0 ? double(t1 - t0) * 1e-6 : 0.0, real_};
             inFlight_ = false;
         }
     }
 }
 
-std::optional<double> RealFrameClock::take() {
+std::optional<FrameClock::Measurement> FrameClock::take() {
     poll();
-    std::optional<double> out = ready_;
+    std::optional<Measurement> out = ready_;
     ready_.reset();
     return out;
 }
