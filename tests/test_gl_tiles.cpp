@@ -5,6 +5,8 @@
 #include <cmath>
 #include <random>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "core/gl_util.hpp"
 #include "core/gpu_timer.hpp"
 #include "core/shader.hpp"
@@ -289,12 +291,28 @@ TEST(GlTiles, PassSumsUpsampleMatchesCpu) {
     std::mt19937 rng(17);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     auto alpha = [&]() { return u(rng) < 0.2f ? 0.0f : 0.03f + 0.9f * u(rng); };
-    for (auto [pass2, pass3] : {std::pair{Size2{19, 12}, Size2{10, 6}}, std::pair{full, Size2{19, 12}}, std::pair{full, full}}) {
+    struct Case {
+        Size2 pass2, pass3;
+        UpsampleFilter filter;
+    };
+    const UpsampleFilter bilinear = UpsampleFilter::Bilinear, joint = UpsampleFilter::Joint;
+    for (auto [pass2, pass3, filter] : {Case{Size2{19, 12}, Size2{10, 6}, bilinear}, Case{full, Size2{19, 12}, bilinear},
+                                        Case{full, full, bilinear}, Case{Size2{19, 12}, Size2{10, 6}, joint},
+                                        Case{Size2{19, 12}, Size2{19, 12}, joint}, Case{full, Size2{19, 12}, joint}}) {
         PassTargets t{full, pass2, pass3, {}, {}, {}, {}, {}};
         const size_t n = size_t(full.width) * size_t(full.height);
         std::vector<glm::vec4> second(n, glm::vec4(1e6f)), alphaColor(n, glm::vec4(1e6f)), colorCount(n, glm::vec4(1e6f)),
             transmittance(n, glm::vec4(1e6f));
         for (size_t i = 0; i < n; ++i) t.nearest.emplace_back(u(rng), u(rng), u(rng), alpha());
+        // Joint: two surfaces (view distance ~2 and ~3.3 with near 0.1, far 100), each varying a
+        // little per pixel (their taps agree: plain bilinear), 1 where pass 1 saw nothing.
+        const glm::mat4 projection = glm::perspective(0.8f, 1.6f, 0.1f, 100.0f), inverse = glm::inverse(projection);
+        t.depthUnproject = glm::vec4(inverse[2][2], inverse[3][2], inverse[2][3], inverse[3][3]);
+        for (int y = 0; y < full.height; ++y)
+            for (int x = 0; x < full.width; ++x)
+                t.nearestDepth.push_back(t.nearest[size_t(y * full.width + x)].a == 0.0f ? 1.0f
+                                         : (x * 3 + y * 2 < 60)                       ? 0.95f + 1e-4f * float(x)
+                                                                                      : 0.97f + 1e-4f * float(y));
         for (int y = 0; y < pass2.height; ++y)
             for (int x = 0; x < pass2.width; ++x) {
                 t.second.emplace_back(u(rng), u(rng), u(rng), alpha());
@@ -311,6 +329,8 @@ TEST(GlTiles, PassSumsUpsampleMatchesCpu) {
                 colorCount[i] = t.colorCount.back();
                 transmittance[i] = glm::vec4(t.transmittance.back());
             }
+        gl::Texture2D depthTex(GL_R32F, full.width, full.height);
+        glTextureSubImage2D(depthTex.id(), 0, 0, 0, full.width, full.height, GL_RED, GL_FLOAT, t.nearestDepth.data());
         const gl::Texture2D nearestTex = upload(t.nearest, full.width, full.height),
                             secondTex = upload(second, full.width, full.height),
                             alphaColorTex = upload(alphaColor, full.width, full.height, GL_LINEAR),
@@ -330,7 +350,8 @@ TEST(GlTiles, PassSumsUpsampleMatchesCpu) {
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
         }
         const std::string defines =
-            std::string(plain ? "#define STARNT_INPUTS_FULL_RESOLUTION\n" : "") + neuralEpsilonDefines();
+            std::string(plain ? "#define STARNT_INPUTS_FULL_RESOLUTION\n" : "") +
+            (filter == joint ? "#define STARNT_UPSAMPLE_JOINT\n" : "") + neuralEpsilonDefines();
         gl::Program program = gl::buildComputeProgram("pass_sums_test", R"(
 #include "methods/neural/neural_inputs.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -354,6 +375,8 @@ void main() {
         glUniform2i(program.uniform("u_fullSize"), full.width, full.height);
         glUniform2i(program.uniform("u_pass2Size"), pass2.width, pass2.height);
         glUniform2i(program.uniform("u_pass3Size"), pass3.width, pass3.height);
+        glUniform4fv(program.uniform("u_depthUnproject"), 1, &t.depthUnproject[0]);
+        glBindTextureUnit(5, depthTex.id());
         const gl::Texture2D* inputs[] = {&nearestTex, &secondTex, &alphaColorTex, &colorCountTex, &transmittanceTex};
         for (GLuint i = 0; i < 5; ++i) {
             glBindTextureUnit(i, inputs[i]->id());
@@ -362,7 +385,18 @@ void main() {
         glDispatchCompute(GLuint(full.width + 7) / 8, GLuint(full.height + 7) / 8, 1);
         glMemoryBarrier(GL_ALL_BARRIER_BITS);
 
-        const std::vector<UpsampledSums> want = upsamplePassSums(t, nn::kTransmittanceEpsilon);
+        const std::vector<UpsampledSums> want = upsamplePassSums(t, nn::kTransmittanceEpsilon, filter);
+        // The joint case must exercise both kinds of pixel: taps on one surface and taps across two.
+        if (filter == joint) {
+            int plainPixels = 0, weightedPixels = 0;
+            for (int y = 0; y < full.height; ++y)
+                for (int x = 0; x < full.width; ++x) {
+                    if (t.nearest[size_t(y * full.width + x)].a == 0.0f) continue;
+                    (jointTapWeights(t, x, y, pass3).plain ? plainPixels : weightedPixels) += 1;
+                }
+            EXPECT_GT(plainPixels, int(n) / 20);
+            EXPECT_GT(weightedPixels, int(n) / 20);
+        }
         std::vector<std::vector<glm::vec4>> got;
         for (const gl::Texture2D& o : outputs) got.push_back(glOrder(gl::readTexture(o)));
         // Pass 3 goes through the texture unit's bilinear filter: llvmpipe weights in float (CI);
@@ -376,7 +410,8 @@ void main() {
                 for (int ch = 0; ch < 4; ++ch)
                     ASSERT_NEAR(got[size_t(k)][i][ch], expected[k][ch],
                                 2e-5f * std::max(1.0f, std::abs(expected[k][ch])) + (k >= 2 ? filterSlack : 0.0f))
-                        << "pixel " << i << " output " << k << " channel " << ch << " pass3 " << pass3.width;
+                        << "pixel " << i << " output " << k << " channel " << ch << " pass3 " << pass3.width
+                        << (filter == joint ? " joint" : "");
             tailPixels += want[i].colorCount.a > 2.5f ? 1 : 0;
         }
         EXPECT_GT(tailPixels, n / 10) << "the data should have tails";

@@ -91,13 +91,19 @@ struct MethodOptions {
     // structures (hair, strands) that fall between tile corners at full resolution. Off: the
     // tiles update on every real frame and the rule alone decides (the paper).
     bool scaleGuard = true;
+    // How reduced passes 2/3 come back to full resolution (SPEC 5): Bilinear = the four nearest
+    // reduced samples by distance; Joint = joint bilateral, the same taps weighted down where the
+    // nearest surface at a tap's sample lies at another depth than at the pixel (pass-1 depth
+    // guides: a tap across a silhouette carries another surface's layers).
+    enum class Upsample { Bilinear, Joint };
+    Upsample upsample = Upsample::Bilinear;
     // Full: the network at every pixel. Corners: only at quadtree leaf corners, bilinear inside each
     // leaf (beyond the paper; needs the tiles, so it turns them on).
     enum class Inference { Full, Corners };
     Inference inference = Inference::Full;
     // Temporal reprojection: one real frame, then temporalInterval - 1 interpolated frames
-    // (1 = off, at most 4). temporalAuto picks the interval from the measured real-frame rate:
-    // clamp(floor(fps_real / targetFps), 1, 4).
+    // (1 = off, at most 4). temporalAuto picks the largest interval whose group (one real frame,
+    // interval - 1 interpolated ones, at their measured costs) fits in one frame at targetFps.
     int temporalInterval = 1;
     bool temporalAuto = false;
     // What an interpolated frame renders (SPEC 6): Warp = the paper (the last real frame's

@@ -17,6 +17,9 @@ void addAccelerationOptions(CLI::App* command, AccelerationFlags& flags) {
     command->add_option("--scale-guard", flags.scaleGuard,
                         "starnt/dfaoit: probe frames that keep passes at full resolution where reducing loses detail: on|off")
         ->capture_default_str();
+    command->add_option("--upsample", flags.upsample,
+                        "starnt/dfaoit: reduced passes back to full resolution: bilinear | joint (bilateral, guided by pass-1 depth)")
+        ->capture_default_str();
     command->add_option("--temporal-mode", flags.temporalMode,
                         "starnt/dfaoit: interpolated frames: warp (the paper) | refresh (fresh pass 1)")
         ->capture_default_str();
@@ -32,6 +35,7 @@ void applyAccelerationFlags(const AccelerationFlags& flags, MethodOptions& optio
     parseTileSignalOption(flags.tileSignal, options);
     parseScaleGuardOption(flags.scaleGuard, options);
     parseTemporalModeOption(flags.temporalMode, options);
+    parseUpsampleOption(flags.upsample, options);
 }
 
 }  // namespace starnt::app

@@ -26,6 +26,7 @@ struct AccelerationFlags {
     std::string tileSignal = "back";        // back | composite
     std::string scaleGuard = "on";          // on | off
     std::string temporalMode = "refresh";   // warp | refresh
+    std::string upsample = "bilinear";      // bilinear | joint
 };
 void addAccelerationOptions(CLI::App* command, AccelerationFlags& flags);
 // Checks the flags (throws starnt::Error) and sets them on `options`.

@@ -61,6 +61,12 @@ void parseScaleRuleOption(const std::string& text, MethodOptions& options) {
     else throw Error("--scale-rule '" + text + "': expected snapped, continuous or step");
 }
 
+void parseUpsampleOption(const std::string& text, MethodOptions& options) {
+    if (text == "bilinear") options.upsample = MethodOptions::Upsample::Bilinear;
+    else if (text == "joint") options.upsample = MethodOptions::Upsample::Joint;
+    else throw Error("--upsample '" + text + "': expected bilinear or joint");
+}
+
 void parseTileSignalOption(const std::string& text, MethodOptions& options) {
     if (text == "back") options.tileSignal = MethodOptions::TileSignal::Back;
     else if (text == "composite") options.tileSignal = MethodOptions::TileSignal::Composite;
@@ -115,6 +121,10 @@ std::string scaleRuleText(const MethodOptions& options) {
         case MethodOptions::ScaleRule::Snapped: break;
     }
     return "snapped";
+}
+
+std::string upsampleText(const MethodOptions& options) {
+    return options.upsample == MethodOptions::Upsample::Joint ? "joint" : "bilinear";
 }
 
 std::string tileSignalText(const MethodOptions& options) {

@@ -22,6 +22,8 @@ void parseScaleRuleOption(const std::string& text, MethodOptions& options);
 void parseTileSignalOption(const std::string& text, MethodOptions& options);
 // "on" | "off".
 void parseScaleGuardOption(const std::string& text, MethodOptions& options);
+// "bilinear" | "joint" (SPEC 5).
+void parseUpsampleOption(const std::string& text, MethodOptions& options);
 // "warp" | "refresh" (SPEC 6).
 void parseTemporalModeOption(const std::string& text, MethodOptions& options);
 // Target frame rate for --temporal auto: finite and in (0, 1000].
@@ -39,5 +41,6 @@ std::string temporalText(const MethodOptions& options);
 std::string scaleRuleText(const MethodOptions& options);
 std::string tileSignalText(const MethodOptions& options);
 std::string temporalModeText(const MethodOptions& options);
+std::string upsampleText(const MethodOptions& options);
 
 }  // namespace starnt

@@ -96,6 +96,8 @@ void ViewerSettings::set(const std::string& key, const std::string& value) {
         parseTileSignalOption(value, next.options);
     } else if (key == "scale-guard") {
         parseScaleGuardOption(value, next.options);
+    } else if (key == "upsample") {
+        parseUpsampleOption(value, next.options);
     } else if (key == "temporal-mode") {
         parseTemporalModeOption(value, next.options);
     } else if (key == "target-fps") {
@@ -111,7 +113,7 @@ bool needsNewMethods(const ViewerSettings& a, const ViewerSettings& b) {
     return a.method != b.method || a.splitMethod != b.splitMethod || x.spatial != y.spatial ||
            x.fixedScale2 != y.fixedScale2 || x.fixedScale3 != y.fixedScale3 || x.inference != y.inference ||
            x.temporalInterval != y.temporalInterval || x.temporalAuto != y.temporalAuto || x.targetFps != y.targetFps ||
-           x.scaleRule != y.scaleRule || x.tileSignal != y.tileSignal || x.scaleGuard != y.scaleGuard ||
+           x.scaleRule != y.scaleRule || x.tileSignal != y.tileSignal || x.scaleGuard != y.scaleGuard || x.upsample != y.upsample ||
            x.temporalMode != y.temporalMode || x.mboitMoments != y.mboitMoments;
 }
 

@@ -112,6 +112,8 @@ void accelerationSection(ViewerSettings& next, std::string& problem) {
     if (combo("tile signal", {"back", "composite"}, signal)) setOrReport(next, "tile-signal", signal, problem);
     bool guard = next.options.scaleGuard;
     if (ImGui::Checkbox("scale guard (probe frames)", &guard)) setOrReport(next, "scale-guard", guard ? "on" : "off", problem);
+    std::string upsample = upsampleText(next.options);
+    if (combo("upsample", {"bilinear", "joint"}, upsample)) setOrReport(next, "upsample", upsample, problem);
     std::string inference = next.options.inference == MethodOptions::Inference::Corners ? "corners" : "full";
     if (combo("inference", {"full", "corners"}, inference)) setOrReport(next, "inference", inference, problem);
     std::string temporal = temporalText(next.options);

@@ -34,7 +34,14 @@ PixelSums readPixelSums(ivec2 p) {
         s.transmittance = 1.0;
         return s;
     }
+#if defined(STARNT_UPSAMPLE_JOINT) && !defined(STARNT_INPUTS_FULL_RESOLUTION)
+    // The tap weights depend on the image size only: pass 2 reuses pass 3's when they match.
+    JointTaps taps3 = jointTaps(p, u_pass3Size);
+    vec4 f2 = u_pass2Size == u_fullSize ? upsampleAlphaWeighted(u_second, p, u_pass2Size)
+            : upsampleJointAlphaWeighted(u_second, u_pass2Size == u_pass3Size ? taps3 : jointTaps(p, u_pass2Size));
+#else
     vec4 f2 = upsampleAlphaWeighted(u_second, p, u_pass2Size);
+#endif
     s.c1 = f1.rgb;
     s.a1 = f1.a;
     s.c2 = f2.rgb;
@@ -42,9 +49,15 @@ PixelSums readPixelSums(ivec2 p) {
 #ifndef STARNT_INPUTS_FULL_RESOLUTION
     // Reduced passes: the pass-3 targets hold each texel's tail (tail_resolve.frag.glsl). The tails
     // are interpolated, and the pixel adds back its own two layers.
+#ifdef STARNT_UPSAMPLE_JOINT
+    vec4 tailAc = upsampleJoint(u_alphaColor, p, u_pass3Size, taps3);
+    vec4 tailCn = upsampleJoint(u_colorCount, p, u_pass3Size, taps3);
+    float tailT = upsampleJoint(u_transmittance, p, u_pass3Size, taps3).r;
+#else
     vec4 tailAc = upsampleFiltered(u_alphaColor, p, u_pass3Size);
     vec4 tailCn = upsampleFiltered(u_colorCount, p, u_pass3Size);
     float tailT = upsampleFiltered(u_transmittance, p, u_pass3Size).r;
+#endif
     float has1 = s.a1 > 0.0 ? 1.0 : 0.0, has2 = s.a2 > 0.0 ? 1.0 : 0.0;
     s.sumAlphaColor = tailAc.rgb + s.a1 * s.c1 + s.a2 * s.c2;
     s.sumAlpha = tailAc.a + s.a1 + s.a2;

@@ -76,6 +76,7 @@ public:
             stats["tile_levels"] = {h[0], h[1], h[2], h[3]};
             stats["scale_rule"] = scaleRuleName(options_.scaleRule);
             stats["tile_signal"] = options_.tileSignal == MethodOptions::TileSignal::Back ? "back" : "composite";
+            stats["upsample"] = options_.upsample == MethodOptions::Upsample::Joint ? "joint" : "bilinear";
             stats["scale_guard"] = guarded();
             if (guarded()) {
                 stats["probe_frame"] = probe_ && !temporal_.lastWasInterpolated();
@@ -169,6 +170,7 @@ private:
 
     gl::Program buildInference(const std::string& stage, bool fullResolutionInputs) const {
         const std::string defines = std::string(fullResolutionInputs ? "#define STARNT_INPUTS_FULL_RESOLUTION\n" : "") +
+                                    (joint() ? "#define STARNT_UPSAMPLE_JOINT\n" : "") +
                                     neuralEpsilonDefines() + nn::generateInferenceGlsl(network_);
         return buildFullscreenProgram(config_.name + "_" + stage + (fullResolutionInputs ? "" : "_upsampled"),
                                       {config_.compositeShader, "methods/neural/" + stage + ".frag.glsl"}, defines);
@@ -204,9 +206,17 @@ private:
         }
     }
 
+    bool joint() const { return options_.upsample == MethodOptions::Upsample::Joint; }
+
     void setCommonUniforms(const gl::Program& program, const FrameDesc& frame) const {
         glUseProgram(program.id());
         passes_.bindInputs(program);
+        if (joint()) {
+            // View z from window depth needs rows 2 and 3 of the inverse projection, z and w columns
+            // only (a perspective or orthographic projection, off-centre or not, has no x/y terms there).
+            const glm::mat4 inverse = glm::inverse(frame.projection);
+            glUniform4f(program.uniform("u_depthUnproject"), inverse[2][2], inverse[3][2], inverse[2][3], inverse[3][3]);
+        }
         glUniform3fv(program.uniform("u_background"), 1, &frame.background[0]);
         glUniform2i(program.uniform("u_tiles"), tiles_ ? tiles_->tilesX() : 0, tiles_ ? tiles_->tilesY() : 0);
     }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "methods/neural/upsample_constants.h"
+
 namespace starnt {
 
 float reducedViewportOffset(int reduced, int full) { return 0.5f * (1.0f - float(reduced) / float(full)); }
@@ -58,7 +60,40 @@ T interpolate(const Taps& t, At at) {
     return glm::mix(glm::mix(at(t.x0, t.y0), at(t.x1, t.y0), t.fx), glm::mix(at(t.x0, t.y1), at(t.x1, t.y1), t.fx), t.fy);
 }
 
+// Weighted sum of the four taps in jointTapWeights' order.
+template <class T, class At>
+T weightedSum(const Taps& t, glm::vec4 w, At at) {
+    return w.x * at(t.x0, t.y0) + w.y * at(t.x1, t.y0) + w.z * at(t.x0, t.y1) + w.w * at(t.x1, t.y1);
+}
+
+float viewDistance(float windowDepth, glm::vec4 unproject) {
+    const float ndc = 2.0f * windowDepth - 1.0f;
+    return -(unproject.x * ndc + unproject.y) / (unproject.z * ndc + unproject.w);
+}
+
 }  // namespace
+
+JointTapWeights jointTapWeights(const PassTargets& t, int x, int y, Size2 r) {
+    const Taps taps = bilinearTaps(x, y, r, t.full);
+    const glm::vec4 bilinear((1.0f - taps.fx) * (1.0f - taps.fy), taps.fx * (1.0f - taps.fy), (1.0f - taps.fx) * taps.fy,
+                             taps.fx * taps.fy);
+    auto depthAt = [&](int px, int py) { return t.nearestDepth[size_t(py) * size_t(t.full.width) + size_t(px)]; };
+    const float distance = viewDistance(depthAt(x, y), t.depthUnproject);
+    auto agreement = [&](int tx, int ty) {
+        const float z = depthAt(nearestSampleTexel(tx, r.width, t.full.width), nearestSampleTexel(ty, r.height, t.full.height));
+        if (z >= 1.0f) return 0.0f;
+        const float q = (viewDistance(z, t.depthUnproject) - distance) / (float(STARNT_UPSAMPLE_SIGMA) * distance);
+        return std::exp(-q * q);
+    };
+    const glm::vec4 agree(agreement(taps.x0, taps.y0), agreement(taps.x1, taps.y0), agreement(taps.x0, taps.y1),
+                          agreement(taps.x1, taps.y1));
+    JointTapWeights out;
+    out.plain = glm::all(glm::greaterThanEqual(agree, glm::vec4(float(STARNT_UPSAMPLE_PLAIN_AGREEMENT))));
+    const glm::vec4 w = bilinear * agree;
+    const float total = w.x + w.y + w.z + w.w;
+    out.weights = !out.plain && total > float(STARNT_UPSAMPLE_MIN_WEIGHT) ? w / total : bilinear;
+    return out;
+}
 
 std::vector<glm::vec4> bilinearUpsample(const std::vector<glm::vec4>& reduced, Size2 r, Size2 full, bool alphaWeighted) {
     std::vector<glm::vec4> out(size_t(full.width) * size_t(full.height));
@@ -82,7 +117,7 @@ std::vector<glm::vec4> bilinearUpsample(const std::vector<glm::vec4>& reduced, S
     return out;
 }
 
-std::vector<UpsampledSums> upsamplePassSums(const PassTargets& t, float transmittanceEpsilon) {
+std::vector<UpsampledSums> upsamplePassSums(const PassTargets& t, float transmittanceEpsilon, UpsampleFilter filter) {
     const size_t n = size_t(t.full.width) * size_t(t.full.height);
     std::vector<UpsampledSums> out(n);
     const bool fullResolution = t.pass2 == t.full && t.pass3 == t.full;
@@ -133,9 +168,30 @@ std::vector<UpsampledSums> upsamplePassSums(const PassTargets& t, float transmit
             s.second = second[i];
             const Taps taps = bilinearTaps(x, y, t.pass3, t.full);
             auto tail = [&](int tx, int ty) -> const Tail& { return tails[size_t(ty) * size_t(t.pass3.width) + size_t(tx)]; };
-            const glm::vec4 tailAc = interpolate<glm::vec4>(taps, [&](int tx, int ty) { return tail(tx, ty).alphaColor; });
-            const glm::vec4 tailCn = interpolate<glm::vec4>(taps, [&](int tx, int ty) { return tail(tx, ty).colorCount; });
-            const float tailT = interpolate<float>(taps, [&](int tx, int ty) { return tail(tx, ty).transmittance; });
+            auto tailAlphaColor = [&](int tx, int ty) { return tail(tx, ty).alphaColor; };
+            auto tailColorCount = [&](int tx, int ty) { return tail(tx, ty).colorCount; };
+            auto tailTransmittance = [&](int tx, int ty) { return tail(tx, ty).transmittance; };
+            glm::vec4 tailAc, tailCn;
+            float tailT;
+            const JointTapWeights joint3 =
+                filter == UpsampleFilter::Joint ? jointTapWeights(t, x, y, t.pass3) : JointTapWeights{glm::vec4(0.0f), true};
+            if (joint3.plain) {
+                tailAc = interpolate<glm::vec4>(taps, tailAlphaColor);
+                tailCn = interpolate<glm::vec4>(taps, tailColorCount);
+                tailT = interpolate<float>(taps, tailTransmittance);
+            } else {
+                tailAc = weightedSum<glm::vec4>(taps, joint3.weights, tailAlphaColor);
+                tailCn = weightedSum<glm::vec4>(taps, joint3.weights, tailColorCount);
+                tailT = weightedSum<float>(taps, joint3.weights, tailTransmittance);
+            }
+            if (filter == UpsampleFilter::Joint && !(t.pass2 == t.full)) {
+                const JointTapWeights joint2 = t.pass2 == t.pass3 ? joint3 : jointTapWeights(t, x, y, t.pass2);
+                const glm::vec4 p = weightedSum<glm::vec4>(bilinearTaps(x, y, t.pass2, t.full), joint2.weights, [&](int tx, int ty) {
+                    const glm::vec4 v = t.second[size_t(ty) * size_t(t.pass2.width) + size_t(tx)];
+                    return glm::vec4(glm::vec3(v) * v.a, v.a);
+                });
+                s.second = p.a > 0.0f ? glm::vec4(glm::vec3(p) / p.a, p.a) : glm::vec4(0.0f);
+            }
             const glm::vec3 c1(s.nearest), c2(s.second);
             const float a1 = s.nearest.a, a2 = s.second.a;
             const float has1 = a1 > 0.0f ? 1.0f : 0.0f, has2 = a2 > 0.0f ? 1.0f : 0.0f;

@@ -50,7 +50,26 @@ struct PassTargets {
     std::vector<glm::vec4> alphaColor;    // pass3: sum a C, sum a
     std::vector<glm::vec4> colorCount;    // pass3: sum C, N
     std::vector<float> transmittance;     // pass3: prod (1 - a)
+    // Joint upsampling only: pass-1 window depth at full size (1 = no fragment), and rows 2 and 3
+    // of the inverse projection, z and w columns (m22, m32, m23, m33), to turn it into view distance.
+    std::vector<float> nearestDepth;
+    glm::vec4 depthUnproject{0.0f};
 };
+
+// How reduced images come back to full resolution (MethodOptions::Upsample).
+enum class UpsampleFilter { Bilinear, Joint };
+
+// Joint bilateral tap weights of full pixel (x, y) in a reduced image of size `r` (upsample.glsl,
+// jointTaps): the bilinear weights of the taps (x0,y0), (x1,y0), (x0,y1), (x1,y1), each times
+// exp(-((d_tap - d) / (STARNT_UPSAMPLE_SIGMA d))^2), d the view distance of the pass-1 surface at
+// the pixel and d_tap at the tap's sample (0 where the tap's sample has none), normalised. When every
+// tap agrees to STARNT_UPSAMPLE_PLAIN_AGREEMENT, or the kept weight is below
+// STARNT_UPSAMPLE_MIN_WEIGHT, the plain bilinear weights; `plain` says the former.
+struct JointTapWeights {
+    glm::vec4 weights{0.0f};
+    bool plain = false;
+};
+JointTapWeights jointTapWeights(const PassTargets& targets, int x, int y, Size2 r);
 
 // One full-resolution pixel's sums after upsampling (readPixelSums in neural_inputs.glsl).
 struct UpsampledSums {
@@ -65,6 +84,8 @@ struct UpsampledSums {
 // the pass-2 texel whose sample is nearest to it; transmittance divided by theirs, guarded by `transmittanceEpsilon` -> 1) is
 // interpolated bilinearly, and the pixel adds back its own two layers. Interpolating the sums and
 // subtracting the pixel's own layers instead would remove fragments the neighbours never had.
-std::vector<UpsampledSums> upsamplePassSums(const PassTargets& targets, float transmittanceEpsilon);
+// Joint: the same, with the four taps of pass 2 and of the tails weighted by jointTapWeights.
+std::vector<UpsampledSums> upsamplePassSums(const PassTargets& targets, float transmittanceEpsilon,
+                                            UpsampleFilter filter = UpsampleFilter::Bilinear);
 
 }  // namespace starnt
