@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <fstream>
 #include <map>
+
+#include <unistd.h>
 #include <numeric>
 
 #include "core/gl_util.hpp"
@@ -18,6 +21,15 @@ void checkImageSize(int width, int height) {
         throw Error("image size " + std::to_string(width) + "x" + std::to_string(height) + " is out of range (1.." +
                     std::to_string(kMaxImageSize) + " per side)");
     }
+}
+
+size_t residentMemoryBytes() {
+    // /proc/self/statm: size resident shared text lib data dt, in pages (Linux only; 0 elsewhere).
+    std::ifstream statm("/proc/self/statm");
+    size_t size = 0, resident = 0;
+    if (!(statm >> size >> resident)) return 0;
+    const long page = sysconf(_SC_PAGESIZE);
+    return resident * size_t(page > 0 ? page : 4096);
 }
 
 double median(std::vector<double> v) {
@@ -116,7 +128,8 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
         record.index = i;
         record.camera = camera;
         record.stats = {{"frame", i}, {"frame_ms", ms}, {"interpolated", interpolated}, {"pass_ms", passes},
-                        {"pass_counters", countersJson(counters)}};
+                        {"pass_counters", countersJson(counters)}, {"memory_bytes", method->gpuMemoryBytes()},
+                        {"rss_bytes", residentMemoryBytes()}};
         for (const char* key : {"scale_pass2", "scale_pass3", "w_bar", "tile_levels", "probe_frame"}) {
             if (methodStats.contains(key)) record.stats[key] = methodStats[key];
         }

@@ -68,6 +68,10 @@ void checkImageSize(int width, int height);
 RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job);
 
 double median(std::vector<double> values);
+// Resident memory of this process in bytes (/proc/self/statm; 0 where it cannot be read). Per-frame
+// records carry it as "rss_bytes" beside the method's GPU "memory_bytes", so a long run (a soak)
+// shows whether either grows.
+size_t residentMemoryBytes();
 double mean(const std::vector<double>& values);
 
 }  // namespace starnt
