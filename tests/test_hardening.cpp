@@ -264,6 +264,17 @@ TEST(Hardening, DirectoriesWhereFilesBelong) {
     expectOneLineError(run("render --width 16 --height 12 --scene " + (dir / "bufdir").string() + " --out " +
                            (dir / "x.png").string()),
                        {"bufdir", "is a directory"}, "scene");
+    // Found by fuzz/fuzz_camera: a camera or camera-path "file" that is a directory escaped as
+    // std::ios_failure from the JSON reader.
+    const Bounds bounds{glm::vec3(-1.0f), glm::vec3(1.0f)};
+    msg = errorOf([&] { parseCameraSpec((dir / "bufdir").string(), bounds, 1.5f); });
+    EXPECT_CONTAINS(msg, "bufdir");
+    EXPECT_CONTAINS(msg, "is a directory");
+    msg = errorOf([&] { parseCameraPathSpec((dir / "bufdir").string(), bounds, 1.5f); });
+    EXPECT_CONTAINS(msg, "is a directory");
+    expectOneLineError(run("render --width 16 --height 12 --scene builtin:panes --camera " + (dir / "bufdir").string() +
+                           " --out " + (dir / "x.png").string()),
+                       {"bufdir", "is a directory"}, "camera");
 }
 
 TEST(Hardening, ImagesBeyondTheSizeLimit) {

@@ -1,6 +1,7 @@
 #include "starnt/camera.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -75,6 +76,10 @@ Camera parseCameraSpec(const std::string& spec, const Bounds& bounds, float aspe
         }
         return orbitCamera(bounds, az, el, aspect);
     }
+    // A directory opens as a stream but fails inside the JSON reader with std::ios_failure
+    // (found by fuzz/fuzz_camera): refuse it here with a message.
+    std::error_code ec;
+    if (std::filesystem::is_directory(spec, ec)) throw Error("camera file '" + spec + "' is a directory");
     std::ifstream file(spec);
     if (!file) throw Error("cannot open camera file '" + spec + "' (expected orbit:DEG[,ELEV] or a .json file)");
     nlohmann::json j;

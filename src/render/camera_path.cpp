@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -123,6 +124,8 @@ CameraPath parseCameraPathSpec(const std::string& spec, const Bounds& bounds, fl
         if (in >> extra) throw Error(usage);
         return CameraPath::orbit(bounds, start, end, elevation, aspect);
     }
+    std::error_code ec;  // a directory would fail inside the JSON reader (fuzz/fuzz_camera)
+    if (std::filesystem::is_directory(spec, ec)) throw Error("camera path '" + spec + "' is a directory");
     std::ifstream file(spec);
     if (!file) throw Error("cannot open camera path '" + spec + "' (expected orbit:START,END[,ELEV] or a .json keyframe file)");
     try {
