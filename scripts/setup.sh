@@ -2,6 +2,7 @@
 # Installs the Debian 12 packages STAR-NT builds and runs with. Safe to run again: apt skips what is there.
 # All Mesa packages go in one apt call so their versions stay matched (a mismatched libgl1-mesa-dri
 # and libegl-mesa0 fails at context creation). libglx-mesa0 is the GLX side, for `starnt view` under X/Xvfb.
+# clang + libclang-rt-14-dev (libFuzzer, sanitizer runtimes) build the fuzz targets (scripts/fuzz.sh).
 set -euo pipefail
 PKGS=(
   build-essential cmake ninja-build pkg-config git
@@ -9,6 +10,7 @@ PKGS=(
   libglm-dev libtinygltf-dev libtinyobjloader-dev libstb-dev libopenexr-dev
   libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev libeigen3-dev
   libglfw3-dev libimgui-dev xvfb xauth python3-matplotlib
+  clang libclang-rt-14-dev
 )
 missing=()
 for p in "${PKGS[@]}"; do
