@@ -42,6 +42,35 @@ TEST(Cli, RenderWritesImageStatsAndExr) {
     EXPECT_EQ(stats["frames"], 2);
     EXPECT_GT(stats["pass_ms"]["accumulate"].get<double>(), 0.0);
     EXPECT_GE(stats["max_fragments"].get<int>(), 2);
+    // Memory by target, summing to the total: wboit's accumulation, revealage and output, at
+    // 64x48 (RGBA32F accum and output, R32F revealage).
+    ASSERT_TRUE(stats.contains("memory_targets"));
+    size_t sum = 0;
+    for (const auto& [name, bytes] : stats["memory_targets"].items()) sum += bytes.get<size_t>();
+    EXPECT_EQ(sum, stats["memory_bytes"].get<size_t>());
+    EXPECT_EQ(stats["memory_targets"]["accum"].get<size_t>(), size_t(64 * 48 * 16));
+    EXPECT_EQ(stats["memory_targets"]["revealage"].get<size_t>(), size_t(64 * 48 * 4));
+}
+
+// The neural method names its targets; the reduced peel depth exists only once pass 2 ran reduced
+// (fixed full scales here), and the tile overlay only when asked for.
+TEST(Cli, NeuralMemoryTargetsSumToTheTotal) {
+    fs::path dir = starnt::test::makeTempDir("cli");
+    for (const std::string& extra : {std::string("--scales 100,100"), "--scales 50,50 --tiles-image " + (dir / "t.png").string()}) {
+        const CliRun r = run("render --scene builtin:tubes --method starnt --width 64 --height 48 " + extra + " --out " +
+                             (dir / "a.png").string() + " --stats " + (dir / "a.json").string());
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        std::ifstream f(dir / "a.json");
+        const nlohmann::json stats = nlohmann::json::parse(f);
+        const nlohmann::json& targets = stats["memory_targets"];
+        size_t sum = 0;
+        for (const auto& [name, bytes] : targets.items()) sum += bytes.get<size_t>();
+        EXPECT_EQ(sum, stats["memory_bytes"].get<size_t>()) << extra;
+        EXPECT_EQ(targets["pass1_color"].get<size_t>(), size_t(64 * 48 * 16)) << extra;
+        const bool reduced = extra.find("50,50") != std::string::npos;
+        EXPECT_EQ(targets["pass2_peel_depth_reduced"].get<size_t>(), reduced ? size_t(32 * 24 * 4) : 0u) << extra;
+        EXPECT_EQ(targets["tile_overlay_debug"].get<size_t>(), 0u) << "counted before the overlay is made: " << extra;
+    }
 }
 
 TEST(Cli, CompareIdenticalIsZeroAndJsonShape) {

@@ -12,6 +12,7 @@
 //   auto method = starnt::createMethod("wboit", engineSurface, {});
 //   method->render(frame, [&](const starnt::GeometryPass& pass) { engine.drawTransparent(pass.program); });
 #pragma once
+#include <utility>
 #include <epoxy/gl.h>
 
 #include <cstddef>
@@ -122,6 +123,10 @@ public:
     virtual GLuint outputTexture() const = 0;
     // Bytes of every GPU buffer and texture the method holds now.
     virtual size_t gpuMemoryBytes() const = 0;
+    // The same by target (name -> bytes; the values sum to gpuMemoryBytes()). Methods that do not
+    // break it down report one entry, "all".
+    using MemoryTargets = std::vector<std::pair<std::string, size_t>>;
+    virtual MemoryTargets gpuMemoryTargets() const { return {{"all", gpuMemoryBytes()}}; }
     // Method-specific counters of the last frame (e.g. max fragments per pixel). The neural methods
     // report "interpolated" (bool), "w_bar", "scale_pass2", "scale_pass3" and "tile_levels" (N_0..N_3).
     virtual nlohmann::json lastFrameStats() const { return nlohmann::json::object(); }

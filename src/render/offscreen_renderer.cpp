@@ -167,6 +167,10 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
 
     RenderOutput out;
     out.image = std::move(image);
+    // Memory of the frames as rendered: taken before the debug overlay below is allocated.
+    const size_t memoryBytes = method->gpuMemoryBytes();
+    nlohmann::json memoryTargets = nlohmann::json::object();
+    for (const auto& [name, bytes] : method->gpuMemoryTargets()) memoryTargets[name] = bytes;
     if (job.readTileOverlay) {
         if (GLuint overlay = method->tileOverlayTexture()) out.tileOverlay = gl::readTexture(overlay, job.width, job.height);
     }
@@ -200,7 +204,8 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
         {"w_bar", nullptr},
         {"tile_levels", nlohmann::json::array({0, 0, 0, 0})},
         {"max_fragments", maxFragments},
-        {"memory_bytes", method->gpuMemoryBytes()},
+        {"memory_bytes", memoryBytes},
+        {"memory_targets", memoryTargets},
         {"scene_memory_bytes", scene.gpuMemoryBytes()},
         {"frames", job.frames},
         {"timed_frames", frameMs.size()},

@@ -16,6 +16,7 @@ public:
 
     std::string name() const override { return "abuffer"; }
     size_t gpuMemoryBytes() const override { return outputBytes() + lists_.gpuMemoryBytes(); }
+    MemoryTargets gpuMemoryTargets() const override { return {{"output", outputBytes()}, {"fragment_lists", lists_.gpuMemoryBytes()}}; }
 
     nlohmann::json lastFrameStats() const override {
         return {{"fragments", lists_.fragmentCount()},

@@ -38,11 +38,12 @@ public:
     size_t gpuMemoryBytes() const override {
         return outputBytes() + b0_.bytes() + moments_tex_.bytes() + extra_.bytes() + accum_.bytes();
     }
+    MemoryTargets gpuMemoryTargets() const override {
+        return {{"output", outputBytes()}, {"b0", b0_.bytes()}, {"moments", moments_tex_.bytes()},
+                {"moments_extra", extra_.bytes()}, {"accum", accum_.bytes()}};
+    }
     nlohmann::json lastFrameStats() const override {
-        return {{"moments", setting_.name},
-                {"memory_targets",
-                 {{"output", outputBytes()}, {"b0", b0_.bytes()}, {"moments", moments_tex_.bytes()},
-                  {"moments_extra", extra_.bytes()}, {"accum", accum_.bytes()}}}};
+        return {{"moments", setting_.name}};
     }
 
     void render(const FrameDesc& frame, const DrawCallback& draw) override {

@@ -52,6 +52,17 @@ public:
         return outputBytes() + passes_.gpuMemoryBytes() + cornerNetwork_.bytes() + overlay_.bytes() +
                (tiles_ ? tiles_->gpuMemoryBytes() : 0) + temporal_.gpuMemoryBytes();
     }
+    MemoryTargets gpuMemoryTargets() const override {
+        MemoryTargets out = {{"output", outputBytes()}};
+        passes_.addMemoryTargets(out);
+        out.emplace_back("corner_network", cornerNetwork_.bytes());
+        if (tiles_) tiles_->addMemoryTargets(out);
+        temporal_.addMemoryTargets(out);
+        // Debug only: allocated on the first tileOverlayTexture() call (--tiles-image, the bench's
+        // tile images, the viewer's tile view).
+        out.emplace_back("tile_overlay_debug", overlay_.bytes());
+        return out;
+    }
 
     nlohmann::json lastFrameStats() const override {
         nlohmann::json stats = {{"network", nn::kindName(network_.kind)},

@@ -63,6 +63,8 @@ public:
     // `program` (which includes neural_inputs.glsl).
     void bindInputs(const gl::Program& program) const;
     size_t gpuMemoryBytes() const;
+    // Appends (name, bytes) of every target.
+    void addMemoryTargets(OitMethod::MemoryTargets& out) const;
     const gl::Texture2D& nearest() const { return nearest_; }
     const gl::Texture2D& nearestDepth() const { return nearestDepth_; }
     // The depth pass 2 peeled against in the last frame (the full pass-1 depth at s2 = 1).

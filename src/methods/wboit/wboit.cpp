@@ -24,6 +24,9 @@ public:
 
     std::string name() const override { return "wboit"; }
     size_t gpuMemoryBytes() const override { return outputBytes() + accum_.bytes() + reveal_.bytes(); }
+    MemoryTargets gpuMemoryTargets() const override {
+        return {{"output", outputBytes()}, {"accum", accum_.bytes()}, {"revealage", reveal_.bytes()}};
+    }
 
     void render(const FrameDesc& frame, const DrawCallback& draw) override {
         if (resizeOutput(frame.width, frame.height)) {

@@ -6,6 +6,7 @@
 #include <glm/glm.hpp>
 
 #include "core/gl_util.hpp"
+#include "starnt/oit_method.hpp"
 #include "core/shader.hpp"
 
 namespace starnt::temporal {
@@ -34,6 +35,13 @@ public:
                           GLuint outputTexture);
 
     void reset() { hasFrame_ = false; }  // forgets the frame, keeps the allocations
+    void addMemoryTargets(starnt::OitMethod::MemoryTargets& out) const {
+        out.insert(out.end(), {{"history_color", color_.bytes()},
+                               {"history_depth", depth_.bytes()},
+                               {"history_nearest", keptNearest_.bytes()},
+                               {"history_behind", behind_.bytes()},
+                               {"history_search_seeds", blockMinMax_.bytes() + seeds_.bytes()}});
+    }
     size_t gpuMemoryBytes() const {
         return color_.bytes() + depth_.bytes() + keptNearest_.bytes() + behind_.bytes() + blockMinMax_.bytes() +
                seeds_.bytes();

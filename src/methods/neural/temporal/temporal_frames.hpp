@@ -58,6 +58,7 @@ public:
     // Forgets the kept frame and the timing; the next frame is real.
     void reset();
     size_t gpuMemoryBytes() const { return reprojector_.gpuMemoryBytes(); }
+    void addMemoryTargets(OitMethod::MemoryTargets& out) const { reprojector_.addMemoryTargets(out); }
 
 private:
     TemporalSchedule schedule_;

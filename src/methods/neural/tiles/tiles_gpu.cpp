@@ -199,6 +199,16 @@ void GpuTiles::renderOverlay(GLuint composite, GLuint overlay) const {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
+void GpuTiles::addMemoryTargets(OitMethod::MemoryTargets& out) const {
+    size_t readbacks = 0;
+    for (const auto& r : readbacks_) readbacks += r.buffer.bytes();
+    out.insert(out.end(), {{"tile_masks", masks_[0].bytes() + masks_[1].bytes()},
+                           {"tile_occupancy", occupancy_.bytes()},
+                           {"tile_histogram", histogramBuffer_.bytes()},
+                           {"tile_guard_sums", guardTileSums_.bytes()},
+                           {"tile_readbacks", readbacks}});
+}
+
 size_t GpuTiles::gpuMemoryBytes() const {
     size_t bytes = masks_[0].bytes() + masks_[1].bytes() + occupancy_.bytes() + histogramBuffer_.bytes() +
                    guardTileSums_.bytes();

@@ -55,6 +55,8 @@ public:
     int tilesX() const { return tilesX_; }
     int tilesY() const { return tilesY_; }
     size_t gpuMemoryBytes() const;
+    // Appends (name, bytes) of every buffer.
+    void addMemoryTargets(OitMethod::MemoryTargets& out) const;
 
 private:
     struct Readback {
