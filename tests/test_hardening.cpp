@@ -414,6 +414,12 @@ TEST(Hardening, ClearMessagesForRelativeFaceIndicesAndUnbackedAccessors) {
     EXPECT_CONTAINS(msg, "vertex index -10 is out of range: only 3 vertices are defined");
     writeText(dir / "zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n");
     EXPECT_CONTAINS(errorOf([&] { loadScene((dir / "zero.obj").string()); }), "index '0'");
+    // Found by fuzz/fuzz_obj: an index beyond long long saturated to LLONG_MIN, whose negation is
+    // undefined behaviour; it is an out-of-range index like any other (either sign).
+    writeText(dir / "huge.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -100000000000000000000000 1 2\n");
+    EXPECT_CONTAINS(errorOf([&] { loadScene((dir / "huge.obj").string()); }), "is out of range");
+    writeText(dir / "hugepos.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 100000000000000000000000 1 2\n");
+    EXPECT_CONTAINS(errorOf([&] { loadScene((dir / "hugepos.obj").string()); }), "is out of range");
 
     // POSITION without a buffer view claiming 2^26 vertices in a file of a few hundred bytes.
     GltfBuilder g = oneTriangle();

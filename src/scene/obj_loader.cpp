@@ -139,6 +139,7 @@ size_t checkObjText(const std::string& path, const std::filesystem::path& dir) {
                     const std::string field = token.substr(start, slash == std::string::npos ? std::string::npos : slash - start);
                     if (!field.empty()) {
                         char* end = nullptr;
+                        errno = 0;
                         const long long idx = std::strtoll(field.c_str(), &end, 10);
                         const char* kinds[3] = {"vertex", "texture coordinate", "normal"};
                         const char* plural[3] = {"vertices", "texture coordinates", "normals"};
@@ -146,7 +147,9 @@ size_t checkObjText(const std::string& path, const std::filesystem::path& dir) {
                         if (*end != '\0' || idx == 0)
                             throw Error(at + ": face " + kinds[part] + " index '" + field + "' in '" + token +
                                         "' is not a valid index (1-based, or negative for relative)");
-                        if (idx < 0 && -idx > defined)
+                        // Compared without negating idx: strtoll saturates a huge index at LLONG_MIN,
+                        // whose negation overflows (found by fuzz/fuzz_obj).
+                        if (errno == ERANGE || (idx < 0 && idx < -defined))
                             throw Error(at + ": face " + kinds[part] + " index " + field + " is out of range: only " +
                                         std::to_string(defined) + " " + (defined == 1 ? kinds[part] : plural[part]) +
                                         " are defined before this line");
