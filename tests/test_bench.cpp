@@ -59,23 +59,23 @@ json readJson(const fs::path& p) {
 TEST(BenchPlan, VariantsCarryTheirOptions) {
     EXPECT_EQ(bench::defaultVariantNames().size(), 12u);
     const auto& paper = bench::findVariant("starnt-paper");
-    EXPECT_EQ(paper.options.tileSignal, MethodOptions::TileSignal::Composite);
-    EXPECT_EQ(paper.options.scaleRule, MethodOptions::ScaleRule::Continuous);
-    EXPECT_FALSE(paper.options.scaleGuard);
-    EXPECT_EQ(bench::findVariant("starnt").options.scaleRule, MethodOptions::ScaleRule::Snapped);
-    EXPECT_EQ(bench::findVariant("starnt-total-warp").options.temporalMode, MethodOptions::TemporalMode::Warp);
-    EXPECT_EQ(bench::findVariant("starnt-total").options.temporalMode, MethodOptions::TemporalMode::Refresh);
-    EXPECT_EQ(bench::findVariant("starnt-full").options.spatial, std::optional<bool>(false));
-    EXPECT_EQ(bench::findVariant("starnt").options.spatial, std::optional<bool>(true));
-    EXPECT_EQ(bench::findVariant("starnt").options.temporalInterval, 1);
+    EXPECT_EQ(paper.options.neural.tileSignal, NeuralOptions::TileSignal::Composite);
+    EXPECT_EQ(paper.options.neural.scaleRule, NeuralOptions::ScaleRule::Continuous);
+    EXPECT_FALSE(paper.options.neural.scaleGuard);
+    EXPECT_EQ(bench::findVariant("starnt").options.neural.scaleRule, NeuralOptions::ScaleRule::Snapped);
+    EXPECT_EQ(bench::findVariant("starnt-total-warp").options.neural.temporalMode, NeuralOptions::TemporalMode::Warp);
+    EXPECT_EQ(bench::findVariant("starnt-total").options.neural.temporalMode, NeuralOptions::TemporalMode::Refresh);
+    EXPECT_EQ(bench::findVariant("starnt-full").options.neural.spatial, std::optional<bool>(false));
+    EXPECT_EQ(bench::findVariant("starnt").options.neural.spatial, std::optional<bool>(true));
+    EXPECT_EQ(bench::findVariant("starnt").options.neural.temporalInterval, 1);
     const auto& total = bench::findVariant("starnt-total");
     EXPECT_EQ(total.method, "starnt");
-    EXPECT_EQ(total.options.spatial, std::optional<bool>(true));
-    EXPECT_EQ(total.options.temporalInterval, 2);
-    EXPECT_EQ(bench::findVariant("starnt-corners").options.inference, MethodOptions::Inference::Corners);
-    EXPECT_EQ(bench::findVariant("dfaoit").options.spatial, std::nullopt);  // the method's default: off
-    EXPECT_EQ(bench::findVariant("mboit").options.mboitMoments, "6");
-    EXPECT_EQ(bench::findVariant("mboit-t3").options.mboitMoments, "t3");
+    EXPECT_EQ(total.options.neural.spatial, std::optional<bool>(true));
+    EXPECT_EQ(total.options.neural.temporalInterval, 2);
+    EXPECT_EQ(bench::findVariant("starnt-corners").options.neural.inference, NeuralOptions::Inference::Corners);
+    EXPECT_EQ(bench::findVariant("dfaoit").options.neural.spatial, std::nullopt);  // the method's default: off
+    EXPECT_EQ(bench::findVariant("mboit").options.mboit.moments, "6");
+    EXPECT_EQ(bench::findVariant("mboit-t3").options.mboit.moments, "t3");
     try {
         bench::findVariant("fancy");
         FAIL() << "unknown variant accepted";

@@ -26,7 +26,7 @@ test::TestScene makeScene(const std::string& builtin, float azimuth = 20.0f) {
 
 MethodOptions withMoments(MomentKind kind) {
     MethodOptions o;
-    o.mboitMoments = momentSetting(kind).name;
+    o.mboit.moments = momentSetting(kind).name;
     return o;
 }
 
@@ -215,7 +215,7 @@ TEST(MboitReference, MomentOptionParses) {
     EXPECT_EQ(parseMomentKind("t3"), MomentKind::Trig3);
     EXPECT_THROW(parseMomentKind("8"), Error);
     EXPECT_THROW(parseMomentKind(""), Error);
-    EXPECT_EQ(MethodOptions{}.mboitMoments, "6");
+    EXPECT_EQ(MethodOptions{}.mboit.moments, "6");
 }
 
 TEST(MboitCli, RenderRunsWithAMomentSetting) {

@@ -134,7 +134,7 @@ TEST(GlMethods, CaptureSeesTheSameFragmentsAsTheCpuRasteriser) {
 TEST(GlMethods, AbufferPoolFarTooSmallStillGivesTheExactImage) {
     SceneSetup s = makeSetup("random");
     MethodOptions tiny;
-    tiny.abufferInitialNodesPerPixel = 0.01;
+    tiny.abuffer.initialNodesPerPixel = 0.01;
     RenderOutput small = render(s, "abuffer", tiny);
     RenderOutput normal = render(s, "abuffer");
     EXPECT_GE(small.stats["method_stats"]["pool_regrows"].get<int>(), 1);
@@ -146,8 +146,8 @@ TEST(GlMethods, AbufferPoolFarTooSmallStillGivesTheExactImage) {
 TEST(GlMethods, AbufferMemoryCapFailsWithClearError) {
     SceneSetup s = makeSetup("random");
     MethodOptions capped;
-    capped.abufferInitialNodesPerPixel = 0.01;
-    capped.abufferMemoryCapBytes = size_t(kW) * kH * 4 + 4096;
+    capped.abuffer.initialNodesPerPixel = 0.01;
+    capped.abuffer.memoryCapBytes = size_t(kW) * kH * 4 + 4096;
     try {
         render(s, "abuffer", capped);
         FAIL() << "expected an error";

@@ -112,7 +112,7 @@ TEST(GlNeural, WrongWeightsKindIsAClearError) {
     fs::path dir = test::makeTempDir("weights");
     nn::saveWeights(nn::makeUntrained(nn::NetworkKind::DFAOIT, 1), dir / "d.json");
     MethodOptions options;
-    options.weightsPath = (dir / "d.json").string();
+    options.neural.weightsPath = (dir / "d.json").string();
     try {
         createMethod("starnt", SceneGpu::surfaceShader(), options);
         FAIL() << "expected an error";
@@ -121,21 +121,21 @@ TEST(GlNeural, WrongWeightsKindIsAClearError) {
     }
 }
 
-// Joint bilateral upsampling (MethodOptions::Upsample::Joint) guided by the pass-1 depth: on the
+// Joint bilateral upsampling (NeuralOptions::Upsample::Joint) guided by the pass-1 depth: on the
 // panes, whose edges overlap at other depths, the half-scale passes 2 + 3 come back with less
 // error against the A-buffer than with plain bilinear (measured at 640x360, scales 50,50: MSE
 // x10^2 0.00302 bilinear, 0.00189 joint), and at full scale both are the same image.
 TEST(GlNeural, JointUpsampleBeatsBilinearAtHalfScaleOnThePanes) {
     Case c(makeBuiltinScene("panes", 3), 160, 96, 30.0f, 20.0f, kBackground);
     const Image exact = renderWith(c, "abuffer");
-    auto starnt = [&](MethodOptions::Upsample filter, float scale) {
+    auto starnt = [&](NeuralOptions::Upsample filter, float scale) {
         MethodOptions o;
-        o.upsample = filter;
-        o.fixedScale2 = o.fixedScale3 = scale;
+        o.neural.upsample = filter;
+        o.neural.fixedScale2 = o.neural.fixedScale3 = scale;
         return renderWith(c, "starnt", o);
     };
-    const double bilinear = mseSrgb(exact, starnt(MethodOptions::Upsample::Bilinear, 0.5f));
-    const double joint = mseSrgb(exact, starnt(MethodOptions::Upsample::Joint, 0.5f));
+    const double bilinear = mseSrgb(exact, starnt(NeuralOptions::Upsample::Bilinear, 0.5f));
+    const double joint = mseSrgb(exact, starnt(NeuralOptions::Upsample::Joint, 0.5f));
     EXPECT_LT(joint, 0.9 * bilinear) << "bilinear " << bilinear << " joint " << joint;
-    EXPECT_EQ(mseSrgb(starnt(MethodOptions::Upsample::Bilinear, 1.0f), starnt(MethodOptions::Upsample::Joint, 1.0f)), 0.0);
+    EXPECT_EQ(mseSrgb(starnt(NeuralOptions::Upsample::Bilinear, 1.0f), starnt(NeuralOptions::Upsample::Joint, 1.0f)), 0.0);
 }

@@ -8,6 +8,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/gl_util.hpp"
+#include "render/frame_stats_json.hpp"
+#include "core/texture_readback.hpp"
 #include "core/gpu_timer.hpp"
 #include "core/shader.hpp"
 #include "methods/common/method_base.hpp"
@@ -132,14 +134,14 @@ struct MethodRunner {
         const FrameDesc f = scene.frame();
         method->render(f, scene.gpu->callback(f.view, f.projection, {}));
         glFinish();
-        return method->lastFrameStats();
+        return frameStatsJson(method->lastFrameStats());
     }
     Image image() const { return gl::readTexture(method->outputTexture(), scene.width, scene.height); }
 };
 
 MethodOptions spatialOptions(bool on) {
     MethodOptions o;
-    o.spatial = on;
+    o.neural.spatial = on;
     return o;
 }
 
@@ -492,8 +494,8 @@ TEST(GlTiles, DepthDownsampleMatchesCpuMax) {
 TEST(GlTiles, ScalesOfTheNextFrameFollowWBar) {
     test::TestScene c(makeBuiltinScene("tubes", 3), 160, 96, 30.0f, 20.0f, kBackground);
     MethodOptions paperRule;  // the paper's behaviour: the formula alone, tiles on every frame
-    paperRule.scaleRule = MethodOptions::ScaleRule::Continuous;
-    paperRule.scaleGuard = false;
+    paperRule.neural.scaleRule = NeuralOptions::ScaleRule::Continuous;
+    paperRule.neural.scaleGuard = false;
     MethodRunner run(c, "starnt", paperRule);  // spatial on by default
     nlohmann::json previous = run.frame();
     EXPECT_EQ(previous["scale_pass2"], 1.0) << "no tile history: full resolution";
@@ -528,7 +530,7 @@ TEST(GlTiles, NoTransparentPixelGivesWBarZeroAndMinimumScales) {
         run.method->render(f, c.gpu->callback(f.view, f.projection, invisible));
         glFinish();
     }
-    const nlohmann::json stats = run.method->lastFrameStats();
+    const nlohmann::json stats = frameStatsJson(run.method->lastFrameStats());
     EXPECT_EQ(stats["w_bar"], 0.0);
     EXPECT_EQ(stats["tile_levels"], nlohmann::json::array({0, 0, 0, 0}));
     EXPECT_EQ(stats["scale_pass2"], 0.25);
@@ -541,9 +543,9 @@ TEST(GlTiles, NoTransparentPixelGivesWBarZeroAndMinimumScales) {
 TEST(GlTiles, OddSizesAndOnePixelRender) {
     for (auto [w, h] : {std::pair{1, 1}, std::pair{17, 33}, std::pair{50, 3}}) {
         test::TestScene c(makeBuiltinScene("tubes", 3), w, h, 10.0f, 20.0f, kBackground);
-        for (auto inference : {MethodOptions::Inference::Full, MethodOptions::Inference::Corners}) {
+        for (auto inference : {NeuralOptions::Inference::Full, NeuralOptions::Inference::Corners}) {
             MethodOptions o;
-            o.inference = inference;
+            o.neural.inference = inference;
             MethodRunner run(c, "starnt", o);
             nlohmann::json stats;
             for (int frame = 0; frame < 4; ++frame) stats = run.frame();
@@ -561,8 +563,8 @@ TEST(GlTiles, CornerInferenceMatchesCpuReference) {
     constexpr int kW = 96, kH = 64;
     test::TestScene c(makeBuiltinScene("tubes", 3), kW, kH, 40.0f, 20.0f, kBackground);
     MethodOptions o;
-    o.inference = MethodOptions::Inference::Corners;
-    o.fixedScale2 = o.fixedScale3 = 1.0f;  // full-resolution passes: the CPU sums are exact
+    o.neural.inference = NeuralOptions::Inference::Corners;
+    o.neural.fixedScale2 = o.neural.fixedScale3 = 1.0f;  // full-resolution passes: the CPU sums are exact
     MethodRunner run(c, "starnt", o);
     EXPECT_FALSE(run.frame()["corner_inference_used"].get<bool>()) << "first frame: no masks yet";
     const std::vector<glm::vec4> first = glOrder(run.image());
@@ -605,8 +607,8 @@ TEST(GlTiles, CornerInferenceMatchesCpuReference) {
 TEST(GlTiles, ReducedScalesRenderReducedPasses) {
     test::TestScene c(makeBuiltinScene("tubes", 3), 160, 90, 30.0f, 20.0f, kBackground);
     MethodOptions o;
-    o.fixedScale2 = 0.5f;
-    o.fixedScale3 = 0.25f;
+    o.neural.fixedScale2 = 0.5f;
+    o.neural.fixedScale3 = 0.25f;
     const RenderOutput reduced = c.render("starnt", o);
     EXPECT_EQ(reduced.stats["method_stats"]["pass2_size"], nlohmann::json::array({80, 45}));
     EXPECT_EQ(reduced.stats["method_stats"]["pass3_size"], nlohmann::json::array({40, 23}));

@@ -9,6 +9,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "core/gl_util.hpp"
+#include "render/frame_stats_json.hpp"
 #include "core/gpu_timer.hpp"
 #include "methods/neural/tiles/tile_constants.h"
 #include "methods/neural/tiles/tiles_cpu.hpp"
@@ -173,7 +174,7 @@ TEST(ScaleGuard, GpuMatchesCpuOnARealRender) {
     const FrameDesc f = c.frame();
     method->render(f, c.gpu->callback(f.view, f.projection, {}));
     glFinish();
-    const nlohmann::json stats = method->lastFrameStats();
+    const nlohmann::json stats = frameStatsJson(method->lastFrameStats());
     ASSERT_TRUE(stats.contains("guard")) << stats.dump();
     EXPECT_TRUE(stats["probe_frame"].get<bool>());
     const std::vector<glm::vec4> composite = readGl(method->outputTexture(), w, h);
@@ -207,7 +208,7 @@ TEST(ScaleGuard, EmptyViewGoesToQuarterScalesAndShowsTheBackground) {
         const FrameDesc f = away.frame();
         method->render(f, away.gpu->callback(f.view, f.projection, {}));
         glFinish();
-        stats = method->lastFrameStats();
+        stats = frameStatsJson(method->lastFrameStats());
     }
     EXPECT_EQ(stats["w_bar"].get<double>(), 0.0);
     EXPECT_EQ(stats["scale_pass2"].get<float>(), 0.25f);
@@ -221,8 +222,8 @@ TEST(ScaleGuard, ReducedPassesAtSizesNotDivisibleByFour) {
     const int w = 98, h = 70;
     test::TestScene c(makeBuiltinScene("smoke", 2), w, h, 20.0f, 10.0f, kBackground);
     MethodOptions fullOptions, reduced;
-    fullOptions.spatial = false;
-    reduced.fixedScale2 = reduced.fixedScale3 = 0.25f;
+    fullOptions.neural.spatial = false;
+    reduced.neural.fixedScale2 = reduced.neural.fixedScale3 = 0.25f;
     const Image full = c.render("starnt", fullOptions).image, quarter = c.render("starnt", reduced).image;
     double edgeError = 0.0;
     int edgePixels = 0;
@@ -248,7 +249,7 @@ TEST(WorkCounters, EqualWorkForEqualPassesAndFewerFragmentsAtHalfScale) {
     auto countersOf = [&](const std::string& name, const MethodOptions& o) {
         auto method = createMethod(name, SceneGpu::surfaceShader(), o);
         FrameDesc f = c.frame();
-        f.timer = &timer;
+        f.timing = &timer;
         method->render(f, c.gpu->callback(f.view, f.projection, {}));
         glFinish();
         timer.collect();
@@ -263,9 +264,9 @@ TEST(WorkCounters, EqualWorkForEqualPassesAndFewerFragmentsAtHalfScale) {
     EXPECT_EQ(wboit.at("wboit_accumulate").vertexInvocations, abuffer.at("abuffer_build").vertexInvocations);
 
     MethodOptions full, half;
-    full.spatial = false;
-    half.fixedScale2 = 1.0f;
-    half.fixedScale3 = 0.5f;
+    full.neural.spatial = false;
+    half.neural.fixedScale2 = 1.0f;
+    half.neural.fixedScale3 = 0.5f;
     const auto a = countersOf("starnt", full), b = countersOf("starnt", half);
     const double ratio = double(b.at("pass3").fragmentInvocations) / double(a.at("pass3").fragmentInvocations);
     // A quarter of the pixels; llvmpipe shades whole 2x2 quads, so thin triangles round up (measured

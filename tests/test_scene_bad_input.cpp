@@ -161,9 +161,13 @@ TEST(SceneBadInput, SomeZeroAreaTrianglesAreRemovedAndCounted) {
     // Two good triangles and one degenerate one (repeated vertex) through the loader.
     const std::string path = (makeTempDir("zero") / "some.glb").string();
     oneTriangle({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0}, {0, 1, 2, 1, 1, 2, 1, 3, 2}).writeGlb(path);
-    testing::internal::CaptureStderr();
-    Scene scene = loadScene(path);
-    const std::string err = testing::internal::GetCapturedStderr();
+    Scene scene;
+    std::string err;
+    {
+        CapturedLog log;
+        scene = loadScene(path);
+        err = log.text();
+    }
     EXPECT_EQ(scene.triangleCount(), 2u);
     EXPECT_CONTAINS(err, "removed 1 zero-area triangle");
     EXPECT_EQ(scene.meshes[0].indices, (std::vector<uint32_t>{0, 1, 2, 1, 3, 2}));
@@ -176,9 +180,10 @@ TEST(SceneBadInput, SomeZeroAreaTrianglesAreRemovedAndCounted) {
     s.meshes[0].positions.push_back({1e-3f, 0.5f, 0});
     s.meshes[0].positions.push_back({0.0f, 0.5f + 1e-3f, 0});
     s.meshes[0].indices.insert(s.meshes[0].indices.end(), {0, 3, 1, 5, 6, 7});  // sliver, small real one
-    testing::internal::CaptureStderr();
-    EXPECT_EQ(validateScene(s, "direct"), 1u);
-    testing::internal::GetCapturedStderr();
+    {
+        CapturedLog log;
+        EXPECT_EQ(validateScene(s, "direct"), 1u);
+    }
     EXPECT_EQ(s.triangleCount(), 2u);
 }
 

@@ -54,9 +54,13 @@ TEST(SuiteScenes, AllLoadWithTheDocumentedTriangleCounts) {
     for (const SuiteScene& s : kSuite) {
         SCOPED_TRACE(s.file);
         const auto t0 = std::chrono::steady_clock::now();
-        testing::internal::CaptureStderr();
-        Scene scene = loadScene((dir / s.file).string());
-        const std::string warnings = testing::internal::GetCapturedStderr();
+        Scene scene;
+        std::string warnings;
+        {
+            CapturedLog log;
+            scene = loadScene((dir / s.file).string());
+            warnings = log.text();
+        }
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         std::printf("  %-40s %7zu triangles (%5zu zero-area removed) %7zu vertices %4zu meshes %5.0f ms\n", s.file,
                     scene.triangleCount(), s.zeroArea, scene.vertexCount(), scene.meshes.size(), ms);
@@ -241,9 +245,13 @@ TEST(GltfLoader, StripsFansInterleavedStrideAndVec3U16Colours) {
     g.json["scenes"] = json::array({{{"nodes", {0}}}});
     const auto path = makeTempDir("gltf_strip") / "s.glb";
     g.writeGlb(path);
-    testing::internal::CaptureStderr();
-    Scene scene = loadScene(path.string());
-    const std::string err = testing::internal::GetCapturedStderr();
+    Scene scene;
+    std::string err;
+    {
+        CapturedLog log;
+        scene = loadScene(path.string());
+        err = log.text();
+    }
     EXPECT_NE(err.find("skipping points/lines"), std::string::npos) << err;
     ASSERT_EQ(scene.meshes.size(), 2u);
     // Strip 0,1,2,3 -> (0,1,2), (1,3,2); fan 0,1,3,2 -> (1,3,0), (3,2,0).

@@ -1,5 +1,7 @@
 #include "test_support.hpp"
 
+#include "starnt/log.hpp"
+
 #include <atomic>
 #include <cstdlib>
 #include <fstream>
@@ -109,5 +111,13 @@ void expectCleanFailure(const std::string& args, const std::filesystem::path& mu
         EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
     }
 }
+
+CapturedLog::CapturedLog() : text_(std::make_shared<std::string>()) {
+    setLogCallback([text = text_](LogLevel level, const std::string& message) {
+        *text += (level == LogLevel::Warning ? "warning: " : "note: ") + message + "\n";
+    });
+}
+CapturedLog::~CapturedLog() { setLogCallback(nullptr); }
+std::string CapturedLog::text() const { return *text_; }
 
 }  // namespace starnt::test

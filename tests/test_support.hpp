@@ -87,4 +87,19 @@ std::string errorOf(F&& fn) {
     return {};
 }
 
+
+// Collects what the library logs (starnt::setLogCallback) while it lives, one "warning: ..." or
+// "note: ..." line per message; restores no callback afterwards.
+class CapturedLog {
+public:
+    CapturedLog();
+    ~CapturedLog();
+    CapturedLog(const CapturedLog&) = delete;
+    CapturedLog& operator=(const CapturedLog&) = delete;
+    std::string text() const;
+
+private:
+    std::shared_ptr<std::string> text_;
+};
+
 }  // namespace starnt::test

@@ -86,8 +86,8 @@ TEST(TemporalRefresh, GpuMatchesCpuReference) {
     gl::Texture2D depth(GL_R32F, w, h), output(GL_RGBA32F, w, h);
     glTextureSubImage2D(depth.id(), 0, 0, 0, w, h, GL_RED, GL_FLOAT, kept.depth.data());
     MethodOptions options;
-    options.temporalInterval = 2;
-    options.temporalMode = MethodOptions::TemporalMode::Refresh;
+    options.neural.temporalInterval = 2;
+    options.neural.temporalMode = NeuralOptions::TemporalMode::Refresh;
     TemporalFrames temporal(options);
     const glm::mat4 oldVP = viewProj(w, h, 0.0f), newVP = viewProj(w, h, 3.0f);
     ASSERT_TRUE(temporal.beginFrame(w, h));
@@ -123,11 +123,11 @@ TEST(TemporalRefresh, GpuMatchesCpuReference) {
 // A still camera: every interpolated frame equals the real frame exactly, in both modes.
 TEST(TemporalRefresh, StillCameraGivesTheRealFrameInBothModes) {
     test::TestScene c(makeBuiltinScene("tubes", 3), 96, 64, 30.0f, 15.0f, kBackground);
-    for (auto mode : {MethodOptions::TemporalMode::Refresh, MethodOptions::TemporalMode::Warp}) {
+    for (auto mode : {NeuralOptions::TemporalMode::Refresh, NeuralOptions::TemporalMode::Warp}) {
         MethodOptions options;
-        options.temporalInterval = 2;
-        options.temporalMode = mode;
-        options.spatial = false;
+        options.neural.temporalInterval = 2;
+        options.neural.temporalMode = mode;
+        options.neural.spatial = false;
         const auto frames = renderSequence(c, options, {0.0f, 0.0f, 0.0f, 0.0f});
         EXPECT_EQ(frames[1], frames[0]);
         EXPECT_EQ(frames[3], frames[2]);
@@ -142,12 +142,12 @@ TEST(TemporalRefresh, SingleLayerPixelsMatchARealRenderAfterAMove) {
     test::TestScene c(makeBuiltinScene("random", 5), w, h, 25.0f, 10.0f, kBackground);  // 60 large triangles
     const float move = 1.5f;
     MethodOptions refresh, real;
-    refresh.temporalInterval = 2;
-    refresh.spatial = real.spatial = false;
+    refresh.neural.temporalInterval = 2;
+    refresh.neural.spatial = real.neural.spatial = false;
     const auto seq = renderSequence(c, refresh, {0.0f, move});
     const auto truth = renderSequence(c, real, {move});
     MethodOptions warp = refresh;
-    warp.temporalMode = MethodOptions::TemporalMode::Warp;
+    warp.neural.temporalMode = NeuralOptions::TemporalMode::Warp;
     const auto warped = renderSequence(c, warp, {0.0f, move});
     // Layer counts at both cameras, GL order.
     auto counts = [&](float yaw) {

@@ -340,8 +340,8 @@ TEST(TemporalFrames, FixedTwoAlternatesAndKeepsItsOwnCopy) {
     test::glContext();
     const int w = 21, h = 13;
     MethodOptions options;
-    options.temporalMode = MethodOptions::TemporalMode::Warp;  // these tests check the warp path
-    options.temporalInterval = 2;
+    options.neural.temporalMode = NeuralOptions::TemporalMode::Warp;  // these tests check the warp path
+    options.neural.temporalInterval = 2;
     TemporalFrames temporal(options);
     const ReprojectionFrame first = randomFrame(w, h, 1), second = randomFrame(w, h, 2);
     gl::Texture2D composite = uploadColor(first), depth = uploadDepth(first), output(GL_RGBA32F, w, h);
@@ -371,8 +371,8 @@ TEST(TemporalFrames, FixedTwoAlternatesAndKeepsItsOwnCopy) {
 TEST(TemporalFrames, SizeChangeAndResetForceARealFrame) {
     test::glContext();
     MethodOptions options;
-    options.temporalMode = MethodOptions::TemporalMode::Warp;  // these tests check the warp path
-    options.temporalInterval = 4;
+    options.neural.temporalMode = NeuralOptions::TemporalMode::Warp;  // these tests check the warp path
+    options.neural.temporalInterval = 4;
     TemporalFrames temporal(options);
     const ReprojectionFrame f = randomFrame(8, 8, 3);
     gl::Texture2D composite = uploadColor(f), depth = uploadDepth(f);
@@ -401,7 +401,7 @@ TEST(TemporalFrames, IntervalOneKeepsNothing) {
     }
     EXPECT_EQ(temporal.gpuMemoryBytes(), 0u);
     MethodOptions bad;
-    bad.temporalInterval = 5;
+    bad.neural.temporalInterval = 5;
     EXPECT_THROW(TemporalFrames{bad}, Error);
 }
 
@@ -411,9 +411,9 @@ TEST(TemporalFrames, AutoMeasuresRealFramesAndRaisesTheInterval) {
     gl::Texture2D composite = uploadColor(f), depth = uploadDepth(f), output(GL_RGBA32F, 16, 16);
     auto run = [&](double targetFps) {
         MethodOptions options;
-        options.temporalMode = MethodOptions::TemporalMode::Warp;  // these tests check the warp path
-        options.temporalAuto = true;
-        options.targetFps = targetFps;
+        options.neural.temporalMode = NeuralOptions::TemporalMode::Warp;  // these tests check the warp path
+        options.neural.temporalAuto = true;
+        options.neural.targetFps = targetFps;
         TemporalFrames temporal(options);
         std::string pattern;
         for (int i = 0; i < 7; ++i) {
@@ -448,8 +448,8 @@ TEST(TemporalFrames, TimingAt720p) {
         const ReprojectionFrame f = frame ? *frame : randomFrame(w, h, 9);
         gl::Texture2D composite = uploadColor(f), depth = uploadDepth(f), output(GL_RGBA32F, w, h);
         MethodOptions options;
-    options.temporalMode = MethodOptions::TemporalMode::Warp;  // these tests check the warp path
-        options.temporalInterval = 4;
+    options.neural.temporalMode = NeuralOptions::TemporalMode::Warp;  // these tests check the warp path
+        options.neural.temporalInterval = 4;
         TemporalFrames temporal(options);
         gl::GpuPassTimer timer(gl::currentContextIsSoftware());
         std::vector<double> capture, reproject;

@@ -15,14 +15,14 @@ namespace {
 
 MethodOptions fixedInterval(int k) {
     MethodOptions o;
-    o.temporalInterval = k;
+    o.neural.temporalInterval = k;
     return o;
 }
 
 MethodOptions autoInterval(double targetFps = 60.0) {
     MethodOptions o;
-    o.temporalAuto = true;
-    o.targetFps = targetFps;
+    o.neural.temporalAuto = true;
+    o.neural.targetFps = targetFps;
     return o;
 }
 

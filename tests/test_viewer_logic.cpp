@@ -93,12 +93,12 @@ TEST(ViewerSettings, SetParsesEverySwitchAndLeavesBadValuesOut) {
     EXPECT_EQ(s.view, ViewMode::Tiles);
     EXPECT_EQ(s.alpha, 0.25f);
     EXPECT_EQ(s.background, glm::vec3(0.0f, 0.5f, 1.0f));
-    EXPECT_EQ(s.options.spatial, false);
-    EXPECT_FLOAT_EQ(s.options.fixedScale2, 0.5f);
-    EXPECT_FLOAT_EQ(s.options.fixedScale3, 0.25f);
-    EXPECT_EQ(s.options.inference, MethodOptions::Inference::Corners);
-    EXPECT_TRUE(s.options.temporalAuto);
-    EXPECT_EQ(s.options.targetFps, 30.0);
+    EXPECT_EQ(s.options.neural.spatial, false);
+    EXPECT_FLOAT_EQ(s.options.neural.fixedScale2, 0.5f);
+    EXPECT_FLOAT_EQ(s.options.neural.fixedScale3, 0.25f);
+    EXPECT_EQ(s.options.neural.inference, NeuralOptions::Inference::Corners);
+    EXPECT_TRUE(s.options.neural.temporalAuto);
+    EXPECT_EQ(s.options.neural.targetFps, 30.0);
 
     const ViewerSettings before = s;
     EXPECT_THROW(s.set("alpha", "1.5"), Error);

@@ -9,6 +9,8 @@
 #include <memory>
 #include <string>
 
+#include "starnt/oit_method.hpp"
+
 namespace starnt {
 
 struct GlContextInfo {
@@ -34,10 +36,8 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-// Throws starnt::Error if the current context lacks something STAR-NT needs (GL 4.5 core,
-// SSBOs, compute shaders, float render targets). Called by HeadlessGlContext and usable by an
-// engine that brings its own context.
-void checkGlRequirements();
+// checkGlRequirements() (starnt/oit_method.hpp) checks the current context: HeadlessGlContext
+// calls it, and so does createMethod in an engine's own context.
 // Sanitizer builds (STARNT_SANITIZE): keeps the loaded GL driver libraries mapped until exit, so
 // LeakSanitizer can name the driver's leaks and tests/lsan.supp suppress them; call it before a
 // context ends (eglTerminate / glfwTerminate unload the driver). Does nothing in other builds.

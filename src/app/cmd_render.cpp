@@ -177,11 +177,11 @@ void addRenderCommand(CLI::App& app) {
         if (alphaOption->count() > 0) job.surface.alphaOverride = float(a->alpha);
         job.surface.forceUnlit = a->unlit;
         job.methodOptions = options;
-        job.methodOptions.peelLayers = a->peelLayers;
-        job.methodOptions.wboitWeight = a->wboitWeight;
-        job.methodOptions.mboitMoments = a->mboitMoments;
-        job.methodOptions.weightsPath = a->weights;
-        job.methodOptions.abufferMemoryCapBytes = abufferCap;
+        job.methodOptions.peel.layers = a->peelLayers;
+        job.methodOptions.wboit.weight = a->wboitWeight;
+        job.methodOptions.mboit.moments = a->mboitMoments;
+        job.methodOptions.neural.weightsPath = a->weights;
+        job.methodOptions.abuffer.memoryCapBytes = abufferCap;
         std::string frameLines;
         const bool numberedExr = isFramePattern(a->exr);
         if (numbered || numberedExr) job.readEveryFrame = true;

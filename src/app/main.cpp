@@ -6,10 +6,15 @@
 
 #include "app/commands.hpp"
 #include "starnt/error.hpp"
+#include "starnt/log.hpp"
 #include "starnt/oit_method.hpp"
 #include "starnt/scene.hpp"
 
 int main(int argc, char** argv) {
+    // The libraries never write to stderr themselves: their notes and warnings come here.
+    starnt::setLogCallback([](starnt::LogLevel level, const std::string& message) {
+        std::fprintf(stderr, "starnt: %s: %s\n", level == starnt::LogLevel::Warning ? "warning" : "note", message.c_str());
+    });
     CLI::App app{"STAR-NT: neural order-independent transparency with spatial and temporal acceleration"};
     app.require_subcommand(1);
     starnt::app::addRenderCommand(app);

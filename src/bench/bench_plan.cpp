@@ -1,4 +1,5 @@
 #include "bench/bench_plan.hpp"
+#include "render/method_options.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -37,40 +38,40 @@ const std::vector<Variant>& allVariants() {
         makeVariant("unsorted", "unsorted", "\"over\" in submission order (the paper's E_random, used by Q)"),
         makeVariant("wboit", "wboit", "weighted blended OIT, McGuire & Bavoil eq. 10 weight"),
         makeVariant("mboit", "mboit", "moment-based OIT, 6 power moments (Muenstermann et al. 2018)",
-                    [](MethodOptions& o) { o.mboitMoments = std::string("6"); }),
+                    [](MethodOptions& o) { o.mboit.moments = std::string("6"); }),
         makeVariant("mboit-t3", "mboit", "moment-based OIT, 3 trigonometric moments",
-                    [](MethodOptions& o) { o.mboitMoments = std::string("t3"); }),
+                    [](MethodOptions& o) { o.mboit.moments = std::string("t3"); }),
         makeVariant("dfaoit", "dfaoit", "DFAOIT: 10-input network, every pass at full resolution"),
         makeVariant("starnt-full", "starnt", "STAR-NT network, spatial off (all passes at full resolution)",
-                    [](MethodOptions& o) { o.spatial = false; }),
+                    [](MethodOptions& o) { o.neural.spatial = false; }),
         makeVariant("starnt", "starnt", "STAR-NT, adaptive tiles on (\"w/o temporal\")",
-                    [](MethodOptions& o) { o.spatial = true; }),
+                    [](MethodOptions& o) { o.neural.spatial = true; }),
         makeVariant("hybrid", "hybrid", "STAR-NT's passes and tiles, tail in closed form (no network): what the network adds",
-                    [](MethodOptions& o) { o.spatial = false; }),
+                    [](MethodOptions& o) { o.neural.spatial = false; }),
         makeVariant("starnt-paper", "starnt",
                     "STAR-NT as the paper: tiles on the composite, continuous scales, no guard",
                     [](MethodOptions& o) {
-                        o.spatial = true;
-                        o.tileSignal = MethodOptions::TileSignal::Composite;
-                        o.scaleRule = MethodOptions::ScaleRule::Continuous;
-                        o.scaleGuard = false;
+                        o.neural.spatial = true;
+                        o.neural.tileSignal = NeuralOptions::TileSignal::Composite;
+                        o.neural.scaleRule = NeuralOptions::ScaleRule::Continuous;
+                        o.neural.scaleGuard = false;
                     }),
         makeVariant("starnt-total", "starnt", "STAR-NT, tiles on + temporal K = 2, refresh frames (\"Total STAR\")",
                     [](MethodOptions& o) {
-                        o.spatial = true;
-                        o.temporalInterval = 2;
-                        o.temporalMode = MethodOptions::TemporalMode::Refresh;
+                        o.neural.spatial = true;
+                        o.neural.temporalInterval = 2;
+                        o.neural.temporalMode = NeuralOptions::TemporalMode::Refresh;
                     }),
         makeVariant("starnt-total-warp", "starnt", "STAR-NT, tiles on + temporal K = 2, warped frames (the paper's)",
                     [](MethodOptions& o) {
-                        o.spatial = true;
-                        o.temporalInterval = 2;
-                        o.temporalMode = MethodOptions::TemporalMode::Warp;
+                        o.neural.spatial = true;
+                        o.neural.temporalInterval = 2;
+                        o.neural.temporalMode = NeuralOptions::TemporalMode::Warp;
                     }),
         makeVariant("starnt-corners", "starnt", "STAR-NT, tiles on, inference at leaf corners only",
                     [](MethodOptions& o) {
-                        o.spatial = true;
-                        o.inference = MethodOptions::Inference::Corners;
+                        o.neural.spatial = true;
+                        o.neural.inference = NeuralOptions::Inference::Corners;
                     }),
         makeVariant("abuffer", "abuffer", "A-buffer (exact; the ground truth method)"),
         makeVariant("peel", "peel", "depth peeling until empty (exact)"),
@@ -184,9 +185,9 @@ Plan makePlan(const Request& request) {
     plan.cameraPath = request.cameraPath.empty() ? preset.cameraPath : request.cameraPath;
     checkImageSize(plan.width, plan.height);
     if (plan.frames < 1 || plan.frames > 10000) throw Error("--frames must be in 1..10000");
-    if (request.abufferCapMib < 0.0 || !std::isfinite(request.abufferCapMib)) throw Error("--abuffer-cap-mib must be positive");
-    plan.abufferCapBytes = request.abufferCapMib > 0.0 ? size_t(request.abufferCapMib * 1024.0 * 1024.0)
-                                                       : MethodOptions{}.abufferMemoryCapBytes;
+    // 0 = the default cap; anything else is checked and converted without wrapping (1e30 MiB).
+    plan.abufferCapBytes = request.abufferCapMib == 0.0 ? AbufferOptions{}.memoryCapBytes
+                                                        : abufferCapBytes(request.abufferCapMib, "--abuffer-cap-mib");
 
     std::error_code ec;
     const bool haveSuite = !request.suiteDir.empty() && fs::is_directory(request.suiteDir, ec);
@@ -222,7 +223,7 @@ Plan makePlan(const Request& request) {
         for (const auto& other : plan.variants) {
             if (other.name == name) throw Error("--methods: '" + name + "' is listed twice");
         }
-        if (v.method == "abuffer") v.options.abufferMemoryCapBytes = plan.abufferCapBytes;
+        if (v.method == "abuffer") v.options.abuffer.memoryCapBytes = plan.abufferCapBytes;
         plan.variants.push_back(std::move(v));
     }
     // Fail on a malformed camera path now rather than once per scene.

@@ -328,7 +328,7 @@ void settingsSection(std::ostringstream& md, const Results& r) {
     md << "## Settings\n\n| method | base | spatial | scales | inference | temporal | what |\n|---|---|---|---|---|---|---|\n";
     for (const auto& v : r.plan.variants) {
         md << "| " << v.name << " | " << v.method << " | " << spatialText(v.options) << " | " << scalesText(v.options) << " | "
-           << (v.options.inference == MethodOptions::Inference::Corners ? "corners" : "full") << " | " << temporalText(v.options)
+           << (v.options.neural.inference == NeuralOptions::Inference::Corners ? "corners" : "full") << " | " << temporalText(v.options)
            << " | " << v.description << " |\n";
     }
     md << "\n| scene | source | triangles | alpha | alpha cut-off | note |\n|---|---|---|---|---|---|\n";

@@ -24,9 +24,9 @@ json variantJson(const Variant& v) {
     return {{"name", v.name},
             {"method", v.method},
             {"description", v.description},
-            {"spatial", v.options.spatial ? json(*v.options.spatial) : json(nullptr)},
+            {"spatial", v.options.neural.spatial ? json(*v.options.neural.spatial) : json(nullptr)},
             {"scales", scalesText(v.options)},
-            {"inference", v.options.inference == MethodOptions::Inference::Corners ? "corners" : "full"},
+            {"inference", v.options.neural.inference == NeuralOptions::Inference::Corners ? "corners" : "full"},
             {"temporal", temporalText(v.options)}};
 }
 

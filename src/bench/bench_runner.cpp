@@ -75,7 +75,7 @@ private:
         progress_.begin(label_ + ": ground truth (abuffer)");
         RenderJob job = baseJob(plan_, spec_, scene);
         job.method = "abuffer";
-        job.methodOptions.abufferMemoryCapBytes = plan_.abufferCapBytes;
+        job.methodOptions.abuffer.memoryCapBytes = plan_.abufferCapBytes;
         job.readEveryFrame = true;
         groundTruth_.clear();
         job.onFrame = [&](const FrameRecord& record) {

@@ -1,4 +1,5 @@
 #include "bench/plots.hpp"
+#include "render/tool_sources.hpp"
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -55,7 +56,7 @@ PlotsStatus makePlots(const std::string& outDir, const std::string& python) {
     const fs::path plotDir = fs::path(outDir) / "plots";
     fs::create_directories(plotDir);
     const fs::path script = plotDir / "bench_plots.py";
-    writeFileAtomic(script.string(), gl::embeddedSource("bench/bench_plots.py"));
+    writeFileAtomic(script.string(), tools::toolSource("bench/bench_plots.py"));
     const ProcessResult run = runCapturing(shellQuoted(python) + " " + shellQuoted(script.string()) + " " +
                                            shellQuoted((fs::path(outDir) / "results.json").string()) + " " +
                                            shellQuoted(plotDir.string()));

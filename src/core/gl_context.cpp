@@ -195,17 +195,4 @@ void HeadlessGlContext::makeCurrent() {
     eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, impl_->context);
 }
 
-void checkGlRequirements() {
-    int version = epoxy_gl_version();
-    if (version < 45 || epoxy_is_desktop_gl() == false) {
-        throw Error("OpenGL 4.5 core is required; the current context offers " +
-                    std::to_string(version / 10) + "." + std::to_string(version % 10));
-    }
-    GLint maxSsboFrag = 0, maxDrawBuffers = 0;
-    glGetIntegerv(GL_MAX_FRAGMENT_SHADER_STORAGE_BLOCKS, &maxSsboFrag);
-    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &maxDrawBuffers);
-    if (maxSsboFrag < 2) throw Error("the GL context offers fewer than 2 fragment shader storage blocks");
-    if (maxDrawBuffers < 4) throw Error("the GL context offers fewer than 4 draw buffers");
-}
-
 }  // namespace starnt

@@ -7,7 +7,6 @@
 #include <string>
 #include <utility>
 
-#include "starnt/image.hpp"
 
 namespace starnt::gl {
 
@@ -85,10 +84,6 @@ private:
 
 // A framebuffer with the given colour attachments (in order) and an optional depth texture.
 FramebufferHandle makeFramebuffer(std::initializer_list<const Texture2D*> colors, const Texture2D* depth = nullptr);
-
-// Reads an RGBA float texture back into an Image (rows flipped so row 0 is the top).
-Image readTexture(const Texture2D& texture);
-Image readTexture(GLuint texture, int width, int height);
 
 // An empty vertex array for attribute-less full-screen triangles (gl_VertexID based). Each
 // owner keeps its own: vertex arrays are not shared between contexts.

@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "starnt/oit_method.hpp"
+
 namespace starnt::gl {
 
 // Work done by one geometry pass (GL_ARB_pipeline_statistics_query, core in GL 4.6, on llvmpipe
@@ -32,7 +34,9 @@ struct PassCounters {
     }
 };
 
-class GpuPassTimer {
+// The tools' PassTimingHook: GPU timestamps (wall clock on software rasterisers) per pass name and
+// pipeline-statistics work counters per geometry pass.
+class GpuPassTimer final : public PassTimingHook {
 public:
     // `finishAndWallClock`: time passes with glFinish + steady_clock (software rasterisers).
     explicit GpuPassTimer(bool finishAndWallClock = false);
@@ -43,6 +47,11 @@ public:
 
     void begin(const std::string& pass);  // passes may repeat (e.g. peel layers): times add up
     void end();
+    void beginPass(const std::string& name) override { begin(name); }
+    void endPass() override { end(); }
+    void beginGeometry(const std::string& name) override { beginCounters(name); }
+    void endGeometry() override { endCounters(); }
+
     // Waits for the queries of this frame and returns milliseconds per pass name; resets.
     std::map<std::string, double> collect();
 
@@ -83,20 +92,20 @@ private:
 // True when the current context is a software rasteriser (llvmpipe, softpipe, swrast).
 bool currentContextIsSoftware();
 
-// RAII: times the enclosed GL work as `pass` when a timer is given; no-op for nullptr.
+// RAII: reports the enclosed GL work as pass `pass` to the engine's timing hook; no-op for nullptr.
 class ScopedPass {
 public:
-    ScopedPass(GpuPassTimer* timer, const std::string& pass) : timer_(timer) {
-        if (timer_) timer_->begin(pass);
+    ScopedPass(PassTimingHook* timer, const std::string& pass) : timer_(timer) {
+        if (timer_) timer_->beginPass(pass);
     }
     ~ScopedPass() {
-        if (timer_) timer_->end();
+        if (timer_) timer_->endPass();
     }
     ScopedPass(const ScopedPass&) = delete;
     ScopedPass& operator=(const ScopedPass&) = delete;
 
 private:
-    GpuPassTimer* timer_;
+    PassTimingHook* timer_;
 };
 
 }  // namespace starnt::gl

@@ -1,5 +1,6 @@
 #include "core/shader.hpp"
 
+#include <algorithm>
 #include <map>
 #include <sstream>
 #include <vector>
@@ -12,8 +13,6 @@ const std::map<std::string, std::string>& embeddedShaderSources();
 
 namespace starnt::gl {
 namespace {
-
-GlslDialect g_dialect = GlslDialect::Desktop450;
 
 std::string expandIncludes(const std::string& text, const std::string& origin, int depth) {
     if (depth > 16) throw Error("internal: #include nesting too deep in " + origin);
@@ -38,7 +37,7 @@ std::string expandIncludes(const std::string& text, const std::string& origin, i
 
 std::string header(GLenum stage) {
     std::string h;
-    if (g_dialect == GlslDialect::Desktop450) {
+    if (glslDialect() == GlslDialect::Desktop450) {
         h = "#version 450 core\n";
     } else {
         h = "#version 310 es\n"
@@ -106,14 +105,27 @@ Program link(const std::string& label, const std::vector<GLuint>& shaders) {
 
 }  // namespace
 
-void setGlslDialect(GlslDialect dialect) { g_dialect = dialect; }
-GlslDialect glslDialect() { return g_dialect; }
+GlslDialect glslDialect() { return epoxy_is_desktop_gl() ? GlslDialect::Desktop450 : GlslDialect::Es310; }
+
+namespace {
+std::vector<const EmbeddedFiles*>& extraTables() {
+    static std::vector<const EmbeddedFiles*> tables;
+    return tables;
+}
+}  // namespace
+
+void addEmbeddedFiles(const EmbeddedFiles& files) {
+    auto& tables = extraTables();
+    if (std::find(tables.begin(), tables.end(), &files) == tables.end()) tables.push_back(&files);
+}
 
 std::string embeddedSource(const std::string& path) {
-    const auto& all = detail::embeddedShaderSources();
-    auto it = all.find(path);
-    if (it == all.end()) throw Error("internal: no embedded shader file '" + path + "'");
-    return expandIncludes(it->second, path, 0);
+    const auto& own = detail::embeddedShaderSources();
+    if (auto it = own.find(path); it != own.end()) return expandIncludes(it->second, path, 0);
+    for (const EmbeddedFiles* table : extraTables()) {
+        if (auto it = table->find(path); it != table->end()) return expandIncludes(it->second, path, 0);
+    }
+    throw Error("internal: no embedded shader file '" + path + "'");
 }
 
 GLint Program::uniform(const char* name) const {

@@ -9,6 +9,7 @@
 #pragma once
 #include <epoxy/gl.h>
 
+#include <map>
 #include <string>
 #include <unordered_map>
 
@@ -18,12 +19,16 @@ namespace starnt::gl {
 
 enum class GlslDialect { Desktop450, Es310 };
 
-// The dialect programs are built for (default Desktop450).
-void setGlslDialect(GlslDialect dialect);
+// The dialect programs are built for: that of the current context (GLSL 4.50 on desktop GL, GLSL ES
+// 3.10 on OpenGL ES), so a method built in an engine's ES context gets ES shaders.
 GlslDialect glslDialect();
 
 // An embedded file's text with its #include lines expanded. Throws starnt::Error when missing.
+// The runtime's own files are always there; starnt::tools adds its files (scene renderer,
+// fragment capture, viewer, plotting script) with addEmbeddedFiles before it builds programs.
 std::string embeddedSource(const std::string& path);
+using EmbeddedFiles = std::map<std::string, std::string>;
+void addEmbeddedFiles(const EmbeddedFiles& files);  // idempotent; the table must outlive its use
 
 class Program {
 public:

@@ -37,7 +37,9 @@ std::vector<std::string> methodNames() {
 std::unique_ptr<OitMethod> createMethod(const std::string& name, const SurfaceShader& surface,
                                         const MethodOptions& options) {
     for (const Entry& e : entries()) {
-        if (name == e.name) return e.factory(surface, options);
+        if (name != e.name) continue;
+        checkGlRequirements();
+        return e.factory(surface, options);
     }
     std::string valid;
     for (const Entry& e : entries()) valid += (valid.empty() ? "" : ", ") + std::string(e.name);
@@ -45,10 +47,10 @@ std::unique_ptr<OitMethod> createMethod(const std::string& name, const SurfaceSh
 }
 
 bool methodUsesTiles(const std::string& name, const MethodOptions& options) {
-    const bool corners = options.inference == MethodOptions::Inference::Corners;
-    if (name == starntConfig().name) return options.spatial.value_or(starntConfig().spatialByDefault) || corners;
-    if (name == dfaoitConfig().name) return options.spatial.value_or(dfaoitConfig().spatialByDefault) || corners;
-    if (name == hybridConfig().name) return options.spatial.value_or(hybridConfig().spatialByDefault) || corners;
+    const bool corners = options.neural.inference == NeuralOptions::Inference::Corners;
+    if (name == starntConfig().name) return options.neural.spatial.value_or(starntConfig().spatialByDefault) || corners;
+    if (name == dfaoitConfig().name) return options.neural.spatial.value_or(dfaoitConfig().spatialByDefault) || corners;
+    if (name == hybridConfig().name) return options.neural.spatial.value_or(hybridConfig().spatialByDefault) || corners;
     return false;
 }
 

@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "starnt/error.hpp"
-#include "starnt/nn.hpp"
+#include "starnt/network.hpp"
 
 namespace starnt::nn {
 

@@ -3,7 +3,7 @@
 
 #include "nn/random.hpp"
 #include "starnt/error.hpp"
-#include "starnt/nn.hpp"
+#include "starnt/network.hpp"
 
 namespace starnt::nn {
 

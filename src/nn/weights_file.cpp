@@ -18,7 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "starnt/error.hpp"
-#include "starnt/nn.hpp"
+#include "starnt/network.hpp"
 
 namespace starnt::nn {
 

@@ -1,4 +1,5 @@
 #include "reference/fragment_capture.hpp"
+#include "render/tool_sources.hpp"
 
 #include <algorithm>
 
@@ -55,7 +56,7 @@ CapturedFrame FragmentCapture::capture(const FrameDesc& frame, const DrawCallbac
 }
 
 DepthComplexityCounter::DepthComplexityCounter(const SurfaceShader& surface)
-    : MethodBase(surface), program_(buildGeometryProgram("count", "reference/count.frag.glsl")) {}
+    : MethodBase(surface), program_((tools::useToolSources(), buildGeometryProgram("count", "reference/count.frag.glsl"))) {}
 
 unsigned DepthComplexityCounter::count(const FrameDesc& frame, const DrawCallback& draw) {
     if (frame.width != width_ || frame.height != height_ || !output_) {

@@ -9,15 +9,15 @@
 namespace starnt {
 
 void parseSpatialOption(const std::string& text, MethodOptions& options) {
-    if (text.empty() || text == "default") options.spatial.reset();
-    else if (text == "on") options.spatial = true;
-    else if (text == "off") options.spatial = false;
+    if (text.empty() || text == "default") options.neural.spatial.reset();
+    else if (text == "on") options.neural.spatial = true;
+    else if (text == "off") options.neural.spatial = false;
     else throw Error("--spatial '" + text + "': expected on, off or default");
 }
 
 void parseScalesOption(const std::string& text, MethodOptions& options) {
     if (text == "auto") {
-        options.fixedScale2 = options.fixedScale3 = 0.0f;
+        options.neural.fixedScale2 = options.neural.fixedScale3 = 0.0f;
         return;
     }
     std::istringstream in(text);
@@ -29,65 +29,65 @@ void parseScalesOption(const std::string& text, MethodOptions& options) {
     if (!(p2 >= 25.0 && p2 <= 100.0 && p3 >= 25.0 && p3 <= 100.0)) {
         throw Error("--scales '" + text + "': each scale must be within 25..100 percent");
     }
-    options.fixedScale2 = float(p2 / 100.0);
-    options.fixedScale3 = float(p3 / 100.0);
+    options.neural.fixedScale2 = float(p2 / 100.0);
+    options.neural.fixedScale3 = float(p3 / 100.0);
 }
 
 void parseInferenceOption(const std::string& text, MethodOptions& options) {
-    if (text == "full") options.inference = MethodOptions::Inference::Full;
-    else if (text == "corners") options.inference = MethodOptions::Inference::Corners;
+    if (text == "full") options.neural.inference = NeuralOptions::Inference::Full;
+    else if (text == "corners") options.neural.inference = NeuralOptions::Inference::Corners;
     else throw Error("--inference '" + text + "': expected full or corners");
 }
 
 void parseTemporalOption(const std::string& text, MethodOptions& options) {
-    options.temporalAuto = false;
+    options.neural.temporalAuto = false;
     if (text == "off") {
-        options.temporalInterval = 1;
+        options.neural.temporalInterval = 1;
     } else if (text == "auto") {
-        options.temporalAuto = true;
-        options.temporalInterval = 1;
+        options.neural.temporalAuto = true;
+        options.neural.temporalInterval = 1;
     } else if (text.size() == 1 && text[0] >= '1' && text[0] <= '4') {
-        options.temporalInterval = text[0] - '0';
+        options.neural.temporalInterval = text[0] - '0';
     } else {
         throw Error("--temporal '" + text + "': expected off, auto or an interval K in 1..4");
     }
 }
 
 void parseScaleRuleOption(const std::string& text, MethodOptions& options) {
-    using R = MethodOptions::ScaleRule;
-    if (text == "snapped") options.scaleRule = R::Snapped;
-    else if (text == "continuous") options.scaleRule = R::Continuous;
-    else if (text == "step") options.scaleRule = R::Step;
+    using R = NeuralOptions::ScaleRule;
+    if (text == "snapped") options.neural.scaleRule = R::Snapped;
+    else if (text == "continuous") options.neural.scaleRule = R::Continuous;
+    else if (text == "step") options.neural.scaleRule = R::Step;
     else throw Error("--scale-rule '" + text + "': expected snapped, continuous or step");
 }
 
 void parseUpsampleOption(const std::string& text, MethodOptions& options) {
-    if (text == "bilinear") options.upsample = MethodOptions::Upsample::Bilinear;
-    else if (text == "joint") options.upsample = MethodOptions::Upsample::Joint;
+    if (text == "bilinear") options.neural.upsample = NeuralOptions::Upsample::Bilinear;
+    else if (text == "joint") options.neural.upsample = NeuralOptions::Upsample::Joint;
     else throw Error("--upsample '" + text + "': expected bilinear or joint");
 }
 
 void parseTileSignalOption(const std::string& text, MethodOptions& options) {
-    if (text == "back") options.tileSignal = MethodOptions::TileSignal::Back;
-    else if (text == "composite") options.tileSignal = MethodOptions::TileSignal::Composite;
+    if (text == "back") options.neural.tileSignal = NeuralOptions::TileSignal::Back;
+    else if (text == "composite") options.neural.tileSignal = NeuralOptions::TileSignal::Composite;
     else throw Error("--tile-signal '" + text + "': expected back or composite");
 }
 
 void parseScaleGuardOption(const std::string& text, MethodOptions& options) {
-    if (text == "on") options.scaleGuard = true;
-    else if (text == "off") options.scaleGuard = false;
+    if (text == "on") options.neural.scaleGuard = true;
+    else if (text == "off") options.neural.scaleGuard = false;
     else throw Error("--scale-guard '" + text + "': expected on or off");
 }
 
 void parseTemporalModeOption(const std::string& text, MethodOptions& options) {
-    if (text == "warp") options.temporalMode = MethodOptions::TemporalMode::Warp;
-    else if (text == "refresh") options.temporalMode = MethodOptions::TemporalMode::Refresh;
+    if (text == "warp") options.neural.temporalMode = NeuralOptions::TemporalMode::Warp;
+    else if (text == "refresh") options.neural.temporalMode = NeuralOptions::TemporalMode::Refresh;
     else throw Error("--temporal-mode '" + text + "': expected warp or refresh");
 }
 
 void parseTargetFpsOption(double fps, MethodOptions& options) {
     if (!std::isfinite(fps) || !(fps > 0.0) || fps > 1000.0) throw Error("--target-fps must be in (0, 1000]");
-    options.targetFps = fps;
+    options.neural.targetFps = fps;
 }
 
 size_t abufferCapBytes(double mib, const std::string& flag) {
@@ -100,39 +100,39 @@ size_t abufferCapBytes(double mib, const std::string& flag) {
 }
 
 std::string spatialText(const MethodOptions& options) {
-    return options.spatial ? (*options.spatial ? "on" : "off") : "default";
+    return options.neural.spatial ? (*options.neural.spatial ? "on" : "off") : "default";
 }
 
 std::string scalesText(const MethodOptions& options) {
-    if (options.fixedScale2 <= 0.0f) return "auto";
-    return std::to_string(int(std::lround(options.fixedScale2 * 100))) + "," +
-           std::to_string(int(std::lround(options.fixedScale3 * 100)));
+    if (options.neural.fixedScale2 <= 0.0f) return "auto";
+    return std::to_string(int(std::lround(options.neural.fixedScale2 * 100))) + "," +
+           std::to_string(int(std::lround(options.neural.fixedScale3 * 100)));
 }
 
 std::string temporalText(const MethodOptions& options) {
-    if (options.temporalAuto) return "auto";
-    return options.temporalInterval <= 1 ? "off" : std::to_string(options.temporalInterval);
+    if (options.neural.temporalAuto) return "auto";
+    return options.neural.temporalInterval <= 1 ? "off" : std::to_string(options.neural.temporalInterval);
 }
 
-std::string scaleRuleText(const MethodOptions& options) {
-    switch (options.scaleRule) {
-        case MethodOptions::ScaleRule::Continuous: return "continuous";
-        case MethodOptions::ScaleRule::Step: return "step";
-        case MethodOptions::ScaleRule::Snapped: break;
+std::string scaleRuleText(NeuralOptions::ScaleRule rule) {
+    switch (rule) {
+        case NeuralOptions::ScaleRule::Continuous: return "continuous";
+        case NeuralOptions::ScaleRule::Step: return "step";
+        case NeuralOptions::ScaleRule::Snapped: break;
     }
     return "snapped";
 }
 
-std::string upsampleText(const MethodOptions& options) {
-    return options.upsample == MethodOptions::Upsample::Joint ? "joint" : "bilinear";
+std::string upsampleText(NeuralOptions::Upsample upsample) {
+    return upsample == NeuralOptions::Upsample::Joint ? "joint" : "bilinear";
 }
 
-std::string tileSignalText(const MethodOptions& options) {
-    return options.tileSignal == MethodOptions::TileSignal::Back ? "back" : "composite";
+std::string tileSignalText(NeuralOptions::TileSignal signal) {
+    return signal == NeuralOptions::TileSignal::Back ? "back" : "composite";
 }
 
-std::string temporalModeText(const MethodOptions& options) {
-    return options.temporalMode == MethodOptions::TemporalMode::Refresh ? "refresh" : "warp";
+std::string temporalModeText(NeuralOptions::TemporalMode mode) {
+    return mode == NeuralOptions::TemporalMode::Refresh ? "refresh" : "warp";
 }
 
 }  // namespace starnt

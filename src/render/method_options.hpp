@@ -38,9 +38,9 @@ size_t abufferCapBytes(double mib, const std::string& flag);
 std::string spatialText(const MethodOptions& options);
 std::string scalesText(const MethodOptions& options);
 std::string temporalText(const MethodOptions& options);
-std::string scaleRuleText(const MethodOptions& options);
-std::string tileSignalText(const MethodOptions& options);
-std::string temporalModeText(const MethodOptions& options);
-std::string upsampleText(const MethodOptions& options);
+std::string scaleRuleText(NeuralOptions::ScaleRule rule);
+std::string tileSignalText(NeuralOptions::TileSignal signal);
+std::string temporalModeText(NeuralOptions::TemporalMode mode);
+std::string upsampleText(NeuralOptions::Upsample upsample);
 
 }  // namespace starnt

@@ -1,4 +1,6 @@
 #include "render/offscreen_renderer.hpp"
+#include "render/frame_stats_json.hpp"
+#include "core/texture_readback.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -101,7 +103,7 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
         FrameDesc warm = frame;
         warm.view = camera.view();
         warm.projection = camera.projection(aspect);
-        warm.timer = nullptr;
+        warm.timing = nullptr;
         method->render(warm, scene.callback(warm.view, warm.projection, job.surface));
         glFinish();
     }
@@ -109,7 +111,7 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
         const Camera camera = job.path ? job.path->frame(i, job.frames) : job.camera;
         frame.view = camera.view();
         frame.projection = camera.projection(aspect);
-        frame.timer = &timer;
+        frame.timing = &timer;
         draw = scene.callback(frame.view, frame.projection, job.surface);
 
         glFinish();
@@ -120,8 +122,9 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
         const double ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
         auto passes = timer.collect();
         const auto counters = timer.collectCounters();
-        const nlohmann::json methodStats = method->lastFrameStats();
-        const bool interpolated = methodStats.value("interpolated", false);
+        const FrameStats typedStats = method->lastFrameStats();
+        const nlohmann::json methodStats = frameStatsJson(typedStats);
+        const bool interpolated = typedStats.interpolated();
         interpolatedFrames += interpolated ? 1 : 0;
 
         FrameRecord record;
@@ -138,7 +141,7 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
         const Image* referenceOfFrame = nullptr;
         if (reference) {
             FrameDesc untimed = frame;
-            untimed.timer = nullptr;
+            untimed.timing = nullptr;
             reference->render(untimed, draw);
             referenceImage = gl::readTexture(reference->outputTexture(), job.width, job.height);
             referenceOfFrame = &referenceImage;
@@ -179,12 +182,12 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
     // timed frames, so every method reports the same max_fragments.
     DepthComplexityCounter counter(surface);
     FrameDesc untimed = frame;
-    untimed.timer = nullptr;
+    untimed.timing = nullptr;
     const unsigned maxFragments = counter.count(untimed, draw);
 
     nlohmann::json passes = nlohmann::json::object();
     for (auto& [name, values] : passMs) passes[name] = median(values);
-    nlohmann::json methodStats = method->lastFrameStats();
+    nlohmann::json methodStats = frameStatsJson(method->lastFrameStats());
     out.stats = {
         {"method", job.method},
         {"width", job.width},

@@ -1,4 +1,5 @@
 #include "render/scene_gpu.hpp"
+#include "render/tool_sources.hpp"
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -20,7 +21,7 @@ gl::Buffer upload(const std::vector<T>& data) {
 }  // namespace
 
 SurfaceShader SceneGpu::surfaceShader() {
-    return {gl::embeddedSource("render/scene_surface.vert.glsl"), gl::embeddedSource("render/scene_surface.frag.glsl")};
+    return {tools::toolSource("render/scene_surface.vert.glsl"), tools::toolSource("render/scene_surface.frag.glsl")};
 }
 
 SceneGpu::SceneGpu(const Scene& scene) : materials_(scene.materials) {

@@ -9,6 +9,7 @@
 #include "scene/scene_internal.hpp"
 #include "starnt/error.hpp"
 #include "starnt/scene.hpp"
+#include "starnt/log.hpp"
 
 namespace starnt {
 
@@ -21,7 +22,7 @@ std::string lowerExtension(const std::string& path) {
     return ext;
 }
 
-void warn(const std::string& message) { std::cerr << "starnt: warning: " << message << "\n"; }
+void warn(const std::string& message) { logMessage(LogLevel::Warning, message); }
 
 Texture toRgba8(const unsigned char* pixels, size_t byteCount, int width, int height, int channels,
                 int bits, const std::string& context) {

@@ -1,4 +1,5 @@
 #include "viewer/display_pass.hpp"
+#include "render/tool_sources.hpp"
 
 #include <algorithm>
 #include <vector>
@@ -7,7 +8,7 @@ namespace starnt::viewer {
 
 DisplayPass::DisplayPass()
     : program_(gl::buildProgram("viewer_display", gl::embeddedSource("methods/common/fullscreen.vert.glsl"),
-                                gl::embeddedSource("viewer/display.frag.glsl"))),
+                                tools::toolSource("viewer/display.frag.glsl"))),
       emptyVao_(gl::makeEmptyVertexArray()) {}
 
 void DisplayPass::draw(GLuint left, GLuint right, int splitX, glm::ivec2 size) {

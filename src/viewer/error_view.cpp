@@ -1,4 +1,5 @@
 #include "viewer/error_view.hpp"
+#include "core/texture_readback.hpp"
 
 #include <sstream>
 
@@ -18,9 +19,9 @@ std::string ErrorView::keyOf(int sceneGeneration, const Camera& camera, glm::ive
     key << camera.fovYDeg << ',' << camera.nearPlane << ',' << camera.farPlane << '|' << size.x << 'x' << size.y << '|'
         << sceneGeneration << '|' << settings.method << '|' << settings.alpha.value_or(-1.0f) << '|'
         << settings.background.r << ',' << settings.background.g << ',' << settings.background.b << '|'
-        << int(settings.options.inference) << ',' << settings.options.fixedScale2 << ',' << settings.options.fixedScale3
-        << ',' << (settings.options.spatial ? int(*settings.options.spatial) : 2) << ','
-        << settings.options.temporalInterval << ',' << settings.options.temporalAuto << ',' << settings.options.targetFps;
+        << int(settings.options.neural.inference) << ',' << settings.options.neural.fixedScale2 << ',' << settings.options.neural.fixedScale3
+        << ',' << (settings.options.neural.spatial ? int(*settings.options.neural.spatial) : 2) << ','
+        << settings.options.neural.temporalInterval << ',' << settings.options.neural.temporalAuto << ',' << settings.options.neural.targetFps;
     return key.str();
 }
 

@@ -48,7 +48,7 @@ RenderedFrame MethodSet::render(const SceneGpu& scene, const Camera& camera, glm
     FrameDesc frame = frameDesc(camera, size, settings);
     const DrawCallback draw = scene.callback(frame.view, frame.projection, surfaceOptions(settings));
     RenderedFrame out;
-    frame.timer = &timer_;
+    frame.timing = &timer_;
     glFinish();
     const auto t0 = std::chrono::steady_clock::now();
     primary_->render(frame, draw);
@@ -57,9 +57,9 @@ RenderedFrame MethodSet::render(const SceneGpu& scene, const Camera& camera, glm
     out.passMs = timer_.collect();
     out.passCounters = timer_.collectCounters();
     out.methodStats = primary_->lastFrameStats();
-    out.interpolated = out.methodStats.value("interpolated", false);
+    out.interpolated = out.methodStats.interpolated();
     if (split_) {
-        frame.timer = nullptr;
+        frame.timing = nullptr;
         split_->render(frame, draw);
     }
     return out;

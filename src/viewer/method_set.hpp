@@ -19,7 +19,7 @@ struct RenderedFrame {
     double frameMs = 0.0;                   // the primary method, glFinish to glFinish
     std::map<std::string, double> passMs;   // its per-pass times
     std::map<std::string, gl::PassCounters> passCounters;  // its per-pass work
-    nlohmann::json methodStats;             // its lastFrameStats()
+    FrameStats methodStats;             // its lastFrameStats()
     bool interpolated = false;
 };
 

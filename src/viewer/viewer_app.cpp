@@ -1,4 +1,5 @@
 #include "viewer/viewer_app.hpp"
+#include "render/frame_stats_json.hpp"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -325,7 +326,7 @@ private:
     }
 
     nlohmann::json currentStats(const Camera& camera, glm::ivec2 size) const {
-        const nlohmann::json& ms = lastFrame_.methodStats;
+        const nlohmann::json ms = frameStatsJson(lastFrame_.methodStats);
         nlohmann::json stats = {
             {"scene", sceneSpec_},
             {"triangles", sceneTriangles_},
@@ -351,9 +352,9 @@ private:
             {"options",
              {{"spatial", spatialText(settings_.options)},
               {"scales", scalesText(settings_.options)},
-              {"inference", settings_.options.inference == MethodOptions::Inference::Corners ? "corners" : "full"},
+              {"inference", settings_.options.neural.inference == NeuralOptions::Inference::Corners ? "corners" : "full"},
               {"temporal", temporalText(settings_.options)},
-              {"target_fps", settings_.options.targetFps},
+              {"target_fps", settings_.options.neural.targetFps},
               {"alpha", settings_.alpha ? nlohmann::json(*settings_.alpha) : nlohmann::json(nullptr)},
               {"background", vec3Json(settings_.background)}}},
             // The camera in `starnt render --camera FILE.json` form, to render the same view headless.

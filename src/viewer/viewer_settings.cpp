@@ -110,11 +110,11 @@ void ViewerSettings::set(const std::string& key, const std::string& value) {
 
 bool needsNewMethods(const ViewerSettings& a, const ViewerSettings& b) {
     const MethodOptions &x = a.options, &y = b.options;
-    return a.method != b.method || a.splitMethod != b.splitMethod || x.spatial != y.spatial ||
-           x.fixedScale2 != y.fixedScale2 || x.fixedScale3 != y.fixedScale3 || x.inference != y.inference ||
-           x.temporalInterval != y.temporalInterval || x.temporalAuto != y.temporalAuto || x.targetFps != y.targetFps ||
-           x.scaleRule != y.scaleRule || x.tileSignal != y.tileSignal || x.scaleGuard != y.scaleGuard || x.upsample != y.upsample ||
-           x.temporalMode != y.temporalMode || x.mboitMoments != y.mboitMoments;
+    return a.method != b.method || a.splitMethod != b.splitMethod || x.neural.spatial != y.neural.spatial ||
+           x.neural.fixedScale2 != y.neural.fixedScale2 || x.neural.fixedScale3 != y.neural.fixedScale3 || x.neural.inference != y.neural.inference ||
+           x.neural.temporalInterval != y.neural.temporalInterval || x.neural.temporalAuto != y.neural.temporalAuto || x.neural.targetFps != y.neural.targetFps ||
+           x.neural.scaleRule != y.neural.scaleRule || x.neural.tileSignal != y.neural.tileSignal || x.neural.scaleGuard != y.neural.scaleGuard || x.neural.upsample != y.neural.upsample ||
+           x.neural.temporalMode != y.neural.temporalMode || x.mboit.moments != y.mboit.moments;
 }
 
 }  // namespace starnt::viewer

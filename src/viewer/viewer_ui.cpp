@@ -97,31 +97,31 @@ void accelerationSection(ViewerSettings& next, std::string& problem) {
     std::string spatial = spatialText(next.options);
     if (combo("spatial tiles", {"default", "on", "off"}, spatial)) setOrReport(next, "spatial", spatial, problem);
 
-    bool fixedScales = next.options.fixedScale2 > 0.0f;
+    bool fixedScales = next.options.neural.fixedScale2 > 0.0f;
     if (ImGui::Checkbox("fixed scales", &fixedScales)) setOrReport(next, "scales", fixedScales ? "100,50" : "auto", problem);
     if (fixedScales) {
         // Quarter steps only: each change rebuilds the method.
-        int p2 = int(next.options.fixedScale2 * 4.0f + 0.5f), p3 = int(next.options.fixedScale3 * 4.0f + 0.5f);
+        int p2 = int(next.options.neural.fixedScale2 * 4.0f + 0.5f), p3 = int(next.options.neural.fixedScale3 * 4.0f + 0.5f);
         bool changed = ImGui::SliderInt("pass 2 (x25%)", &p2, 1, 4);
         changed |= ImGui::SliderInt("pass 3 (x25%)", &p3, 1, 4);
         if (changed) setOrReport(next, "scales", std::to_string(p2 * 25) + "," + std::to_string(p3 * 25), problem);
     }
-    std::string rule = scaleRuleText(next.options);
+    std::string rule = scaleRuleText(next.options.neural.scaleRule);
     if (combo("scale rule", {"snapped", "continuous", "step"}, rule)) setOrReport(next, "scale-rule", rule, problem);
-    std::string signal = tileSignalText(next.options);
+    std::string signal = tileSignalText(next.options.neural.tileSignal);
     if (combo("tile signal", {"back", "composite"}, signal)) setOrReport(next, "tile-signal", signal, problem);
-    bool guard = next.options.scaleGuard;
+    bool guard = next.options.neural.scaleGuard;
     if (ImGui::Checkbox("scale guard (probe frames)", &guard)) setOrReport(next, "scale-guard", guard ? "on" : "off", problem);
-    std::string upsample = upsampleText(next.options);
+    std::string upsample = upsampleText(next.options.neural.upsample);
     if (combo("upsample", {"bilinear", "joint"}, upsample)) setOrReport(next, "upsample", upsample, problem);
-    std::string inference = next.options.inference == MethodOptions::Inference::Corners ? "corners" : "full";
+    std::string inference = next.options.neural.inference == NeuralOptions::Inference::Corners ? "corners" : "full";
     if (combo("inference", {"full", "corners"}, inference)) setOrReport(next, "inference", inference, problem);
     std::string temporal = temporalText(next.options);
     if (combo("temporal", {"off", "auto", "2", "3", "4"}, temporal)) setOrReport(next, "temporal", temporal, problem);
-    std::string mode = temporalModeText(next.options);
+    std::string mode = temporalModeText(next.options.neural.temporalMode);
     if (combo("interpolated frames", {"refresh", "warp"}, mode)) setOrReport(next, "temporal-mode", mode, problem);
     static float targetFps = 60.0f;  // edited locally; applied when the drag ends (a rebuild each step would stall)
-    if (!ImGui::IsAnyItemActive()) targetFps = float(next.options.targetFps);
+    if (!ImGui::IsAnyItemActive()) targetFps = float(next.options.neural.targetFps);
     ImGui::SliderFloat("target FPS", &targetFps, 1.0f, 240.0f, "%.0f");
     if (ImGui::IsItemDeactivatedAfterEdit()) setOrReport(next, "target-fps", std::to_string(targetFps), problem);
 }
@@ -215,15 +215,14 @@ void timingPanel(const UiModel& m) {
         }
     }
     ImGui::Separator();
-    const nlohmann::json& ms = m.methodStats;
-    if (ms.contains("w_bar") && ms["w_bar"].is_number()) ImGui::Text("w_bar %.3f", ms["w_bar"].get<double>());
+    const std::optional<NeuralFrameStats>& neural = m.methodStats.neural;
+    const bool hasTiles = neural && neural->tiles;
+    if (hasTiles && neural->tiles->wBar) ImGui::Text("w_bar %.3f", *neural->tiles->wBar);
     else ImGui::TextDisabled("w_bar: n/a (no tiles)");
-    if (ms.contains("scale_pass2")) {
-        ImGui::Text("scales: pass 2 %.2f, pass 3 %.2f", ms.value("scale_pass2", 1.0), ms.value("scale_pass3", 1.0));
-    }
-    if (ms.contains("tile_levels") && ms["tile_levels"].is_array() && ms["tile_levels"].size() == 4) {
+    if (neural) ImGui::Text("scales: pass 2 %.2f, pass 3 %.2f", double(neural->scalePass2), double(neural->scalePass3));
+    if (hasTiles) {
         float levels[4];
-        for (int i = 0; i < 4; ++i) levels[i] = ms["tile_levels"][i].get<float>();
+        for (int i = 0; i < 4; ++i) levels[i] = float(neural->tiles->levels[size_t(i)]);
         ImGui::Text("tiles N0..N3: %.0f %.0f %.0f %.0f", levels[0], levels[1], levels[2], levels[3]);
         ImGui::PlotHistogram("##levels", levels, 4, 0, "tile levels", 0.0f, FLT_MAX, ImVec2(300, 50));
     }

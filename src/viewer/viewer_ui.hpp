@@ -27,7 +27,7 @@ struct UiModel {
     std::string message;  // e.g. where the last screenshot went
     CameraMode cameraMode = CameraMode::Orbit;
     const FrameStatistics* stats = nullptr;
-    nlohmann::json methodStats;  // the primary method's lastFrameStats()
+    FrameStats methodStats;  // the primary method's lastFrameStats()
     std::map<std::string, gl::PassCounters> passCounters;  // the primary method's last frame
     bool tilesAvailable = false;
     // Error view: whether a FLIP map for the current inputs exists, and its numbers.

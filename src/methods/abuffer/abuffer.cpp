@@ -18,16 +18,17 @@ public:
     size_t gpuMemoryBytes() const override { return outputBytes() + lists_.gpuMemoryBytes(); }
     MemoryTargets gpuMemoryTargets() const override { return {{"output", outputBytes()}, {"fragment_lists", lists_.gpuMemoryBytes()}}; }
 
-    nlohmann::json lastFrameStats() const override {
-        return {{"fragments", lists_.fragmentCount()},
-                {"pool_capacity", lists_.capacity()},
-                {"pool_regrows", lists_.regrows()}};
+    FrameStats lastFrameStats() const override {
+        FrameStats stats;
+        stats.abuffer = AbufferFrameStats{uint64_t(lists_.fragmentCount()), uint64_t(lists_.capacity()),
+                                          uint32_t(lists_.regrows())};
+        return stats;
     }
 
     void render(const FrameDesc& frame, const DrawCallback& draw) override {
         resizeOutput(frame.width, frame.height);
         lists_.build(frame, draw, build_);
-        gl::ScopedPass timing(frame.timer, "resolve");
+        gl::ScopedPass timing(frame.timing, "resolve");
         lists_.bindBuffers();
         glUseProgram(resolve_.id());
         glUniform2i(resolve_.uniform("u_size"), width_, height_);

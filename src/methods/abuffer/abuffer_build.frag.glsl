@@ -2,7 +2,7 @@
 // Node layout (uvec4): x = packHalf2x16(r, g), y = packHalf2x16(b, a), z = depth bits, w = next.
 // The node counter keeps counting past the pool's capacity, so the host sees how many nodes the
 // frame needed and can grow the pool and render again: no fragment is ever silently dropped.
-#include "shaders/shared_constants.h"
+#include "starnt/bindings.h"
 
 layout(std430, binding = STARNT_SSBO_ABUFFER_HEADS) coherent buffer Heads { uint heads[]; };
 layout(std430, binding = STARNT_SSBO_ABUFFER_NODES) writeonly buffer Nodes { uvec4 nodes[]; };

@@ -5,8 +5,9 @@
 #include <cstdio>
 #include <vector>
 
-#include "shaders/shared_constants.h"
+#include "starnt/bindings.h"
 #include "starnt/error.hpp"
+#include "starnt/log.hpp"
 
 namespace starnt {
 
@@ -16,9 +17,9 @@ ABufferLists::ABufferLists(bool captureOrder, const MethodOptions& options)
 void ABufferLists::allocate(int width, int height, uint64_t capacity) {
     const size_t perNode = kABufferNodeBytes * (captureOrder_ ? 2 : 1);
     const size_t total = size_t(width) * size_t(height) * 4 + size_t(capacity) * perNode + 16;
-    if (total > options_.abufferMemoryCapBytes) {
+    if (total > options_.abuffer.memoryCapBytes) {
         throw Error("A-buffer needs " + std::to_string(total >> 20) + " MiB for " + std::to_string(capacity) +
-                    " fragments, over its memory cap of " + std::to_string(options_.abufferMemoryCapBytes >> 20) +
+                    " fragments, over its memory cap of " + std::to_string(options_.abuffer.memoryCapBytes >> 20) +
                     " MiB (raise --abuffer-cap-mib, or lower the resolution)");
     }
     if (width != width_ || height != height_) {
@@ -47,7 +48,7 @@ void ABufferLists::bindBuffers() const {
 }
 
 void ABufferLists::build(const FrameDesc& frame, const DrawCallback& draw, const gl::Program& program) {
-    const double initial = double(frame.width) * double(frame.height) * std::max(0.0, options_.abufferInitialNodesPerPixel);
+    const double initial = double(frame.width) * double(frame.height) * std::max(0.0, options_.abuffer.initialNodesPerPixel);
     uint64_t wanted = std::max<uint64_t>({capacity_, uint64_t(initial), 16});
     if (frame.width != width_ || frame.height != height_ || wanted != capacity_) {
         allocate(frame.width, frame.height, wanted);
@@ -65,14 +66,14 @@ void ABufferLists::build(const FrameDesc& frame, const DrawCallback& draw, const
         glUniform1ui(program.uniform("u_capacity"), GLuint(std::min<uint64_t>(capacity_, 0xFFFFFFFFull)));
         glUniform1i(program.uniform("u_width"), width_);
         {
-            gl::ScopedPass timing(frame.timer, "build");
+            gl::ScopedPass timing(frame.timing, "build");
             glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
             const char* name = captureOrder_ ? "abuffer_capture" : "abuffer_build";
             glUseProgram(program.id());
             glUniform1f(program.uniform("u_alphaCutoff"), frame.alphaCutoff);
-            if (frame.timer) frame.timer->beginCounters(name);
+            if (frame.timing) frame.timing->beginGeometry(name);
             draw(GeometryPass{name, program.id()});
-            if (frame.timer) frame.timer->endCounters();
+            if (frame.timing) frame.timing->endGeometry();
             glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         }
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -82,10 +83,9 @@ void ABufferLists::build(const FrameDesc& frame, const DrawCallback& draw, const
         if (count <= capacity_) break;
         // The counter is 32-bit: a frame of more than 4G fragments cannot be represented at all.
         uint64_t grown = uint64_t(std::ceil(double(count) * 1.25));
-        std::fprintf(stderr,
-                     "starnt: note: A-buffer pool overflow (%u fragments, capacity %llu); growing to %llu and "
-                     "rendering the frame again\n",
-                     count, (unsigned long long)capacity_, (unsigned long long)grown);
+        logMessage(LogLevel::Note, "A-buffer pool overflow (" + std::to_string(count) + " fragments, capacity " +
+                                std::to_string(capacity_) + "); growing to " + std::to_string(grown) +
+                                " and rendering the frame again");
         allocate(width_, height_, grown);
         ++regrows_;
     }

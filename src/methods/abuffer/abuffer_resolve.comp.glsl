@@ -8,7 +8,7 @@
 // above the previous step's. O(n^2) node reads for n fragments, no length limit, no local arrays.
 // This runs as a compute shader: the same code as a full-screen fragment shader lost fragments on
 // llvmpipe (Mesa 22.3) at some pixels (caught by the CPU-reference test), in every formulation tried.
-#include "shaders/shared_constants.h"
+#include "starnt/bindings.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = STARNT_SSBO_ABUFFER_HEADS) readonly buffer Heads { uint heads[]; };

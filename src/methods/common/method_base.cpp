@@ -37,9 +37,9 @@ void MethodBase::runGeometryPass(const char* name, const gl::Program& program, c
                                  const DrawCallback& draw) {
     glUseProgram(program.id());
     glUniform1f(program.uniform("u_alphaCutoff"), frame.alphaCutoff);
-    if (frame.timer) frame.timer->beginCounters(name);
+    if (frame.timing) frame.timing->beginGeometry(name);
     draw(GeometryPass{name, program.id()});
-    if (frame.timer) frame.timer->endCounters();
+    if (frame.timing) frame.timing->endGeometry();
 }
 
 void MethodBase::bindOutputFramebuffer() const {

@@ -29,7 +29,7 @@ class MboitMethod final : public MethodBase {
 public:
     MboitMethod(const SurfaceShader& surface, const MethodOptions& options)
         : MethodBase(surface),
-          setting_(mboit::momentSetting(mboit::parseMomentKind(options.mboitMoments))),
+          setting_(mboit::momentSetting(mboit::parseMomentKind(options.mboit.moments))),
           moments_(buildGeometryProgram("mboit_moments", "methods/mboit/mboit_moments.frag.glsl", defines(setting_))),
           shade_(buildGeometryProgram("mboit_shade", "methods/mboit/mboit_shade.frag.glsl", defines(setting_))),
           resolve_(buildFullscreenProgram("mboit_resolve", "methods/mboit/mboit_resolve.frag.glsl")) {}
@@ -42,8 +42,10 @@ public:
         return {{"output", outputBytes()}, {"b0", b0_.bytes()}, {"moments", moments_tex_.bytes()},
                 {"moments_extra", extra_.bytes()}, {"accum", accum_.bytes()}};
     }
-    nlohmann::json lastFrameStats() const override {
-        return {{"moments", setting_.name}};
+    FrameStats lastFrameStats() const override {
+        FrameStats stats;
+        stats.mboit = MboitFrameStats{setting_.name};
+        return stats;
     }
 
     void render(const FrameDesc& frame, const DrawCallback& draw) override {
@@ -72,7 +74,7 @@ public:
         const float zero[4] = {0, 0, 0, 0};
         resetPassState();
         {
-            gl::ScopedPass timing(frame.timer, "moments");
+            gl::ScopedPass timing(frame.timing, "moments");
             glBindFramebuffer(GL_FRAMEBUFFER, momentsFb_.id());
             glViewport(0, 0, width_, height_);
             for (int i = 0; i < (extra_ ? 3 : 2); ++i) glClearBufferfv(GL_COLOR, i, zero);
@@ -85,7 +87,7 @@ public:
             resetPassState();
         }
         {
-            gl::ScopedPass timing(frame.timer, "shade");
+            gl::ScopedPass timing(frame.timing, "shade");
             glBindFramebuffer(GL_FRAMEBUFFER, accumFb_.id());
             glViewport(0, 0, width_, height_);
             glClearBufferfv(GL_COLOR, 0, zero);
@@ -103,7 +105,7 @@ public:
             resetPassState();
         }
         {
-            gl::ScopedPass timing(frame.timer, "resolve");
+            gl::ScopedPass timing(frame.timing, "resolve");
             bindOutputFramebuffer();
             glUseProgram(resolve_.id());
             glBindTextureUnit(0, b0_.id());

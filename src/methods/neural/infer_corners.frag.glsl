@@ -2,7 +2,7 @@
 // the corner pixels of the quadtree leaves of the last real frame's tiles. Writes (f(x), 1) where
 // the network applies and (0, 0) where it does not; other pixels are discarded (left stale: the
 // fill pass reads corners only).
-#include "shaders/shared_constants.h"
+#include "starnt/bindings.h"
 #include "methods/neural/tiles/tile_masks.glsl"
 
 layout(std430, binding = STARNT_SSBO_TILE_MASKS_IN) readonly buffer Masks { uint masks[]; };

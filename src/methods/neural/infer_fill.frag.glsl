@@ -1,11 +1,11 @@
 // Stage "infer", spatially selective, step 2 of 2: each pixel where the network applies takes the
 // bilinear interpolation of its leaf's corner outputs, weighted to the corners where the network
 // applied; with no such corner it evaluates the network itself. Then the method's composite.
-#include "shaders/shared_constants.h"
+#include "starnt/bindings.h"
 #include "methods/neural/tiles/tile_masks.glsl"
 
 layout(std430, binding = STARNT_SSBO_TILE_MASKS_IN) readonly buffer Masks { uint masks[]; };
-layout(binding = 6) uniform sampler2D u_cornerNetwork;
+layout(binding = STARNT_UNIT_CORNER_NETWORK) uniform sampler2D u_cornerNetwork;
 uniform ivec2 u_tiles;
 layout(location = 0) out vec4 outColor;
 

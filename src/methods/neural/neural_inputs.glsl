@@ -3,11 +3,12 @@
 // upsamplePassSums in upsample_cpu.hpp), and computes the guarded quantities both networks use. STARNT_EPS_TRANSMITTANCE and STARNT_EPS_TAIL_ALPHA are
 // defined from nn::kTransmittanceEpsilon / nn::kTailAlphaEpsilon when the program is built, so the
 // CPU reference and the shader share one definition.
-layout(binding = 0) uniform sampler2D u_nearest;        // C1, a1
-layout(binding = 1) uniform sampler2D u_second;         // C2, a2
-layout(binding = 2) uniform sampler2D u_alphaColor;     // sum a C, sum a
-layout(binding = 3) uniform sampler2D u_colorCount;     // sum C, N
-layout(binding = 4) uniform sampler2D u_transmittance;  // prod (1 - a)
+#include "starnt/bindings.h"
+layout(binding = STARNT_UNIT_NEAREST) uniform sampler2D u_nearest;        // C1, a1
+layout(binding = STARNT_UNIT_SECOND) uniform sampler2D u_second;         // C2, a2
+layout(binding = STARNT_UNIT_ALPHA_COLOR) uniform sampler2D u_alphaColor;     // sum a C, sum a
+layout(binding = STARNT_UNIT_COLOR_COUNT) uniform sampler2D u_colorCount;     // sum C, N
+layout(binding = STARNT_UNIT_TRANSMITTANCE) uniform sampler2D u_transmittance;  // prod (1 - a)
 #include "methods/neural/upsample.glsl"
 
 struct PixelSums {

@@ -8,17 +8,16 @@
 #include "methods/neural/neural_passes.hpp"
 #include "methods/neural/temporal/temporal_frames.hpp"
 #include "methods/neural/tiles/tile_constants.h"
-#include "methods/neural/tiles/tiles_cpu.hpp"
+#include "methods/neural/tiles/tile_rules.hpp"
 #include "methods/neural/tiles/tiles_gpu.hpp"
-#include "shaders/shared_constants.h"
+#include "starnt/bindings.h"
 #include "starnt/error.hpp"
 
 namespace starnt {
-const char* scaleRuleName(MethodOptions::ScaleRule rule);
 namespace {
 
 // Texture unit of the corner network outputs in infer_fill.frag.glsl (after the NeuralInputUnit units).
-constexpr GLuint kUnitCornerNetwork = 6;
+constexpr GLuint kUnitCornerNetwork = STARNT_UNIT_CORNER_NETWORK;
 
 class NeuralMethod final : public MethodBase {
 public:
@@ -26,8 +25,8 @@ public:
         : MethodBase(surface),
           config_(config),
           options_(validated(options)),
-          spatial_(options.spatial.value_or(config.spatialByDefault)),
-          corners_(options.inference == MethodOptions::Inference::Corners),
+          spatial_(options.neural.spatial.value_or(config.spatialByDefault)),
+          corners_(options.neural.inference == NeuralOptions::Inference::Corners),
           network_(loadMethodNetwork(config, options)),
           pass1_(buildGeometryProgram("neural_pass1", "methods/neural/pass1_nearest.frag.glsl")),
           pass2_(buildGeometryProgram("neural_pass2", "methods/neural/pass2_second.frag.glsl")),
@@ -38,11 +37,11 @@ public:
         // Compile up front what the frames will need, so no frame pays for a shader compile: the
         // full-resolution variant for the first frame (no tile history) and fixed 100 % scales,
         // the upsampling one when scales below 1 can occur.
-        const bool fixedFull = options_.fixedScale2 == 1.0f && options_.fixedScale3 == 1.0f;
-        const bool mayReduce = options_.fixedScale2 > 0.0f ? !fixedFull : spatial_;
+        const bool fixedFull = options_.neural.fixedScale2 == 1.0f && options_.neural.fixedScale3 == 1.0f;
+        const bool mayReduce = options_.neural.fixedScale2 > 0.0f ? !fixedFull : spatial_;
         for (const char* stage : {"infer_full", "infer_corners", "infer_fill"}) {
             if (std::string(stage) != "infer_full" && !corners_) continue;
-            if (options_.fixedScale2 == 0.0f || fixedFull) inference(stage, true);
+            if (options_.neural.fixedScale2 == 0.0f || fixedFull) inference(stage, true);
             if (mayReduce) inference(stage, false);
         }
     }
@@ -64,43 +63,43 @@ public:
         return out;
     }
 
-    nlohmann::json lastFrameStats() const override {
-        nlohmann::json stats = {{"network", nn::kindName(network_.kind)},
-                                {"weights_training_samples", network_.trainingSamples},
-                                {"peel_epsilon", NeuralPasses::kDefaultPeelEpsilon},
-                                {"spatial", spatial_},
-                                {"inference", corners_ ? "corners" : "full"},
-                                {"corner_inference_used", cornersUsed_},
-                                {"interpolated", temporal_.lastWasInterpolated()},
-                                {"temporal_interval", temporal_.interval()},
-                                {"temporal_mode", temporal_.refreshes() ? "refresh" : "warp"},
-                                {"real_frame_ms_average", temporal_.averageRealFrameMs()},
-                                {"interpolated_frame_ms_average", temporal_.averageInterpolatedFrameMs()},
-                                {"scale_pass2", scale2_},
-                                {"scale_pass3", scale3_},
-                                {"pass2_size", {passes_.pass2Size().width, passes_.pass2Size().height}},
-                                {"pass3_size", {passes_.pass3Size().width, passes_.pass3Size().height}}};
+    FrameStats lastFrameStats() const override {
+        NeuralFrameStats n;
+        n.network = nn::kindName(network_.kind);
+        n.weightsTrainingSamples = network_.trainingSamples;
+        n.peelEpsilon = NeuralPasses::kDefaultPeelEpsilon;
+        n.spatial = spatial_;
+        n.cornerInference = corners_;
+        n.cornerInferenceUsed = cornersUsed_;
+        n.interpolated = temporal_.lastWasInterpolated();
+        n.temporalInterval = temporal_.interval();
+        n.temporalMode = temporal_.refreshes() ? NeuralOptions::TemporalMode::Refresh : NeuralOptions::TemporalMode::Warp;
+        n.realFrameMsAverage = temporal_.averageRealFrameMs();
+        n.interpolatedFrameMsAverage = temporal_.averageInterpolatedFrameMs();
+        n.scalePass2 = scale2_;
+        n.scalePass3 = scale3_;
+        n.pass2Size = {passes_.pass2Size().width, passes_.pass2Size().height};
+        n.pass3Size = {passes_.pass3Size().width, passes_.pass3Size().height};
         if (tiles_) {
             tiles_->pollHistogram();
-            stats["w_bar"] = tiles_->hasHistogram() ? nlohmann::json(tiles_->wBar()) : nlohmann::json(nullptr);
-            const auto& h = tiles_->histogram();
-            stats["tile_levels"] = {h[0], h[1], h[2], h[3]};
-            stats["scale_rule"] = scaleRuleName(options_.scaleRule);
-            stats["tile_signal"] = options_.tileSignal == MethodOptions::TileSignal::Back ? "back" : "composite";
-            stats["upsample"] = options_.upsample == MethodOptions::Upsample::Joint ? "joint" : "bilinear";
-            stats["scale_guard"] = guarded();
+            NeuralFrameStats::Tiles t;
+            if (tiles_->hasHistogram()) t.wBar = tiles_->wBar();
+            t.levels = tiles_->histogram();
+            t.scaleRule = options_.neural.scaleRule;
+            t.tileSignal = options_.neural.tileSignal;
+            t.upsample = options_.neural.upsample;
+            t.scaleGuard = guarded();
             if (guarded()) {
-                stats["probe_frame"] = probe_ && !temporal_.lastWasInterpolated();
+                t.probeFrame = probe_ && !temporal_.lastWasInterpolated();
                 if (tiles_->hasGuard()) {
                     const tiles::ScaleGuard& g = tiles_->guard();
-                    stats["guard"] = {{"occupied_pixels", g.occupied},
-                                      {"energy_pass2", g.energy2},
-                                      {"loss_pass2", {g.loss2[0], g.loss2[1]}},
-                                      {"energy_pass3", g.energy3},
-                                      {"loss_pass3", {g.loss3[0], g.loss3[1]}}};
+                    t.guard = NeuralFrameStats::Guard{g.occupied, g.energy2, g.energy3, g.loss2, g.loss3};
                 }
             }
+            n.tiles = t;
         }
+        FrameStats stats;
+        stats.neural = n;
         return stats;
     }
 
@@ -128,15 +127,15 @@ public:
                 // Refresh: the nearest layer fresh at this camera, what lay behind it reprojected.
                 passes_.runNearest(frame, draw);
                 temporal_.interpolateRefresh(viewProjection, passes_.nearest().id(), frame.background, output_.id(),
-                                             frame.timer);
+                                             frame.timing);
             } else {
-                temporal_.interpolate(viewProjection, output_.id(), frame.timer);
+                temporal_.interpolate(viewProjection, output_.id(), frame.timing);
             }
             return;
         }
         renderReal(frame, draw);
         if (temporal_.interpolates()) {
-            gl::ScopedPass timing(frame.timer, "temporal_capture");
+            gl::ScopedPass timing(frame.timing, "temporal_capture");
             temporal_.endRealFrame(output_.id(), passes_.nearestDepth().id(), viewProjection, frame.width, frame.height,
                                    passes_.nearest().id());
         }
@@ -154,21 +153,21 @@ private:
         // the nearest layer is an interpolation, smoother than the scene, so measuring it would
         // lower the levels and the scales further with every frame.
         if (tiles_ && (!guarded() || probe_)) {
-            gl::ScopedPass timing(frame.timer, "tiles");
-            tiles_->update(output_.id(), passes_.nearest().id(), options_.tileSignal,
+            gl::ScopedPass timing(frame.timing, "tiles");
+            tiles_->update(output_.id(), passes_.nearest().id(), options_.neural.tileSignal,
                            guarded() ? passes_.second().id() : 0);
         }
     }
 
     // The scale guard applies to the adaptive scales only (not to fixed --scales).
-    bool guarded() const { return spatial_ && options_.scaleGuard && options_.fixedScale2 == 0.0f; }
+    bool guarded() const { return spatial_ && options_.neural.scaleGuard && options_.neural.fixedScale2 == 0.0f; }
 
     static const MethodOptions& validated(const MethodOptions& o) {
         auto scaleOk = [](float s) { return s == 0.0f || (s >= float(STARNT_SCALE_MIN) && s <= 1.0f); };
-        if (!scaleOk(o.fixedScale2) || !scaleOk(o.fixedScale3) || ((o.fixedScale2 == 0.0f) != (o.fixedScale3 == 0.0f))) {
+        if (!scaleOk(o.neural.fixedScale2) || !scaleOk(o.neural.fixedScale3) || ((o.neural.fixedScale2 == 0.0f) != (o.neural.fixedScale3 == 0.0f))) {
             throw Error("fixed pass scales must both be 0 (from the tiles) or both within 0.25..1");
         }
-        if (o.temporalInterval < 1 || o.temporalInterval > 4) throw Error("temporal interval must be within 1..4");
+        if (o.neural.temporalInterval < 1 || o.neural.temporalInterval > 4) throw Error("temporal interval must be within 1..4");
         return o;
     }
 
@@ -190,14 +189,14 @@ private:
     // Scales of this frame (SPEC 5): fixed for ablations, else from the newest tile histogram
     // (the last real frame's, or one older if the GPU has not finished it), else full resolution.
     void chooseScales() {
-        if (options_.fixedScale2 > 0.0f) {
-            scale2_ = options_.fixedScale2;
-            scale3_ = options_.fixedScale3;
+        if (options_.neural.fixedScale2 > 0.0f) {
+            scale2_ = options_.neural.fixedScale2;
+            scale3_ = options_.neural.fixedScale3;
         } else if (spatial_ && tiles_) {
             tiles_->pollHistogram();
             const double wBar = tiles_->hasHistogram() ? tiles_->wBar() : 3.0;  // no history yet: full resolution
-            scale2_ = tiles::ruleScale(options_.scaleRule, wBar, STARNT_SCALE_DELTA_PASS2);
-            scale3_ = tiles::ruleScale(options_.scaleRule, wBar, STARNT_SCALE_DELTA_PASS3);
+            scale2_ = tiles::ruleScale(options_.neural.scaleRule, wBar, STARNT_SCALE_DELTA_PASS2);
+            scale3_ = tiles::ruleScale(options_.neural.scaleRule, wBar, STARNT_SCALE_DELTA_PASS3);
             if (guarded()) {
                 probe_ = tiles_->updates() < STARNT_SCALE_SETTLE_FRAMES ||
                          realFramesSinceProbe_ + 1 >= STARNT_SCALE_PROBE_INTERVAL;
@@ -217,7 +216,7 @@ private:
         }
     }
 
-    bool joint() const { return options_.upsample == MethodOptions::Upsample::Joint; }
+    bool joint() const { return options_.neural.upsample == NeuralOptions::Upsample::Joint; }
 
     void setCommonUniforms(const gl::Program& program, const FrameDesc& frame) const {
         glUseProgram(program.id());
@@ -233,7 +232,7 @@ private:
     }
 
     void infer(const FrameDesc& frame) {
-        gl::ScopedPass timing(frame.timer, "inference");
+        gl::ScopedPass timing(frame.timing, "inference");
         resetPassState();
         // Corner inference needs the masks of a previous real frame; the first frame infers everywhere.
         cornersUsed_ = corners_ && tiles_->updates() > 0;
@@ -280,17 +279,8 @@ private:
 
 }  // namespace
 
-const char* scaleRuleName(MethodOptions::ScaleRule rule) {
-    switch (rule) {
-        case MethodOptions::ScaleRule::Continuous: return "continuous";
-        case MethodOptions::ScaleRule::Step: return "step";
-        case MethodOptions::ScaleRule::Snapped: break;
-    }
-    return "snapped";
-}
-
 nn::Network loadMethodNetwork(const NeuralMethodConfig& config, const MethodOptions& options) {
-    if (!options.weightsPath.empty()) return nn::loadWeights(options.weightsPath, config.kind);
+    if (!options.neural.weightsPath.empty()) return nn::loadWeights(options.neural.weightsPath, config.kind);
     return nn::parseWeights(gl::embeddedSource(config.defaultWeights), "shipped " + config.name + " weights", config.kind);
 }
 

@@ -6,7 +6,7 @@
 #pragma once
 #include <memory>
 
-#include "starnt/nn.hpp"
+#include "starnt/network.hpp"
 #include "starnt/oit_method.hpp"
 
 namespace starnt {
@@ -22,7 +22,7 @@ struct NeuralMethodConfig {
 std::unique_ptr<OitMethod> createNeuralMethod(const NeuralMethodConfig& config, const SurfaceShader& surface,
                                               const MethodOptions& options);
 
-// The network a method would use: options.weightsPath when set, else the shipped weights.
+// The network a method would use: options.neural.weightsPath when set, else the shipped weights.
 nn::Network loadMethodNetwork(const NeuralMethodConfig& config, const MethodOptions& options);
 
 }  // namespace starnt

@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-#include "starnt/nn.hpp"
+#include "starnt/network.hpp"
 
 namespace starnt {
 namespace {
@@ -102,7 +102,7 @@ void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) 
     resize(frame.width, frame.height);
     const float zero[4] = {0, 0, 0, 0}, farDepth = 1.0f;
     resetPassState();
-    gl::ScopedPass timing(frame.timer, "pass1");
+    gl::ScopedPass timing(frame.timing, "pass1");
     useRectangle({width_, height_});
     glBindFramebuffer(GL_FRAMEBUFFER, pass1Fb_.id());
     glClearBufferfv(GL_COLOR, 0, zero);
@@ -127,7 +127,7 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
         if (reducedDepth_.width() != pass2Size.width || reducedDepth_.height() != pass2Size.height) {
             reducedDepth_ = gl::Texture2D(GL_R32F, pass2Size.width, pass2Size.height);
         }
-        gl::ScopedPass timing(frame.timer, "depth_downsample");
+        gl::ScopedPass timing(frame.timing, "depth_downsample");
         glUseProgram(depthDownsample_.id());
         glBindTextureUnit(0, nearestDepth_.id());
         glBindImageTexture(0, reducedDepth_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
@@ -137,7 +137,7 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     }
     {
-        gl::ScopedPass timing(frame.timer, "pass2");
+        gl::ScopedPass timing(frame.timing, "pass2");
         useReducedRectangle(pass2Size, full);
         glBindFramebuffer(GL_FRAMEBUFFER, pass2Fb_.id());
         glClearBufferfv(GL_COLOR, 0, zero);
@@ -151,7 +151,7 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
         resetPassState();
     }
     {
-        gl::ScopedPass timing(frame.timer, "pass3");
+        gl::ScopedPass timing(frame.timing, "pass3");
         useReducedRectangle(pass3Size, full);
         glBindFramebuffer(GL_FRAMEBUFFER, pass3Fb_.id());
         glClearBufferfv(GL_COLOR, 0, zero);
@@ -166,7 +166,7 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
         resetPassState();
     }
     if (reduced2 || !(pass3Size == full)) {
-        gl::ScopedPass timing(frame.timer, "tail_resolve");
+        gl::ScopedPass timing(frame.timing, "tail_resolve");
         resolveTails({&tailResolve_, nearest_.id(), second_.id(), alphaColor_.id(), colorCount_.id(), transmittance_.id(),
                       full, pass2Size, pass3Size},
                      pass3Fb_.id(), emptyVao_);

@@ -15,18 +15,20 @@
 #include <string>
 
 #include "methods/common/method_base.hpp"
-#include "methods/neural/upsample_cpu.hpp"
+#include "methods/neural/reduced_grid.hpp"
+#include "starnt/bindings.h"
 
 namespace starnt {
 
-// Texture units the composite shaders read the pass outputs from.
+// Texture units the composite shaders read the pass outputs from (starnt/bindings.h, shared with
+// the GLSL).
 enum NeuralInputUnit : GLuint {
-    kUnitNearest = 0,
-    kUnitSecond = 1,
-    kUnitAlphaColor = 2,
-    kUnitColorCount = 3,
-    kUnitTransmittance = 4,
-    kUnitNearestDepth = 5,
+    kUnitNearest = STARNT_UNIT_NEAREST,
+    kUnitSecond = STARNT_UNIT_SECOND,
+    kUnitAlphaColor = STARNT_UNIT_ALPHA_COLOR,
+    kUnitColorCount = STARNT_UNIT_COLOR_COUNT,
+    kUnitTransmittance = STARNT_UNIT_TRANSMITTANCE,
+    kUnitNearestDepth = STARNT_UNIT_NEAREST_DEPTH,
 };
 
 // "#define STARNT_EPS_TRANSMITTANCE ..." and "STARNT_EPS_TAIL_ALPHA", from nn::kTransmittanceEpsilon
@@ -67,8 +69,6 @@ public:
     void addMemoryTargets(OitMethod::MemoryTargets& out) const;
     const gl::Texture2D& nearest() const { return nearest_; }
     const gl::Texture2D& nearestDepth() const { return nearestDepth_; }
-    // The depth pass 2 peeled against in the last frame (the full pass-1 depth at s2 = 1).
-    const gl::Texture2D& peelDepth() const { return pass2Size_ == Size2{width_, height_} ? nearestDepth_ : reducedDepth_; }
     const gl::Texture2D& second() const { return second_; }
     const gl::Texture2D& alphaColor() const { return alphaColor_; }
     const gl::Texture2D& colorCount() const { return colorCount_; }

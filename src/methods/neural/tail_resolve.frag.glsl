@@ -11,11 +11,12 @@
 // writes, once, after a glTextureBarrier (GL 4.5), which makes this feedback loop defined. (A
 // compute pass with image load/store took 8.4-10.6 ms against 6.1-6.6 ms for this on llvmpipe,
 // chess 1280x720 at scales 50/50.)
-layout(binding = 0) uniform sampler2D u_nearest;        // C1, a1 (full resolution)
-layout(binding = 1) uniform sampler2D u_second;         // C2, a2 (u_pass2Size)
-layout(binding = 2) uniform sampler2D u_alphaColor;     // sum a C, sum a
-layout(binding = 3) uniform sampler2D u_colorCount;     // sum C, N
-layout(binding = 4) uniform sampler2D u_transmittance;  // prod (1 - a)
+#include "starnt/bindings.h"
+layout(binding = STARNT_UNIT_NEAREST) uniform sampler2D u_nearest;        // C1, a1 (full resolution)
+layout(binding = STARNT_UNIT_SECOND) uniform sampler2D u_second;         // C2, a2 (u_pass2Size)
+layout(binding = STARNT_UNIT_ALPHA_COLOR) uniform sampler2D u_alphaColor;     // sum a C, sum a
+layout(binding = STARNT_UNIT_COLOR_COUNT) uniform sampler2D u_colorCount;     // sum C, N
+layout(binding = STARNT_UNIT_TRANSMITTANCE) uniform sampler2D u_transmittance;  // prod (1 - a)
 uniform ivec2 u_fullSize;
 uniform ivec2 u_pass2Size;
 uniform ivec2 u_pass3Size;

@@ -56,7 +56,8 @@ vec4 upsampleFiltered(sampler2D source, ivec2 p, ivec2 size) {
 // at its sample (full pixel nearestSampleTexel(tap)) lies from the nearest surface at this pixel,
 // in view distance relative to this pixel's. A tap on another surface (a silhouette, a piece in
 // front of the board) carries another surface's layers behind it. All four rejected: plain bilinear.
-layout(binding = 5) uniform sampler2D u_nearestDepth;  // window depth, 1 where no fragment
+#include "starnt/bindings.h"
+layout(binding = STARNT_UNIT_NEAREST_DEPTH) uniform sampler2D u_nearestDepth;  // window depth, 1 where no fragment
 uniform vec4 u_depthUnproject;  // inverse projection (m22, m32, m23, m33): view z = (a n + b) / (c n + d)
 
 float viewDistance(float windowDepth) {

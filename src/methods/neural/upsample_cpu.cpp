@@ -7,8 +7,6 @@
 
 namespace starnt {
 
-float reducedViewportOffset(int reduced, int full) { return 0.5f * (1.0f - float(reduced) / float(full)); }
-
 int nearestSampleTexel(int t, int from, int to) {
     const long long x = (2LL * t * to + from) / (2LL * from);  // floor(t to / from + 1/2), t >= 0
     return std::clamp(int(x), 0, to - 1);

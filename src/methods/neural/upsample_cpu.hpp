@@ -6,20 +6,10 @@
 
 #include <glm/glm.hpp>
 
+#include "methods/neural/reduced_grid.hpp"
+
 namespace starnt {
 
-struct Size2 {
-    int width = 0, height = 0;
-    bool operator==(const Size2&) const = default;
-};
-
-// Sample alignment of the reduced passes. Along an axis of full size F, reduced texel i (of R)
-// samples the full window at x = i F / R + 0.5, so when F = k R every reduced sample is the centre
-// of full pixel k i: the pass-3 sums there hold exactly the fragments pass 1 saw at that pixel,
-// and the tail resolve subtracts the right ones. (Sampling at the reduced texel centres instead,
-// x = (i + 0.5) F / R, puts every sample on a pixel corner, half a pixel from any pass-1 sample.)
-// The reduced passes get this by a viewport moved by reducedViewportOffset() reduced pixels.
-float reducedViewportOffset(int reduced, int full);
 
 // The texel of an image of size `to` whose sample lies nearest to the sample of texel t of an image
 // of size `from` (both aligned as above, full pixels are the size-F case): round(t to / from),
@@ -56,7 +46,7 @@ struct PassTargets {
     glm::vec4 depthUnproject{0.0f};
 };
 
-// How reduced images come back to full resolution (MethodOptions::Upsample).
+// How reduced images come back to full resolution (NeuralOptions::Upsample).
 enum class UpsampleFilter { Bilinear, Joint };
 
 // Joint bilateral tap weights of full pixel (x, y) in a reduced image of size `r` (upsample.glsl,

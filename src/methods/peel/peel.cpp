@@ -14,7 +14,7 @@ class PeelMethod final : public MethodBase {
 public:
     PeelMethod(const SurfaceShader& surface, const MethodOptions& options)
         : MethodBase(surface),
-          layersWanted_(options.peelLayers),
+          layersWanted_(options.peel.layers),
           layer_(buildGeometryProgram("peel_layer", "methods/peel/peel_layer.frag.glsl")),
           accumulate_(buildFullscreenProgram("peel_accumulate", "methods/peel/peel_accumulate.frag.glsl")),
           composite_(buildFullscreenProgram("peel_composite", "methods/peel/peel_composite.frag.glsl")) {
@@ -30,8 +30,10 @@ public:
     size_t gpuMemoryBytes() const override {
         return outputBytes() + layerColor_.bytes() + depth_[0].bytes() + depth_[1].bytes() + accum_.bytes();
     }
-    nlohmann::json lastFrameStats() const override {
-        return {{"layers", layersRendered_}, {"max_fragments", layersRendered_}};
+    FrameStats lastFrameStats() const override {
+        FrameStats stats;
+        stats.peel = PeelFrameStats{layersRendered_};
+        return stats;
     }
 
     void render(const FrameDesc& frame, const DrawCallback& draw) override {
@@ -56,7 +58,7 @@ public:
             const int cur = layer & 1;
             GLuint anySamples = 0;
             {
-                gl::ScopedPass timing(frame.timer, "peel");
+                gl::ScopedPass timing(frame.timing, "peel");
                 glBindFramebuffer(GL_FRAMEBUFFER, layerFb_[cur].id());
                 const float clearColor[4] = {0, 0, 0, 0};
                 const float clearDepth = 1.0f;
@@ -76,7 +78,7 @@ public:
             }
             if (!anySamples) break;
             ++layersRendered_;
-            gl::ScopedPass timing(frame.timer, "accumulate");
+            gl::ScopedPass timing(frame.timing, "accumulate");
             glBindFramebuffer(GL_FRAMEBUFFER, accumFb_.id());
             glEnable(GL_BLEND);
             glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
@@ -85,7 +87,7 @@ public:
             drawFullscreen();
             resetPassState();
         }
-        gl::ScopedPass timing(frame.timer, "composite");
+        gl::ScopedPass timing(frame.timing, "composite");
         bindOutputFramebuffer();
         glUseProgram(composite_.id());
         glBindTextureUnit(0, accum_.id());

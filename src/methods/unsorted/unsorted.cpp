@@ -16,7 +16,7 @@ public:
 
     void render(const FrameDesc& frame, const DrawCallback& draw) override {
         resizeOutput(frame.width, frame.height);
-        gl::ScopedPass timing(frame.timer, "blend");
+        gl::ScopedPass timing(frame.timing, "blend");
         resetPassState();
         bindOutputFramebuffer();
         const float clear[4] = {frame.background.r, frame.background.g, frame.background.b, 1.0f};

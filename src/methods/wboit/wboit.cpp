@@ -18,7 +18,7 @@ class WboitMethod final : public MethodBase {
 public:
     WboitMethod(const SurfaceShader& surface, const MethodOptions& options)
         : MethodBase(surface),
-          weightFunction_(parseWeightFunction(options.wboitWeight)),
+          weightFunction_(parseWeightFunction(options.wboit.weight)),
           accumulate_(buildGeometryProgram("wboit_accumulate", "methods/wboit/wboit_accumulate.frag.glsl")),
           composite_(buildFullscreenProgram("wboit_composite", "methods/wboit/wboit_composite.frag.glsl")) {}
 
@@ -36,7 +36,7 @@ public:
         }
         resetPassState();
         {
-            gl::ScopedPass timing(frame.timer, "accumulate");
+            gl::ScopedPass timing(frame.timing, "accumulate");
             glBindFramebuffer(GL_FRAMEBUFFER, fb_.id());
             glViewport(0, 0, width_, height_);
             const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1};
@@ -52,7 +52,7 @@ public:
             resetPassState();
         }
         {
-            gl::ScopedPass timing(frame.timer, "composite");
+            gl::ScopedPass timing(frame.timing, "composite");
             bindOutputFramebuffer();
             glUseProgram(composite_.id());
             glBindTextureUnit(0, accum_.id());

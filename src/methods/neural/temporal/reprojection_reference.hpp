@@ -34,14 +34,10 @@
 
 #include <glm/glm.hpp>
 
+#include "methods/neural/temporal/reprojection_math.hpp"
+
 namespace starnt::temporal {
 
-// What the search needs from the two cameras, computed in double and rounded once.
-struct Reprojection {
-    glm::vec4 row0{1, 0, 0, 0}, row1{0, 1, 0, 0}, row3{0, 0, 0, 1};  // rows 0, 1, 3 of R
-    glm::vec4 sourceScale{0, 0, 0, 1};  // row 3 of inverse(oldViewProj): . v = 1 / old view depth
-};
-Reprojection makeReprojection(const glm::mat4& oldViewProj, const glm::mat4& newViewProj);
 
 // solve(z) above for the new NDC point c and old window depth z, in the shader's float operations.
 struct Solution {

@@ -3,7 +3,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "methods/neural/temporal/reprojection_constants.h"
-#include "methods/neural/temporal/reprojection_reference.hpp"
+#include "methods/neural/temporal/reprojection_math.hpp"
 #include "starnt/error.hpp"
 
 namespace starnt::temporal {

@@ -7,7 +7,7 @@ namespace starnt {
 TemporalFrames::TemporalFrames(const MethodOptions& options)
     : schedule_(options),
       clock_(gl::currentContextIsSoftware()),
-      refresh_(options.temporalMode == MethodOptions::TemporalMode::Refresh) {}
+      refresh_(options.neural.temporalMode == NeuralOptions::TemporalMode::Refresh) {}
 
 bool TemporalFrames::beginFrame(int width, int height) {
     if (auto m = clock_.take()) {
@@ -37,7 +37,7 @@ void TemporalFrames::endRealFrame(GLuint compositeTexture, GLuint nearestDepthTe
     clock_.stop();
 }
 
-void TemporalFrames::interpolate(const glm::mat4& viewProj, GLuint outputTexture, gl::GpuPassTimer* timer) {
+void TemporalFrames::interpolate(const glm::mat4& viewProj, GLuint outputTexture, PassTimingHook* timer) {
     if (!lastInterpolated_) throw Error("internal: TemporalFrames::interpolate on a real frame");
     {
         gl::ScopedPass timing(timer, "reproject");
@@ -47,7 +47,7 @@ void TemporalFrames::interpolate(const glm::mat4& viewProj, GLuint outputTexture
 }
 
 void TemporalFrames::interpolateRefresh(const glm::mat4& viewProj, GLuint nearestTexture, const glm::vec3& background,
-                                        GLuint outputTexture, gl::GpuPassTimer* timer) {
+                                        GLuint outputTexture, PassTimingHook* timer) {
     if (!lastInterpolated_) throw Error("internal: TemporalFrames::interpolateRefresh on a real frame");
     {
         gl::ScopedPass timing(timer, "reproject");

@@ -7,7 +7,7 @@
 //       ... passes, inference, composite into output, tiles ...
 //       temporal.endRealFrame(output, nearestDepth, proj * view, w, h);
 //   } else {
-//       temporal.interpolate(proj * view, output, frame.timer);   // no geometry, no inference
+//       temporal.interpolate(proj * view, output, frame.timing);   // no geometry, no inference
 //   }
 #pragma once
 #include <glm/glm.hpp>
@@ -37,12 +37,12 @@ public:
     // An interpolated frame: the kept real frame reprojected to `viewProj`, rendered into
     // `outputTexture` (a colour-renderable RGBA texture of the frame size; the framebuffer binding is
     // 0 afterwards). Timed as pass "reproject" when a timer is given.
-    void interpolate(const glm::mat4& viewProj, GLuint outputTexture, gl::GpuPassTimer* timer = nullptr);
+    void interpolate(const glm::mat4& viewProj, GLuint outputTexture, PassTimingHook* timer = nullptr);
     // A refresh frame: `nearestTexture` is pass 1 rendered at `viewProj` (the caller renders it);
     // what lay behind the kept frame's nearest layer is reprojected under it. Timed as "reproject".
     void interpolateRefresh(const glm::mat4& viewProj, GLuint nearestTexture, const glm::vec3& background,
-                            GLuint outputTexture, gl::GpuPassTimer* timer = nullptr);
-    // Interpolated frames render pass 1 fresh (MethodOptions::TemporalMode::Refresh).
+                            GLuint outputTexture, PassTimingHook* timer = nullptr);
+    // Interpolated frames render pass 1 fresh (NeuralOptions::TemporalMode::Refresh).
     bool refreshes() const { return refresh_; }
 
     // False for a fixed interval of 1: then nothing is kept (no copy, no memory).

@@ -9,7 +9,7 @@
 namespace starnt {
 
 TemporalSchedule::TemporalSchedule(const MethodOptions& options)
-    : auto_(options.temporalAuto), fixedInterval_(options.temporalInterval), targetFps_(options.targetFps) {
+    : auto_(options.neural.temporalAuto), fixedInterval_(options.neural.temporalInterval), targetFps_(options.neural.targetFps) {
     if (!auto_ && (fixedInterval_ < 1 || fixedInterval_ > kMaxInterval)) {
         throw Error("temporal interval must be in 1..4, got " + std::to_string(fixedInterval_));
     }

@@ -1,7 +1,7 @@
 // One Jacobi iteration of the neighbour balance (SPEC 4): a tile whose finest 4-neighbour is more
 // than one level finer is split uniformly to that level minus one. Reads one mask buffer, writes
 // the other (ping-pong). Mirrors tiles::balanceOnce.
-#include "shaders/shared_constants.h"
+#include "starnt/bindings.h"
 #include "methods/neural/tiles/tile_masks.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;

@@ -2,7 +2,7 @@
 // top-down split/merge with hysteresis against the previous mask, then the one-level-per-frame
 // limit; also records whether the tile is occupied (any pass-1 fragment). Mirrors
 // tiles::evaluateTileMask + tiles::limitLevelChange.
-#include "shaders/shared_constants.h"
+#include "starnt/bindings.h"
 #include "methods/neural/tiles/tile_masks.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;

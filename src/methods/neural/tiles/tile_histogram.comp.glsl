@@ -1,5 +1,5 @@
 // Level histogram of the occupied tiles: N_0..N_3 (SPEC 4). The buffer is cleared before.
-#include "shaders/shared_constants.h"
+#include "starnt/bindings.h"
 #include "methods/neural/tiles/tile_masks.glsl"
 
 layout(local_size_x = 64) in;

@@ -1,6 +1,6 @@
 // Debug view: the composite with each occupied tile tinted by its level (0 blue, 1 green,
 // 2 yellow, 3 red) and the quadtree leaf borders darkened.
-#include "shaders/shared_constants.h"
+#include "starnt/bindings.h"
 #include "methods/neural/tiles/tile_masks.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;

@@ -1,7 +1,7 @@
 // Scale guard, per tile (tile_constants.h says what it predicts; CPU reference: scaleGuardSums in
 // tiles_cpu.hpp, which follows these steps in the same order). One workgroup per 16x16 tile, one
 // invocation per pixel; run on frames whose passes 2 and 3 ran at full resolution.
-#include "shaders/shared_constants.h"
+#include "starnt/bindings.h"
 #include "methods/neural/tiles/tile_constants.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;  // one invocation per 2x2 block of the 16x16 tile

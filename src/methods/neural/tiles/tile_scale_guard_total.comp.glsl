@@ -1,6 +1,6 @@
 // Scale guard, total: sums the per-tile values over the tiles in order, into the floats after the
 // level histogram (read back with it, without a stall). One invocation per value.
-#include "shaders/shared_constants.h"
+#include "starnt/bindings.h"
 #include "methods/neural/tiles/tile_constants.h"
 
 layout(local_size_x = STARNT_GUARD_VALUES) in;

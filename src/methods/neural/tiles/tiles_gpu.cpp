@@ -1,8 +1,8 @@
 #include "methods/neural/tiles/tiles_gpu.hpp"
 
 #include "methods/neural/tiles/tile_constants.h"
-#include "methods/neural/tiles/tiles_cpu.hpp"
-#include "shaders/shared_constants.h"
+#include "methods/neural/tiles/tile_rules.hpp"
+#include "starnt/bindings.h"
 
 namespace starnt::tiles {
 namespace {
@@ -177,13 +177,6 @@ std::vector<uint32_t> GpuTiles::readMasks() const {
     std::vector<uint32_t> out(size_t(tilesX_ * tilesY_));
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(masks_[current_].id(), 0, GLsizeiptr(out.size() * sizeof(uint32_t)), out.data());
-    return out;
-}
-
-std::vector<uint32_t> GpuTiles::readOccupancy() const {
-    std::vector<uint32_t> out(size_t(tilesX_ * tilesY_));
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glGetNamedBufferSubData(occupancy_.id(), 0, GLsizeiptr(out.size() * sizeof(uint32_t)), out.data());
     return out;
 }
 

@@ -11,7 +11,7 @@
 #include "core/gl_util.hpp"
 #include "core/gpu_timer.hpp"
 #include "core/shader.hpp"
-#include "methods/neural/tiles/tiles_cpu.hpp"
+#include "methods/neural/tiles/tile_rules.hpp"
 
 namespace starnt::tiles {
 
@@ -48,7 +48,6 @@ public:
     void bindMasks() const;
     // Blocking readbacks for tests and debugging.
     std::vector<uint32_t> readMasks() const;
-    std::vector<uint32_t> readOccupancy() const;
     // Writes the level overlay of the current masks over `composite` into `overlay` (RGBA32F).
     void renderOverlay(GLuint composite, GLuint overlay) const;
 

@@ -1,0 +1,91 @@
+// Options of the methods, one group per method family. createMethod reads the group of the method
+// it builds and ignores the others, so one MethodOptions can configure every method of a
+// comparison.
+#pragma once
+#include <cstddef>
+#include <optional>
+#include <string>
+
+namespace starnt {
+
+// abuffer: exact per-pixel fragment lists (the reference).
+struct AbufferOptions {
+    double initialNodesPerPixel = 4.0;              // initial pool size; it grows on overflow
+    size_t memoryCapBytes = size_t(2) << 30;        // createMethod/render fail with a clear error beyond this
+};
+
+// peel: depth peeling.
+struct PeelOptions {
+    int layers = 0;  // number of layers; 0 peels until a layer comes back empty (exact)
+};
+
+// wboit: weighted blended OIT (McGuire & Bavoil 2013).
+struct WboitOptions {
+    std::string weight = "eq10";  // "eq10" (default, SPEC), "eq7", "eq8", "eq9"
+};
+
+// mboit: moment-based OIT (Muenstermann et al. 2018), 32-bit float storage.
+struct MboitOptions {
+    std::string moments = "6";  // "4" or "6" power moments, "t2" or "t3" trigonometric moments
+};
+
+// starnt, dfaoit and hybrid: the neural methods (three passes, SPEC 1-3) and their acceleration
+// (SPEC 4-6).
+struct NeuralOptions {
+    // Weights file; empty = the shipped default for the method. hybrid has no network.
+    std::string weightsPath;
+
+    // Adaptive screen-space tiles evaluated after every real frame; their level histogram (w_bar)
+    // sets the pass 2/3 scales of the next real frame. Unset: on for starnt, off for dfaoit.
+    std::optional<bool> spatial;
+    // Fixed pass 2/3 scales per axis in [0.25, 1] for ablations; 0 = chosen by the tiles (1 when
+    // spatial is off).
+    float fixedScale2 = 0.0f;
+    float fixedScale3 = 0.0f;
+    // How the tiles' w_bar becomes the scales (SPEC 5): Snapped (default) = the paper's value
+    // snapped to 1, 1/2 or 1/4 (integer ratios keep reduced samples on pixel centres);
+    // Continuous = the paper's formula as printed; Step = the authors' release.
+    enum class ScaleRule { Snapped, Continuous, Step };
+    ScaleRule scaleRule = ScaleRule::Snapped;
+    // What the tiles measure (SPEC 4): Back (default) = the composite minus the nearest layer's
+    // own term, C - a1 C1, what the reduced passes produce; Composite = the paper.
+    enum class TileSignal { Back, Composite };
+    TileSignal tileSignal = TileSignal::Back;
+    // Scale guard (beyond the paper): passes 2/3 run at full resolution on probe frames (the first
+    // real frames after a reset, then every 8th real frame); there the tiles update and the loss
+    // of each reduced scale is predicted from the full-resolution image, and a pass is reduced
+    // only as far as that loss stays within a fixed share of what the pass adds. It keeps thin
+    // structures (hair, strands) that fall between tile corners at full resolution. Off: the
+    // tiles update on every real frame and the rule alone decides (the paper).
+    bool scaleGuard = true;
+    // How reduced passes 2/3 come back to full resolution (SPEC 5): Bilinear = the four nearest
+    // reduced samples by distance; Joint = joint bilateral, the same taps weighted down where the
+    // nearest surface at a tap's sample lies at another depth than at the pixel.
+    enum class Upsample { Bilinear, Joint };
+    Upsample upsample = Upsample::Bilinear;
+    // Full: the network at every pixel. Corners: only at quadtree leaf corners, bilinear inside each
+    // leaf (beyond the paper; needs the tiles, so it turns them on).
+    enum class Inference { Full, Corners };
+    Inference inference = Inference::Full;
+    // Temporal reprojection: one real frame, then temporalInterval - 1 interpolated frames
+    // (1 = off, at most 4). temporalAuto picks the largest interval whose group (one real frame,
+    // interval - 1 interpolated ones, at their measured costs) fits in one frame at targetFps.
+    int temporalInterval = 1;
+    bool temporalAuto = false;
+    // What an interpolated frame renders (SPEC 6): Warp = the paper (the last real frame's
+    // composite reprojected; no geometry pass); Refresh = pass 1 at the current camera, so the
+    // nearest layer is exact, over what lay behind it in the last real frame, reprojected.
+    enum class TemporalMode { Warp, Refresh };
+    TemporalMode temporalMode = TemporalMode::Refresh;
+    double targetFps = 60.0;
+};
+
+struct MethodOptions {
+    AbufferOptions abuffer;
+    PeelOptions peel;
+    WboitOptions wboit;
+    MboitOptions mboit;
+    NeuralOptions neural;
+};
+
+}  // namespace starnt

@@ -1,0 +1,80 @@
+// The networks of the neural methods (part of starnt::oit): the MLP, its weights file and the GLSL
+// the inference passes bake it into. nn.hpp (starnt::tools) adds the CPU reference of the features
+// and composites they are trained and tested with.
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace starnt::nn {
+
+enum class NetworkKind { StarNT, DFAOIT };
+
+// "starnt" / "dfaoit".
+const char* kindName(NetworkKind kind);
+// Parses "starnt" / "dfaoit"; throws starnt::Error otherwise.
+NetworkKind parseKind(const std::string& name);
+
+// Feature guards (the inference shaders and the CPU reference in nn.hpp apply the same ones).
+inline constexpr float kTransmittanceEpsilon = 1e-6f;
+inline constexpr float kTailAlphaEpsilon = 1e-3f;
+inline constexpr float kDefaultAlphaCutoff = 0.03f;
+
+inline constexpr int kStarntInputs = 5;
+inline constexpr int kDfaoitInputs = 10;
+
+// Canonical input names (the `input_order` of the weights file) and layer sizes
+// (5-32-16-3 or 10-32-16-3, including the input layer).
+const std::vector<std::string>& canonicalInputNames(NetworkKind kind);
+std::vector<int> layerSizes(NetworkKind kind);
+
+struct Network {
+    struct Layer {
+        enum Activation { ReLU, Sigmoid };
+        int in = 0, out = 0;
+        std::vector<float> weights;  // out x in, row-major: weights[o * in + i]
+        std::vector<float> bias;     // out
+        Activation activation = ReLU;
+    };
+
+    NetworkKind kind = NetworkKind::StarNT;
+    std::vector<std::string> inputNames;
+    // Normalisation applied before the first layer: x'_i = (x_i - inputOffset[i]) * inputScale[i].
+    std::vector<float> inputOffset, inputScale;
+    std::vector<Layer> layers;
+    uint64_t seed = 0;
+    uint64_t trainingSamples = 0;  // samples seen by the trainer (0: untrained)
+    double validationMse = -1.0;   // MSE on the validation split (-1: not measured)
+
+    int inputCount() const { return layers.empty() ? 0 : layers.front().in; }
+    // Normalisation then the layers, in float: the CPU reference of nnEvaluate in GLSL.
+    glm::vec3 forward(const float* rawInputs) const;
+};
+
+// He-initialised (ReLU layers) / Xavier-initialised (sigmoid layer) network with identity
+// normalisation (offset 0, scale 1), deterministic for `seed`.
+Network makeUntrained(NetworkKind kind, uint64_t seed);
+
+// Weights file (JSON, format "starnt-weights", version 1). saveWeights writes a temporary file
+// beside `path` and renames it over `path`. loadWeights checks everything (format, version, kind,
+// architecture, activations, input order, array lengths, finiteness) and throws starnt::Error
+// naming the file and the problem; `expected` additionally requires that kind.
+void saveWeights(const Network& net, const std::filesystem::path& path);
+Network loadWeights(const std::filesystem::path& path, std::optional<NetworkKind> expected = std::nullopt);
+// The same checks on a weights file's text; `what` names its source in error messages.
+Network parseWeights(const std::string& text, const std::string& what,
+                     std::optional<NetworkKind> expected = std::nullopt);
+// Same checks on a network in memory (throws starnt::Error, `what` names its source).
+void validateNetwork(const Network& net, const std::string& what);
+
+// GLSL (common subset of GLSL 4.50 and GLSL ES 3.10, no #version line) defining
+//   #define STARNT_NN_INPUTS 5|10
+//   vec3 nnEvaluate(float x[STARNT_NN_INPUTS])
+// with the normalisation and every weight baked in as literal constants. Deterministic.
+std::string generateInferenceGlsl(const Network& net);
+
+}  // namespace starnt::nn

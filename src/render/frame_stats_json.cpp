@@ -1,0 +1,58 @@
+#include "render/frame_stats_json.hpp"
+
+#include "render/method_options.hpp"
+
+namespace starnt {
+
+nlohmann::json frameStatsJson(const FrameStats& stats) {
+    nlohmann::json out = nlohmann::json::object();
+    if (stats.abuffer) {
+        out["fragments"] = stats.abuffer->fragments;
+        out["pool_capacity"] = stats.abuffer->poolCapacity;
+        out["pool_regrows"] = stats.abuffer->poolRegrows;
+    }
+    if (stats.peel) {
+        out["layers"] = stats.peel->layers;
+        out["max_fragments"] = stats.peel->layers;
+    }
+    if (stats.mboit) out["moments"] = stats.mboit->moments;
+    if (stats.neural) {
+        const NeuralFrameStats& n = *stats.neural;
+        out["network"] = n.network;
+        out["weights_training_samples"] = n.weightsTrainingSamples;
+        out["peel_epsilon"] = n.peelEpsilon;
+        out["spatial"] = n.spatial;
+        out["inference"] = n.cornerInference ? "corners" : "full";
+        out["corner_inference_used"] = n.cornerInferenceUsed;
+        out["interpolated"] = n.interpolated;
+        out["temporal_interval"] = n.temporalInterval;
+        out["temporal_mode"] = temporalModeText(n.temporalMode);
+        out["real_frame_ms_average"] = n.realFrameMsAverage;
+        out["interpolated_frame_ms_average"] = n.interpolatedFrameMsAverage;
+        out["scale_pass2"] = n.scalePass2;
+        out["scale_pass3"] = n.scalePass3;
+        out["pass2_size"] = {n.pass2Size.width, n.pass2Size.height};
+        out["pass3_size"] = {n.pass3Size.width, n.pass3Size.height};
+        if (n.tiles) {
+            const NeuralFrameStats::Tiles& t = *n.tiles;
+            out["w_bar"] = t.wBar ? nlohmann::json(*t.wBar) : nlohmann::json(nullptr);
+            out["tile_levels"] = {t.levels[0], t.levels[1], t.levels[2], t.levels[3]};
+            out["scale_rule"] = scaleRuleText(t.scaleRule);
+            out["tile_signal"] = tileSignalText(t.tileSignal);
+            out["upsample"] = upsampleText(t.upsample);
+            out["scale_guard"] = t.scaleGuard;
+            if (t.probeFrame) out["probe_frame"] = *t.probeFrame;
+            if (t.guard) {
+                const NeuralFrameStats::Guard& g = *t.guard;
+                out["guard"] = {{"occupied_pixels", g.occupiedPixels},
+                                {"energy_pass2", g.energyPass2},
+                                {"loss_pass2", {g.lossPass2[0], g.lossPass2[1]}},
+                                {"energy_pass3", g.energyPass3},
+                                {"loss_pass3", {g.lossPass3[0], g.lossPass3[1]}}};
+            }
+        }
+    }
+    return out;
+}
+
+}  // namespace starnt
