@@ -135,7 +135,17 @@ TEST(GlMethods, AbufferPoolFarTooSmallStillGivesTheExactImage) {
     SceneSetup s = makeSetup("random");
     MethodOptions tiny;
     tiny.abuffer.initialNodesPerPixel = 0.01;
-    RenderOutput small = render(s, "abuffer", tiny);
+    // The regrow note goes to the engine's log callback (never to stderr from the library).
+    testing::internal::CaptureStderr();
+    std::string logged;
+    RenderOutput small;
+    {
+        test::CapturedLog log;
+        small = render(s, "abuffer", tiny);
+        logged = log.text();
+    }
+    EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+    EXPECT_NE(logged.find("note: A-buffer pool overflow"), std::string::npos) << logged;
     RenderOutput normal = render(s, "abuffer");
     EXPECT_GE(small.stats["method_stats"]["pool_regrows"].get<int>(), 1);
     EXPECT_EQ(normal.stats["method_stats"]["pool_regrows"].get<int>(), 0);
@@ -153,6 +163,32 @@ TEST(GlMethods, AbufferMemoryCapFailsWithClearError) {
         FAIL() << "expected an error";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("memory cap"), std::string::npos) << e.what();
+    }
+}
+
+TEST(GlMethods, TypedFrameStatsFillTheirMethodsGroupOnly) {
+    SceneSetup s = makeSetup("random");
+    const CapturedFrame captured = s.capture();
+    size_t fragments = 0;
+    for (const auto& list : captured.pixels) fragments += list.size();
+    const FrameDesc frame = s.frame();
+    for (const std::string m : {"abuffer", "peel", "mboit", "wboit", "starnt"}) {
+        auto method = createMethod(m, SceneGpu::surfaceShader());
+        method->render(frame, s.gpu->callback(frame.view, frame.projection, {}));
+        const FrameStats st = method->lastFrameStats();
+        EXPECT_EQ(st.abuffer.has_value(), m == "abuffer") << m;
+        EXPECT_EQ(st.peel.has_value(), m == "peel") << m;
+        EXPECT_EQ(st.mboit.has_value(), m == "mboit") << m;
+        EXPECT_EQ(st.neural.has_value(), m == "starnt") << m;
+        EXPECT_FALSE(st.interpolated()) << m;
+        if (st.abuffer) EXPECT_EQ(st.abuffer->fragments, fragments) << m;
+        if (st.peel) EXPECT_EQ(size_t(st.peel->layers), captured.maxDepthComplexity()) << m;
+        if (st.neural) {
+            EXPECT_EQ(st.neural->network, "starnt");
+            ASSERT_TRUE(st.neural->tiles.has_value());  // starnt runs its tiles by default
+            EXPECT_EQ(st.neural->pass2Size.width, frame.width);  // first frame: full resolution
+            EXPECT_EQ(st.neural->scalePass3, 1.0f);
+        }
     }
 }
 

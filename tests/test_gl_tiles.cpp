@@ -145,20 +145,6 @@ MethodOptions spatialOptions(bool on) {
     return o;
 }
 
-// The neural pipeline's geometry-pass programs, built around the engine's surface shader as the
-// methods build them, for tests that read the pass targets themselves.
-class NeuralPassPrograms final : public MethodBase {
-public:
-    NeuralPassPrograms()
-        : MethodBase(SceneGpu::surfaceShader()),
-          pass1(buildGeometryProgram("test_pass1", "methods/neural/pass1_nearest.frag.glsl")),
-          pass2(buildGeometryProgram("test_pass2", "methods/neural/pass2_second.frag.glsl")),
-          pass3(buildGeometryProgram("test_pass3", "methods/neural/pass3_accumulate.frag.glsl")) {}
-    std::string name() const override { return "test_passes"; }
-    void render(const FrameDesc&, const DrawCallback&) override {}
-    size_t gpuMemoryBytes() const override { return 0; }
-    gl::Program pass1, pass2, pass3;
-};
 
 }  // namespace
 
@@ -426,8 +412,7 @@ void main() {
 // Sampling at the reduced texel centres (the viewport not moved) fails this on most edge texels.
 TEST(GlTiles, ReducedPassesSampleFullPixelCentres) {
     test::TestScene c(makeBuiltinScene("tubes", 3), 96, 64, 30.0f, 20.0f, kBackground);
-    NeuralPassPrograms programs;
-    NeuralPasses passes(programs.pass1, programs.pass2, programs.pass3);
+    NeuralPasses passes(SceneGpu::surfaceShader());
     const FrameDesc frame = c.frame();
     const DrawCallback draw = c.gpu->callback(frame.view, frame.projection, {});
     const Size2 full{c.width, c.height};

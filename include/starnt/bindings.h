@@ -2,7 +2,7 @@
  * them. Included from C++ and from the methods' GLSL (keep it to #defines).
  *
  * During OitMethod::render the methods bind their own textures, images and storage buffers to the
- * points below and leave them bound afterwards (docs/INTEGRATION.md lists the state a method
+ * points below and leave them bound afterwards (INTEGRATION.md, in the source tree's docs/, lists the state a method
  * changes). An engine's surface shader (SurfaceShader), which runs inside the methods' geometry
  * passes, must therefore take its own textures from units at or above
  * STARNT_ENGINE_FIRST_TEXTURE_UNIT, its images from image units at or above

@@ -11,9 +11,10 @@
 //
 //   auto method = starnt::createMethod("wboit", engineSurface, {});
 //   method->render(frame, [&](const starnt::GeometryPass& pass) { engine.drawTransparent(pass.program); });
+//
+// The public headers include no GL header, so an engine keeps its own loader (glad, epoxy, GLEW or
+// the system's): GL names appear as GLname, the same type as GLuint.
 #pragma once
-#include <epoxy/gl.h>
-
 #include <cstddef>
 #include <functional>
 #include <memory>
@@ -23,10 +24,14 @@
 
 #include <glm/glm.hpp>
 
+#include "starnt/error.hpp"
 #include "starnt/frame_stats.hpp"
 #include "starnt/method_options.hpp"
 
 namespace starnt {
+
+// A GL object name (GLuint in every GL header).
+using GLname = unsigned int;
 
 struct SurfaceShader {
     // Vertex shader body without #version. It must declare `invariant gl_Position;`: depth peeling
@@ -39,7 +44,7 @@ struct SurfaceShader {
 
 struct GeometryPass {
     const char* name;  // e.g. "abuffer_build", "peel", "pass1"
-    GLuint program;    // bound; set the engine's uniforms on it
+    GLname program;    // bound; set the engine's uniforms on it
 };
 using DrawCallback = std::function<void(const GeometryPass&)>;
 
@@ -73,7 +78,7 @@ public:
     virtual ~OitMethod() = default;
     virtual std::string name() const = 0;
     virtual void render(const FrameDesc& frame, const DrawCallback& draw) = 0;
-    virtual GLuint outputTexture() const = 0;
+    virtual GLname outputTexture() const = 0;
     // Bytes of every GPU buffer and texture the method holds now.
     virtual size_t gpuMemoryBytes() const = 0;
     // The same by target (name -> bytes; the values sum to gpuMemoryBytes()). Methods that do not
@@ -85,7 +90,7 @@ public:
     virtual FrameStats lastFrameStats() const { return {}; }
     // The output of the last frame with the tile levels of the last real frame blended over it
     // (RGBA32F, frame size); 0 when the method has no tiles.
-    virtual GLuint tileOverlayTexture() { return 0; }
+    virtual GLname tileOverlayTexture() { return 0; }
     // Forgets temporal history (last real frame, tile masks), e.g. after a scene change or a cut.
     virtual void resetHistory() {}
 };

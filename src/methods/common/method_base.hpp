@@ -8,6 +8,11 @@
 
 namespace starnt {
 
+// A geometry-pass program: the engine's surface shader wrapped by a method's fragment file (which
+// calls fetchSurfaceOrDiscard()).
+gl::Program buildSurfaceProgram(const SurfaceShader& surface, const std::string& label, const std::string& fragmentFile,
+                                const std::string& defines = {});
+
 class MethodBase : public OitMethod {
 public:
     GLuint outputTexture() const override { return output_.id(); }

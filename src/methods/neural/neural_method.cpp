@@ -28,10 +28,7 @@ public:
           spatial_(options.neural.spatial.value_or(config.spatialByDefault)),
           corners_(options.neural.inference == NeuralOptions::Inference::Corners),
           network_(loadMethodNetwork(config, options)),
-          pass1_(buildGeometryProgram("neural_pass1", "methods/neural/pass1_nearest.frag.glsl")),
-          pass2_(buildGeometryProgram("neural_pass2", "methods/neural/pass2_second.frag.glsl")),
-          pass3_(buildGeometryProgram("neural_pass3", "methods/neural/pass3_accumulate.frag.glsl")),
-          passes_(pass1_, pass2_, pass3_),
+          passes_(surface),
           temporal_(options_) {
         if (spatial_ || corners_) tiles_ = std::make_unique<tiles::GpuTiles>();
         // Compile up front what the frames will need, so no frame pays for a shader compile: the
@@ -264,7 +261,6 @@ private:
     MethodOptions options_;
     bool spatial_, corners_;
     nn::Network network_;
-    gl::Program pass1_, pass2_, pass3_;
     std::map<std::pair<std::string, bool>, gl::Program> inferencePrograms_;
     NeuralPasses passes_;
     TemporalFrames temporal_;

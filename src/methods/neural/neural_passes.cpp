@@ -57,10 +57,10 @@ void resolveTails(const TailResolveInputs& in, GLuint pass3Framebuffer, const gl
     resetPassState();
 }
 
-NeuralPasses::NeuralPasses(const gl::Program& pass1, const gl::Program& pass2, const gl::Program& pass3)
-    : pass1_(pass1),
-      pass2_(pass2),
-      pass3_(pass3),
+NeuralPasses::NeuralPasses(const SurfaceShader& surface)
+    : pass1_(buildSurfaceProgram(surface, "neural_pass1", "methods/neural/pass1_nearest.frag.glsl")),
+      pass2_(buildSurfaceProgram(surface, "neural_pass2", "methods/neural/pass2_second.frag.glsl")),
+      pass3_(buildSurfaceProgram(surface, "neural_pass3", "methods/neural/pass3_accumulate.frag.glsl")),
       depthDownsample_(gl::buildComputeProgram("depth_downsample", "#include \"methods/neural/depth_downsample.comp.glsl\"\n")),
       tailResolve_(buildTailResolveProgram()),
       emptyVao_(gl::makeEmptyVertexArray()) {}

@@ -54,7 +54,8 @@ public:
     // would otherwise flicker between first and second with rounding.
     static constexpr float kDefaultPeelEpsilon = 1e-6f;
 
-    NeuralPasses(const gl::Program& pass1, const gl::Program& pass2, const gl::Program& pass3);
+    // Builds the three geometry-pass programs around the engine's surface shader.
+    explicit NeuralPasses(const SurfaceShader& surface);
 
     void resize(int width, int height);
     // Renders the three passes; pass2Size / pass3Size are the reduced sizes (the full size for s = 1).
@@ -77,9 +78,9 @@ public:
     Size2 pass3Size() const { return pass3Size_; }
 
 private:
-    const gl::Program& pass1_;
-    const gl::Program& pass2_;
-    const gl::Program& pass3_;
+    gl::Program pass1_;
+    gl::Program pass2_;
+    gl::Program pass3_;
     gl::Program depthDownsample_, tailResolve_;
     gl::VertexArrayHandle emptyVao_;
     int width_ = 0, height_ = 0;

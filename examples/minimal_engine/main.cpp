@@ -1,0 +1,387 @@
+// minimal_engine: an engine that owns its EGL context, its geometry and its shaders, and hands its
+// transparent geometry to the STAR-NT OIT methods through the installed headers only.
+//
+//   minimal_engine [outdir]
+//
+// Renders six overlapping semi-transparent quads with abuffer, peel, wboit, mboit and starnt,
+// writes <outdir>/<method>.png and compares every method with the A-buffer (the exact reference).
+// Exit code 0 when every check passes, 1 otherwise.
+
+// The engine's GL loader comes first; the STAR-NT headers include no GL header.
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
+
+#include <starnt/bindings.h>
+#include <starnt/error.hpp>
+#include <starnt/image.hpp>  // starnt::tools: savePng
+#include <starnt/log.hpp>
+#include <starnt/method_options.hpp>
+#include <starnt/oit_method.hpp>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace {
+
+constexpr int kSize = 256;
+
+// ---------------------------------------------------------------------------------------------
+// Headless OpenGL 4.5 core context through EGL (the engine's own; no window system).
+
+bool hasExtension(const char* list, const char* name) {
+    if (!list) return false;
+    const std::string all = std::string(" ") + list + " ";
+    return all.find(std::string(" ") + name + " ") != std::string::npos;
+}
+
+struct EglContext {
+    EGLDisplay display = EGL_NO_DISPLAY;
+    EGLContext context = EGL_NO_CONTEXT;
+    std::string platform;
+
+    ~EglContext() {
+        if (display != EGL_NO_DISPLAY) {
+            eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+            if (context != EGL_NO_CONTEXT) eglDestroyContext(display, context);
+            eglTerminate(display);
+        }
+    }
+
+    // Tries one display: initialise, bind desktop GL, create a 4.5 core context without a config
+    // (or with a pbuffer config) and make it current without a surface. `why` gets the failure.
+    bool tryDisplay(EGLDisplay dpy, const std::string& name, std::string& why) {
+        if (dpy == EGL_NO_DISPLAY) {
+            why += name + ": no display; ";
+            return false;
+        }
+        EGLint major = 0, minor = 0;
+        if (!eglInitialize(dpy, &major, &minor)) {
+            why += name + ": eglInitialize failed; ";
+            return false;
+        }
+        const char* extensions = eglQueryString(dpy, EGL_EXTENSIONS);
+        if (!hasExtension(extensions, "EGL_KHR_surfaceless_context")) {
+            why += name + ": no EGL_KHR_surfaceless_context; ";
+            eglTerminate(dpy);
+            return false;
+        }
+        if (!eglBindAPI(EGL_OPENGL_API)) {
+            why += name + ": eglBindAPI(EGL_OPENGL_API) failed; ";
+            eglTerminate(dpy);
+            return false;
+        }
+        EGLConfig config = EGL_NO_CONFIG_KHR;
+        if (!hasExtension(extensions, "EGL_KHR_no_config_context")) {
+            const EGLint configAttribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE,
+                                            EGL_OPENGL_BIT, EGL_NONE};
+            EGLint count = 0;
+            if (!eglChooseConfig(dpy, configAttribs, &config, 1, &count) || count < 1) {
+                why += name + ": no OpenGL config; ";
+                eglTerminate(dpy);
+                return false;
+            }
+        }
+        const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4,
+                                         EGL_CONTEXT_MINOR_VERSION, 5,
+                                         EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                         EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                         EGL_NONE};
+        EGLContext ctx = eglCreateContext(dpy, config, EGL_NO_CONTEXT, contextAttribs);
+        if (ctx == EGL_NO_CONTEXT) {
+            why += name + ": no OpenGL 4.5 core context (EGL error 0x" + hex(eglGetError()) + "); ";
+            eglTerminate(dpy);
+            return false;
+        }
+        if (!eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx)) {
+            why += name + ": eglMakeCurrent failed; ";
+            eglDestroyContext(dpy, ctx);
+            eglTerminate(dpy);
+            return false;
+        }
+        display = dpy;
+        context = ctx;
+        platform = name;
+        return true;
+    }
+
+    static std::string hex(EGLint value) {
+        char text[16];
+        std::snprintf(text, sizeof text, "%04x", unsigned(value));
+        return text;
+    }
+
+    // EGL_EXT_platform_device over every device, then EGL_MESA_platform_surfaceless.
+    bool create(std::string& why) {
+        const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+        if (!client) {
+            why = "EGL has no client extensions";
+            return false;
+        }
+        const bool platformBase = hasExtension(client, "EGL_EXT_platform_base");
+        if (platformBase && hasExtension(client, "EGL_EXT_platform_device") &&
+            (hasExtension(client, "EGL_EXT_device_enumeration") || hasExtension(client, "EGL_EXT_device_base"))) {
+            EGLint count = 0;
+            if (eglQueryDevicesEXT(0, nullptr, &count) && count > 0) {
+                std::vector<EGLDeviceEXT> devices(static_cast<size_t>(count));
+                eglQueryDevicesEXT(count, devices.data(), &count);
+                for (EGLint i = 0; i < count; ++i) {
+                    EGLDisplay dpy = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[size_t(i)], nullptr);
+                    if (tryDisplay(dpy, "device " + std::to_string(i), why)) return true;
+                }
+            } else {
+                why += "device platform: no EGL devices; ";
+            }
+        } else {
+            why += "no EGL_EXT_platform_device; ";
+        }
+        if (platformBase && hasExtension(client, "EGL_MESA_platform_surfaceless")) {
+            EGLDisplay dpy = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+            if (tryDisplay(dpy, "surfaceless", why)) return true;
+        } else {
+            why += "no EGL_MESA_platform_surfaceless; ";
+        }
+        return false;
+    }
+};
+
+// ---------------------------------------------------------------------------------------------
+// The engine's geometry: six quads parallel to the image plane at different depths, overlapping
+// so that pixels are covered by 1, 2, 3, ... up to all 6 of them.
+
+struct Vertex {
+    float position[3];
+    float colour[4];  // linear RGB, straight alpha
+};
+
+struct Quad {
+    glm::vec2 centre, halfSize;
+    float z;
+    glm::vec4 colour;
+};
+
+const Quad kQuads[] = {
+    {{-0.50f, 0.30f}, {0.70f, 0.60f}, 0.60f, {0.90f, 0.10f, 0.10f, 0.50f}},   // red, nearest
+    {{0.40f, 0.20f}, {0.70f, 0.70f}, 0.30f, {0.10f, 0.80f, 0.20f, 0.40f}},    // green
+    {{0.00f, -0.40f}, {0.80f, 0.50f}, 0.00f, {0.10f, 0.20f, 0.90f, 0.60f}},   // blue
+    {{-0.20f, 0.00f}, {0.50f, 0.50f}, -0.30f, {0.95f, 0.85f, 0.10f, 0.30f}},  // yellow
+    {{0.20f, -0.10f}, {0.45f, 0.45f}, -0.60f, {0.80f, 0.10f, 0.80f, 0.70f}},  // magenta
+    {{0.00f, 0.10f}, {0.35f, 0.35f}, -0.90f, {0.10f, 0.85f, 0.85f, 0.50f}},   // cyan, farthest
+};
+
+struct Mesh {
+    GLuint vao = 0, vbo = 0, ibo = 0;
+    GLsizei indexCount = 0;
+
+    void upload() {
+        std::vector<Vertex> vertices;
+        std::vector<GLuint> indices;
+        for (const Quad& q : kQuads) {
+            const GLuint base = GLuint(vertices.size());
+            const float cx[4] = {-1, 1, 1, -1}, cy[4] = {-1, -1, 1, 1};
+            for (int c = 0; c < 4; ++c)
+                vertices.push_back({{q.centre.x + cx[c] * q.halfSize.x, q.centre.y + cy[c] * q.halfSize.y, q.z},
+                                    {q.colour.r, q.colour.g, q.colour.b, q.colour.a}});
+            for (GLuint i : {0u, 1u, 2u, 0u, 2u, 3u}) indices.push_back(base + i);
+        }
+        indexCount = GLsizei(indices.size());
+
+        glCreateBuffers(1, &vbo);
+        glNamedBufferStorage(vbo, GLsizeiptr(vertices.size() * sizeof(Vertex)), vertices.data(), 0);
+        glCreateBuffers(1, &ibo);
+        glNamedBufferStorage(ibo, GLsizeiptr(indices.size() * sizeof(GLuint)), indices.data(), 0);
+
+        glCreateVertexArrays(1, &vao);
+        glVertexArrayVertexBuffer(vao, 0, vbo, 0, sizeof(Vertex));
+        glVertexArrayElementBuffer(vao, ibo);
+        glEnableVertexArrayAttrib(vao, 0);  // a_position
+        glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, GLuint(offsetof(Vertex, position)));
+        glVertexArrayAttribBinding(vao, 0, 0);
+        glEnableVertexArrayAttrib(vao, 1);  // a_colour
+        glVertexArrayAttribFormat(vao, 1, 4, GL_FLOAT, GL_FALSE, GLuint(offsetof(Vertex, colour)));
+        glVertexArrayAttribBinding(vao, 1, 0);
+    }
+
+    void draw() const {
+        glBindVertexArray(vao);
+        glDrawElements(GL_TRIANGLES, indexCount, GL_UNSIGNED_INT, nullptr);
+    }
+
+    ~Mesh() {
+        if (vao) glDeleteVertexArrays(1, &vao);
+        if (vbo) glDeleteBuffers(1, &vbo);
+        if (ibo) glDeleteBuffers(1, &ibo);
+    }
+};
+
+// ---------------------------------------------------------------------------------------------
+// The engine's surface shader (no #version: the method injects it).
+
+const char* kVertexShader = R"GLSL(
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec4 a_colour;
+uniform mat4 u_viewProjection;
+out vec4 v_colour;
+invariant gl_Position;
+void main() {
+    v_colour = a_colour;
+    gl_Position = u_viewProjection * vec4(a_position, 1.0);
+}
+)GLSL";
+
+const char* kSurfaceFunction = R"GLSL(
+in vec4 v_colour;
+vec4 starntSurface() {
+    return v_colour;  // linear, straight colour and alpha
+}
+)GLSL";
+
+// ---------------------------------------------------------------------------------------------
+
+starnt::Image readOutput(GLuint texture, int width, int height) {
+    std::vector<float> pixels(size_t(width) * size_t(height) * 4);
+    // render() may leave other state behind; make the pack state ours before reading.
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(pixels.size() * sizeof(float)), pixels.data());
+    starnt::Image image(width, height);
+    const size_t row = size_t(width) * 4;
+    for (int y = 0; y < height; ++y)  // GL row 0 is the bottom; Image row 0 is the top
+        std::copy_n(&pixels[size_t(height - 1 - y) * row], row, &image.rgba[size_t(y) * row]);
+    return image;
+}
+
+struct Difference {
+    double mse = 0.0;      // mean over pixels and RGB of the squared linear difference
+    double maxDiff = 0.0;  // largest absolute linear difference over pixels and RGB
+};
+
+Difference compare(const starnt::Image& reference, const starnt::Image& test) {
+    Difference d;
+    for (size_t p = 0; p < reference.pixelCount(); ++p)
+        for (int c = 0; c < 3; ++c) {
+            const double e = double(test.rgba[p * 4 + c]) - double(reference.rgba[p * 4 + c]);
+            d.mse += e * e;
+            d.maxDiff = std::max(d.maxDiff, std::abs(e));
+        }
+    d.mse /= double(reference.pixelCount() * 3);
+    return d;
+}
+
+bool differsFromBackground(const starnt::Image& image, const glm::vec3& background) {
+    for (size_t p = 0; p < image.pixelCount(); ++p)
+        for (int c = 0; c < 3; ++c)
+            if (std::abs(image.rgba[p * 4 + c] - background[c]) > 0.1f) return true;
+    return false;
+}
+
+int run(const std::filesystem::path& outdir) {
+    starnt::setLogCallback([](starnt::LogLevel level, const std::string& message) {
+        std::fprintf(stderr, "starnt: %s: %s\n", level == starnt::LogLevel::Warning ? "warning" : "note",
+                     message.c_str());
+    });
+
+    EglContext egl;
+    std::string why;
+    if (!egl.create(why)) {
+        std::fprintf(stderr, "minimal_engine: no headless OpenGL 4.5 core context: %s\n", why.c_str());
+        return 1;
+    }
+    std::fprintf(stderr, "minimal_engine: EGL %s, %s, OpenGL %s\n", egl.platform.c_str(),
+                 reinterpret_cast<const char*>(glGetString(GL_RENDERER)),
+                 reinterpret_cast<const char*>(glGetString(GL_VERSION)));
+
+    Mesh mesh;
+    mesh.upload();
+
+    const std::vector<std::string> wanted = {"abuffer", "peel", "wboit", "mboit", "starnt"};
+    const std::vector<std::string> available = starnt::methodNames();
+    for (const std::string& name : wanted)
+        if (std::find(available.begin(), available.end(), name) == available.end()) {
+            std::fprintf(stderr, "minimal_engine: the library has no method \"%s\"\n", name.c_str());
+            return 1;
+        }
+
+    const glm::mat4 view = glm::lookAt(glm::vec3(0.4f, 0.3f, 4.0f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+    const glm::mat4 projection = glm::perspective(glm::radians(45.0f), 1.0f, 0.1f, 100.0f);
+    const glm::mat4 viewProjection = projection * view;
+
+    starnt::FrameDesc frame;
+    frame.width = kSize;
+    frame.height = kSize;
+    frame.background = glm::vec3(1.0f);
+    frame.view = view;
+    frame.projection = projection;
+
+    const starnt::SurfaceShader surface{kVertexShader, kSurfaceFunction};
+    const starnt::MethodOptions options;  // defaults: exact A-buffer and peel, eq10 wboit, 6 moments
+
+    std::filesystem::create_directories(outdir);
+    std::map<std::string, starnt::Image> images;
+    for (const std::string& name : wanted) {
+        auto method = starnt::createMethod(name, surface, options);
+        method->render(frame, [&](const starnt::GeometryPass& pass) {
+            glUniformMatrix4fv(glGetUniformLocation(pass.program, "u_viewProjection"), 1, GL_FALSE,
+                               glm::value_ptr(viewProjection));
+            mesh.draw();
+        });
+        images[name] = readOutput(method->outputTexture(), kSize, kSize);
+        const starnt::FrameStats stats = method->lastFrameStats();
+        if (stats.peel) std::fprintf(stderr, "minimal_engine: peel peeled %d layers\n", stats.peel->layers);
+        if (stats.abuffer)
+            std::fprintf(stderr, "minimal_engine: abuffer stored %llu fragments\n",
+                         static_cast<unsigned long long>(stats.abuffer->fragments));
+        starnt::savePng(images[name], (outdir / (name + ".png")).string());
+    }
+    if (GLenum error = glGetError(); error != GL_NO_ERROR) {
+        std::fprintf(stderr, "minimal_engine: GL error 0x%04x\n", error);
+        return 1;
+    }
+
+    const starnt::Image& reference = images.at("abuffer");
+    std::map<std::string, Difference> diffs;
+    std::printf("method MSE maxdiff (linear RGB, vs abuffer)\n");
+    for (const std::string& name : wanted) {
+        diffs[name] = compare(reference, images.at(name));
+        std::printf("%s %.6g %.6g\n", name.c_str(), diffs[name].mse, diffs[name].maxDiff);
+    }
+
+    std::vector<std::string> failures;
+    for (const std::string& name : wanted)
+        if (!differsFromBackground(images.at(name), frame.background))
+            failures.push_back(name + ": the image is uniformly the background");
+    if (diffs["peel"].maxDiff > 1e-3)
+        failures.push_back("peel: max abs difference " + std::to_string(diffs["peel"].maxDiff) + " > 1e-3");
+    if (!(diffs["starnt"].mse < diffs["wboit"].mse))
+        failures.push_back("starnt: MSE " + std::to_string(diffs["starnt"].mse) + " is not below wboit's " +
+                           std::to_string(diffs["wboit"].mse));
+    if (!(diffs["starnt"].mse < 1e-3))
+        failures.push_back("starnt: MSE " + std::to_string(diffs["starnt"].mse) + " is not below 1e-3");
+    for (const std::string& failure : failures) std::fprintf(stderr, "minimal_engine: FAILED: %s\n", failure.c_str());
+    return failures.empty() ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const std::filesystem::path outdir = argc > 1 ? argv[1] : ".";
+    try {
+        return run(outdir);
+    } catch (const starnt::Error& e) {
+        std::fprintf(stderr, "minimal_engine: starnt error: %s\n", e.what());
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "minimal_engine: error: %s\n", e.what());
+    }
+    return 1;
+}
