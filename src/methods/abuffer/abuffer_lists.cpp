@@ -68,12 +68,7 @@ void ABufferLists::build(const FrameDesc& frame, const DrawCallback& draw, const
         {
             gl::ScopedPass timing(frame.timing, "build");
             glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-            const char* name = captureOrder_ ? "abuffer_capture" : "abuffer_build";
-            glUseProgram(program.id());
-            glUniform1f(program.uniform("u_alphaCutoff"), frame.alphaCutoff);
-            if (frame.timing) frame.timing->beginGeometry(name);
-            draw(GeometryPass{name, program.id()});
-            if (frame.timing) frame.timing->endGeometry();
+            MethodBase::runGeometryPass(captureOrder_ ? "abuffer_capture" : "abuffer_build", program, frame, draw);
             glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         }
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
