@@ -36,7 +36,7 @@ std::vector<glm::vec4> readGl(GLuint texture, int w, int h) {
 
 gl::Texture2D upload(const std::vector<glm::vec4>& pixels, int w, int h) {
     gl::Texture2D t(GL_RGBA32F, w, h);
-    glTextureSubImage2D(t.id(), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, pixels.data());
+    starnt::gl::uploadTexture(t.id(), w, h, GL_RGBA, GL_FLOAT, pixels.data());
     return t;
 }
 

@@ -26,7 +26,7 @@ const glm::vec3 kBackground(0.9f, 0.85f, 0.8f);
 
 gl::Texture2D uploadRgba(const std::vector<glm::vec4>& p, int w, int h) {
     gl::Texture2D t(GL_RGBA32F, w, h);
-    glTextureSubImage2D(t.id(), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, p.data());
+    starnt::gl::uploadTexture(t.id(), w, h, GL_RGBA, GL_FLOAT, p.data());
     return t;
 }
 
@@ -84,7 +84,7 @@ TEST(TemporalRefresh, GpuMatchesCpuReference) {
     }
     gl::Texture2D color = uploadRgba(kept.color, w, h), kn = uploadRgba(keptNearest, w, h), fresh = uploadRgba(nearest, w, h);
     gl::Texture2D depth(GL_R32F, w, h), output(GL_RGBA32F, w, h);
-    glTextureSubImage2D(depth.id(), 0, 0, 0, w, h, GL_RED, GL_FLOAT, kept.depth.data());
+    starnt::gl::uploadTexture(depth.id(), w, h, GL_RED, GL_FLOAT, kept.depth.data());
     MethodOptions options;
     options.neural.temporalInterval = 2;
     options.neural.temporalMode = NeuralOptions::TemporalMode::Refresh;

@@ -38,13 +38,13 @@ glm::mat4 viewProj(int w, int h, glm::vec3 eye, float yawDeg, float pitchDeg = 0
 
 gl::Texture2D uploadColor(const ReprojectionFrame& f) {
     gl::Texture2D t(GL_RGBA32F, f.width, f.height);
-    glTextureSubImage2D(t.id(), 0, 0, 0, f.width, f.height, GL_RGBA, GL_FLOAT, f.color.data());
+    starnt::gl::uploadTexture(t.id(), f.width, f.height, GL_RGBA, GL_FLOAT, f.color.data());
     return t;
 }
 
 gl::Texture2D uploadDepth(const ReprojectionFrame& f) {
     gl::Texture2D t(GL_DEPTH_COMPONENT32F, f.width, f.height);
-    glTextureSubImage2D(t.id(), 0, 0, 0, f.width, f.height, GL_DEPTH_COMPONENT, GL_FLOAT, f.depth.data());
+    starnt::gl::uploadTexture(t.id(), f.width, f.height, GL_DEPTH_COMPONENT, GL_FLOAT, f.depth.data());
     return t;
 }
 
@@ -353,7 +353,7 @@ TEST(TemporalFrames, FixedTwoAlternatesAndKeepsItsOwnCopy) {
     temporal.endRealFrame(composite.id(), depth.id(), vp, w, h);
     EXPECT_EQ(temporal.interval(), 2);
     // The method overwrites its targets: the kept copy must not change.
-    glTextureSubImage2D(composite.id(), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, second.color.data());
+    starnt::gl::uploadTexture(composite.id(), w, h, GL_RGBA, GL_FLOAT, second.color.data());
 
     ASSERT_FALSE(temporal.beginFrame(w, h));
     EXPECT_TRUE(temporal.lastWasInterpolated());

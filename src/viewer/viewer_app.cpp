@@ -458,7 +458,7 @@ void runViewer(const ViewerConfig& config) {
     checkImageSize(config.width, config.height);
     if (config.framesLimit < 0) throw Error("--frames-limit must not be negative");
     const Scene scene = loadScene(config.scene);
-    GlfwWindow window(config.width, config.height, "starnt view");
+    GlfwWindow window(config.width, config.height, "starnt view", config.api);
     ViewerApp app(config, window, scene, std::move(script));
     app.run();
 }

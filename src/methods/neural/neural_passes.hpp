@@ -86,6 +86,7 @@ private:
     int width_ = 0, height_ = 0;
     Size2 pass2Size_, pass3Size_;
     gl::Texture2D nearest_, nearestDepth_, reducedDepth_, second_, secondDepth_, alphaColor_, colorCount_, transmittance_;
+    gl::Texture2D esResolveCopies_[3];  // OpenGL ES only: what the tail resolve reads (no texture barrier there)
     gl::FramebufferHandle pass1Fb_, pass2Fb_, pass3Fb_;
 };
 
