@@ -324,7 +324,9 @@ TEST(GlTiles, PassSumsUpsampleMatchesCpu) {
                             alphaColorTex = upload(alphaColor, full.width, full.height, GL_LINEAR),
                             colorCountTex = upload(colorCount, full.width, full.height, GL_LINEAR);
         gl::Texture2D transmittanceTex(GL_R32F, full.width, full.height, GL_LINEAR);  // as pass 3's
-        starnt::gl::uploadTexture(transmittanceTex.id(), full.width, full.height, GL_RGBA, GL_FLOAT, transmittance.data());
+        std::vector<float> transmittanceRed;  // R32F takes GL_RED data (OpenGL ES accepts nothing else)
+        for (const glm::vec4& v : transmittance) transmittanceRed.push_back(v.r);
+        starnt::gl::uploadTexture(transmittanceTex.id(), full.width, full.height, GL_RED, GL_FLOAT, transmittanceRed.data());
         std::vector<gl::Texture2D> outputs;
         for (int i = 0; i < 5; ++i) outputs.emplace_back(GL_RGBA32F, full.width, full.height);
         const bool plain = pass2 == full && pass3 == full;
@@ -332,9 +334,10 @@ TEST(GlTiles, PassSumsUpsampleMatchesCpu) {
             const gl::Program resolve = buildTailResolveProgram();
             const gl::FramebufferHandle pass3Fb = gl::makeFramebuffer({&alphaColorTex, &colorCountTex, &transmittanceTex});
             const gl::VertexArrayHandle vao = gl::makeEmptyVertexArray();
+            TailResolveCopies esCopies;
             resolveTails({&resolve, nearestTex.id(), secondTex.id(), alphaColorTex.id(), colorCountTex.id(),
                           transmittanceTex.id(), full, pass2, pass3},
-                         pass3Fb.id(), vao);
+                         pass3Fb.id(), vao, esCopies);
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
         }
         const std::string defines =
@@ -469,8 +472,7 @@ TEST(GlTiles, DepthDownsampleMatchesCpuMax) {
     glBindImageTexture(0, dst.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     glDispatchCompute((w + 7) / 8, (h + 7) / 8, 1);
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
-    std::vector<float> all(size_t(fullW * fullH));
-    glGetTextureImage(dst.id(), 0, GL_RED, GL_FLOAT, GLsizei(all.size() * sizeof(float)), all.data());
+    const std::vector<float> all = starnt::gl::readTextureFloats(dst.id(), fullW, fullH, 1);
     const auto want = maxDownsampleDepth(depth, {fullW, fullH}, {w, h});
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) EXPECT_EQ(all[size_t(y * fullW + x)], want[size_t(y * w + x)]) << x << "," << y;

@@ -1,5 +1,6 @@
 // Issue 14: refresh frames (`--temporal-mode refresh`): pass 1 rendered at the new camera, what lay
 // behind the kept frame's nearest layer reprojected under it.
+#include <cstring>
 #include <gtest/gtest.h>
 
 #include <random>
@@ -32,7 +33,8 @@ gl::Texture2D uploadRgba(const std::vector<glm::vec4>& p, int w, int h) {
 
 std::vector<glm::vec4> readRgba(GLuint texture, int w, int h) {
     std::vector<glm::vec4> out(size_t(w) * size_t(h));
-    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(out.size() * sizeof(glm::vec4)), out.data());
+    const std::vector<float> floats = starnt::gl::readTextureFloats(texture, w, h, 4);
+    std::memcpy(out.data(), floats.data(), floats.size() * sizeof(float));
     return out;
 }
 

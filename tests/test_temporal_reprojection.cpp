@@ -2,6 +2,7 @@
 // reference and against analytic expectations, and the TemporalFrames facade.
 //
 // Pixel grids are in GL order (row 0 at the bottom), as the reprojector sees its textures.
+#include <cstring>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -50,7 +51,8 @@ gl::Texture2D uploadDepth(const ReprojectionFrame& f) {
 
 std::vector<glm::vec4> download(GLuint texture, int w, int h) {
     std::vector<glm::vec4> out(size_t(w) * size_t(h));
-    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(out.size() * sizeof(glm::vec4)), out.data());
+    const std::vector<float> floats = starnt::gl::readTextureFloats(texture, w, h, 4);
+    std::memcpy(out.data(), floats.data(), floats.size() * sizeof(float));
     return out;
 }
 

@@ -42,12 +42,28 @@ gl::Program buildTailResolveProgram() {
                             gl::embeddedSource("methods/neural/tail_resolve.frag.glsl"), neuralEpsilonDefines());
 }
 
-void resolveTails(const TailResolveInputs& in, GLuint pass3Framebuffer, const gl::VertexArrayHandle& emptyVao) {
-    // Pass 3's blended writes become visible to this draw's fetches. OpenGL ES has no texture
-    // barrier: there the inputs are copies (NeuralPasses::run) and no feedback loop exists.
-    if (!gl::isEs()) glTextureBarrier();
+void resolveTails(const TailResolveInputs& in, GLuint pass3Framebuffer, const gl::VertexArrayHandle& emptyVao,
+                  TailResolveCopies& esCopies) {
+    GLuint sums[3] = {in.alphaColor, in.colorCount, in.transmittance};
+    if (gl::isEs()) {
+        // No glTextureBarrier on ES: read copies of the pass-3 rectangle (36 bytes per reduced
+        // pass-3 texel) instead of the targets this draw writes.
+        gl::Texture2D* copies[3] = {&esCopies.alphaColor, &esCopies.colorCount, &esCopies.transmittance};
+        const GLenum formats[3] = {GL_RGBA32F, GL_RGBA32F, GL_R32F};
+        for (int i = 0; i < 3; ++i) {
+            gl::Texture2D& copy = *copies[i];
+            if (copy.width() != in.pass3.width || copy.height() != in.pass3.height) {
+                copy = gl::Texture2D(formats[i], in.pass3.width, in.pass3.height);
+            }
+            glCopyImageSubData(sums[i], GL_TEXTURE_2D, 0, 0, 0, 0, copy.id(), GL_TEXTURE_2D, 0, 0, 0, 0, in.pass3.width,
+                               in.pass3.height, 1);
+            sums[i] = copy.id();
+        }
+    } else {
+        glTextureBarrier();  // pass 3's blended writes become visible to this draw's fetches
+    }
     glUseProgram(in.program->id());
-    const GLuint textures[] = {in.nearest, in.second, in.alphaColor, in.colorCount, in.transmittance};
+    const GLuint textures[] = {in.nearest, in.second, sums[0], sums[1], sums[2]};
     for (GLuint unit = 0; unit < 5; ++unit) gl::bindTexture(unit, textures[unit]);
     glUniform2i(in.program->uniform("u_fullSize"), in.full.width, in.full.height);
     glUniform2i(in.program->uniform("u_pass2Size"), in.pass2.width, in.pass2.height);
@@ -93,14 +109,12 @@ void NeuralPasses::addMemoryTargets(OitMethod::MemoryTargets& out) const {
                            {"pass3_alpha_color", alphaColor_.bytes()},
                            {"pass3_color_count", colorCount_.bytes()},
                            {"pass3_transmittance", transmittance_.bytes()},
-                           {"pass3_resolve_copies_es", esResolveCopies_[0].bytes() + esResolveCopies_[1].bytes() +
-                                                           esResolveCopies_[2].bytes()}});
+                           {"pass3_resolve_copies_es", esResolveCopies_.bytes()}});
 }
 
 size_t NeuralPasses::gpuMemoryBytes() const {
     return nearest_.bytes() + nearestDepth_.bytes() + reducedDepth_.bytes() + second_.bytes() + secondDepth_.bytes() +
-           alphaColor_.bytes() + colorCount_.bytes() + transmittance_.bytes() + esResolveCopies_[0].bytes() +
-           esResolveCopies_[1].bytes() + esResolveCopies_[2].bytes();
+           alphaColor_.bytes() + colorCount_.bytes() + transmittance_.bytes() + esResolveCopies_.bytes();
 }
 
 void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) {
@@ -172,26 +186,9 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
     }
     if (reduced2 || !(pass3Size == full)) {
         gl::ScopedPass timing(frame.timing, "tail_resolve");
-        TailResolveInputs in{&tailResolve_, nearest_.id(), second_.id(), alphaColor_.id(), colorCount_.id(),
-                             transmittance_.id(), full, pass2Size, pass3Size};
-        if (gl::isEs()) {
-            // No glTextureBarrier on ES: the resolve reads copies of the pass-3 rectangle instead of
-            // the targets it writes (36 bytes per reduced pass-3 texel, allocated on first use).
-            if (esResolveCopies_[0].width() != pass3Size.width || esResolveCopies_[0].height() != pass3Size.height) {
-                esResolveCopies_[0] = gl::Texture2D(GL_RGBA32F, pass3Size.width, pass3Size.height);
-                esResolveCopies_[1] = gl::Texture2D(GL_RGBA32F, pass3Size.width, pass3Size.height);
-                esResolveCopies_[2] = gl::Texture2D(GL_R32F, pass3Size.width, pass3Size.height);
-            }
-            const gl::Texture2D* sources[3] = {&alphaColor_, &colorCount_, &transmittance_};
-            for (int i = 0; i < 3; ++i) {
-                glCopyImageSubData(sources[i]->id(), GL_TEXTURE_2D, 0, 0, 0, 0, esResolveCopies_[i].id(), GL_TEXTURE_2D, 0,
-                                   0, 0, 0, pass3Size.width, pass3Size.height, 1);
-            }
-            in.alphaColor = esResolveCopies_[0].id();
-            in.colorCount = esResolveCopies_[1].id();
-            in.transmittance = esResolveCopies_[2].id();
-        }
-        resolveTails(in, pass3Fb_.id(), emptyVao_);
+        resolveTails({&tailResolve_, nearest_.id(), second_.id(), alphaColor_.id(), colorCount_.id(), transmittance_.id(),
+                      full, pass2Size, pass3Size},
+                     pass3Fb_.id(), emptyVao_, esResolveCopies_);
     }
     glViewport(0, 0, width_, height_);
 }
