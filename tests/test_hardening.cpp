@@ -1,6 +1,7 @@
 // Inputs from the user campaign that broke the error contract (SPEC 9: one line `starnt: error:
 // ...`, non-zero exit, no output files left): each is rejected where the data enters, with the file,
 // field and value in the message. Numbered by the item of the hardening round that found them.
+#include <cstring>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -326,6 +327,25 @@ TEST(Hardening, ExrAttributeLargerThanTheFile) {
     const std::string wideMsg = errorOf([&] { loadImage((dir / "wide.exr").string()); });
     EXPECT_CONTAINS(wideMsg, "20000x3");
     EXPECT_CONTAINS(wideMsg, "larger than");
+    // The fuzzer's out-of-memory input, rebuilt: a channel list that claims 40 bytes more than it
+    // has (OpenEXR reads it by structure and ignores the size) before a data window 16,777,216
+    // wide, for which OpenEXR would size a 2 GB line buffer. Under a 1.5 GB address-space limit
+    // the command must still end in the size error, not in an allocation failure.
+    std::string lying = wide;
+    const size_t channelsSize = lying.find(std::string("chlist") + '\0') + 7;
+    int32_t claimed = 0;
+    std::memcpy(&claimed, lying.data() + channelsSize, 4);
+    claimed += 40;
+    std::memcpy(lying.data() + channelsSize, &claimed, 4);
+    const unsigned char xMin[4] = {0x00, 0x00, 0x00, 0xff};  // -16,777,216
+    lying.replace(box + key.size() + 4, 4, reinterpret_cast<const char*>(xMin), 4);
+    std::ofstream(dir / "lying.exr", std::ios::binary) << lying;
+    EXPECT_CONTAINS(errorOf([&] { loadImage((dir / "lying.exr").string()); }), "larger than");
+#if !defined(__SANITIZE_ADDRESS__)
+    expectOneLineError(run("compare --reference " + (dir / "lying.exr").string() + " --test " + good.string(),
+                           "ulimit -v 1500000; "),
+                       {"lying.exr", "larger than"}, "lying channel list");
+#endif
     fs::remove_all(dir);
 }
 
