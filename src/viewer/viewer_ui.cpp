@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "methods/neural/tiles/tile_constants.h"
 #include "render/method_options.hpp"
 #include "starnt/error.hpp"
 
@@ -225,6 +226,19 @@ void timingPanel(const UiModel& m) {
         for (int i = 0; i < 4; ++i) levels[i] = float(neural->tiles->levels[size_t(i)]);
         ImGui::Text("tiles N0..N3: %.0f %.0f %.0f %.0f", levels[0], levels[1], levels[2], levels[3]);
         ImGui::PlotHistogram("##levels", levels, 4, 0, "tile levels", 0.0f, FLT_MAX, ImVec2(300, 50));
+        // The scale guard's last probe beside w_bar: what each pass adds and what halving or
+        // quartering it would lose, per occupied pixel, and the budget a pair's loss must stay under.
+        if (const auto& g = neural->tiles->guard; g && g->occupiedPixels > 0) {
+            const double n = double(g->occupiedPixels);
+            ImGui::Text("guard (%s): %.0f occupied pixels, budget %.1e per pixel",
+                        neural->tiles->probeFrame.value_or(false) ? "probe" : "last probe", n, STARNT_SCALE_GUARD_BUDGET);
+            ImGui::Text("  pass 2 adds %.2e, loses %.2e at 1/2, %.2e at 1/4", g->energyPass2 / n, g->lossPass2[0] / n,
+                        g->lossPass2[1] / n);
+            ImGui::Text("  pass 3 adds %.2e, loses %.2e at 1/2, %.2e at 1/4", g->energyPass3 / n, g->lossPass3[0] / n,
+                        g->lossPass3[1] / n);
+        } else if (neural->tiles->scaleGuard) {
+            ImGui::TextDisabled("guard: no probe measured yet");
+        }
     }
     ImGui::Text("frames: %d real, %d interpolated", s.realFrames(), s.interpolatedFrames());
     ImGui::Text("GPU memory: methods %.1f MiB, scene %.1f MiB", double(m.methodMemoryBytes) / (1 << 20),
