@@ -21,9 +21,12 @@ case "$mode" in
     quiet cmake -S examples/minimal_engine -B "$work/example" -G Ninja -DCMAKE_BUILD_TYPE=Release \
       -DCMAKE_PREFIX_PATH="$work/prefix"
     quiet cmake --build "$work/example"
-    "$work/example/minimal_engine" "$work/images"
-    for m in abuffer peel wboit mboit starnt; do
-      test -s "$work/images/$m.png" || { echo "check_install: $m.png missing" >&2; exit 1; }
+    # The same engine with its context on OpenGL 4.5 core, then on OpenGL ES 3.2 (issue 16).
+    for api in gl gles; do
+      "$work/example/minimal_engine" "$work/images-$api" "$api"
+      for m in abuffer peel wboit mboit starnt; do
+        test -s "$work/images-$api/$m.png" || { echo "check_install: $api $m.png missing" >&2; exit 1; }
+      done
     done
     quiet cmake -S tests/cmake/oit_only -B "$work/oit_only" -G Ninja -DCMAKE_PREFIX_PATH="$work/prefix"
     quiet cmake --build "$work/oit_only"

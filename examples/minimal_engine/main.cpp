@@ -1,11 +1,13 @@
 // minimal_engine: an engine that owns its EGL context, its geometry and its shaders, and hands its
 // transparent geometry to the STAR-NT OIT methods through the installed headers only.
 //
-//   minimal_engine [outdir]
+//   minimal_engine [outdir] [gl|gles]
 //
 // Renders six overlapping semi-transparent quads with abuffer, peel, wboit, mboit and starnt,
 // writes <outdir>/<method>.png and compares every method with the A-buffer (the exact reference).
-// Exit code 0 when every check passes, 1 otherwise.
+// Exit code 0 when every check passes, 1 otherwise. `gles` makes the engine's context OpenGL ES 3.2
+// instead of OpenGL 4.5 core: the methods read the API from the current context, nothing else
+// changes (the engine's own GL calls below are the subset both APIs have).
 
 // The engine's GL loader comes first; the STAR-NT headers include no GL header.
 #include <epoxy/egl.h>
@@ -37,7 +39,7 @@ namespace {
 constexpr int kSize = 256;
 
 // ---------------------------------------------------------------------------------------------
-// Headless OpenGL 4.5 core context through EGL (the engine's own; no window system).
+// Headless OpenGL 4.5 core or OpenGL ES 3.2 context through EGL (the engine's own; no window system).
 
 bool hasExtension(const char* list, const char* name) {
     if (!list) return false;
@@ -49,6 +51,7 @@ struct EglContext {
     EGLDisplay display = EGL_NO_DISPLAY;
     EGLContext context = EGL_NO_CONTEXT;
     std::string platform;
+    bool es = false;  // OpenGL ES 3.2 instead of OpenGL 4.5 core
 
     ~EglContext() {
         if (display != EGL_NO_DISPLAY) {
@@ -76,15 +79,15 @@ struct EglContext {
             eglTerminate(dpy);
             return false;
         }
-        if (!eglBindAPI(EGL_OPENGL_API)) {
-            why += name + ": eglBindAPI(EGL_OPENGL_API) failed; ";
+        if (!eglBindAPI(es ? EGL_OPENGL_ES_API : EGL_OPENGL_API)) {
+            why += name + ": eglBindAPI failed; ";
             eglTerminate(dpy);
             return false;
         }
         EGLConfig config = EGL_NO_CONFIG_KHR;
         if (!hasExtension(extensions, "EGL_KHR_no_config_context")) {
             const EGLint configAttribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE,
-                                            EGL_OPENGL_BIT, EGL_NONE};
+                                            es ? EGL_OPENGL_ES3_BIT : EGL_OPENGL_BIT, EGL_NONE};
             EGLint count = 0;
             if (!eglChooseConfig(dpy, configAttribs, &config, 1, &count) || count < 1) {
                 why += name + ": no OpenGL config; ";
@@ -92,14 +95,16 @@ struct EglContext {
                 return false;
             }
         }
-        const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4,
+        const EGLint desktopAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4,
                                          EGL_CONTEXT_MINOR_VERSION, 5,
                                          EGL_CONTEXT_OPENGL_PROFILE_MASK,
                                          EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                          EGL_NONE};
-        EGLContext ctx = eglCreateContext(dpy, config, EGL_NO_CONTEXT, contextAttribs);
+        const EGLint esAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 2, EGL_NONE};
+        EGLContext ctx = eglCreateContext(dpy, config, EGL_NO_CONTEXT, es ? esAttribs : desktopAttribs);
         if (ctx == EGL_NO_CONTEXT) {
-            why += name + ": no OpenGL 4.5 core context (EGL error 0x" + hex(eglGetError()) + "); ";
+            why += name + (es ? ": no OpenGL ES 3.2 context" : ": no OpenGL 4.5 core context") + " (EGL error 0x" +
+                   hex(eglGetError()) + "); ";
             eglTerminate(dpy);
             return false;
         }
@@ -196,20 +201,20 @@ struct Mesh {
         }
         indexCount = GLsizei(indices.size());
 
-        glCreateBuffers(1, &vbo);
-        glNamedBufferStorage(vbo, GLsizeiptr(vertices.size() * sizeof(Vertex)), vertices.data(), 0);
-        glCreateBuffers(1, &ibo);
-        glNamedBufferStorage(ibo, GLsizeiptr(indices.size() * sizeof(GLuint)), indices.data(), 0);
-
-        glCreateVertexArrays(1, &vao);
-        glVertexArrayVertexBuffer(vao, 0, vbo, 0, sizeof(Vertex));
-        glVertexArrayElementBuffer(vao, ibo);
-        glEnableVertexArrayAttrib(vao, 0);  // a_position
-        glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, GLuint(offsetof(Vertex, position)));
-        glVertexArrayAttribBinding(vao, 0, 0);
-        glEnableVertexArrayAttrib(vao, 1);  // a_colour
-        glVertexArrayAttribFormat(vao, 1, 4, GL_FLOAT, GL_FALSE, GLuint(offsetof(Vertex, colour)));
-        glVertexArrayAttribBinding(vao, 1, 0);
+        // Calls that OpenGL 4.5 core and OpenGL ES 3.1+ both have.
+        glGenVertexArrays(1, &vao);
+        glBindVertexArray(vao);
+        glGenBuffers(1, &vbo);
+        glBindBuffer(GL_ARRAY_BUFFER, vbo);
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(Vertex)), vertices.data(), GL_STATIC_DRAW);
+        glGenBuffers(1, &ibo);
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo);  // recorded in the vertex array
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(GLuint)), indices.data(), GL_STATIC_DRAW);
+        glEnableVertexAttribArray(0);  // a_position
+        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, position)));
+        glEnableVertexAttribArray(1);  // a_colour
+        glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, colour)));
+        glBindVertexArray(0);
     }
 
     void draw() const {
@@ -254,7 +259,16 @@ starnt::Image readOutput(GLuint texture, int width, int height) {
     glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
     glPixelStorei(GL_PACK_ROW_LENGTH, 0);
-    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(pixels.size() * sizeof(float)), pixels.data());
+    // Through a read framebuffer, which both APIs have (ES has no glGetTexImage): RGBA/FLOAT is a
+    // read format every float colour buffer allows.
+    GLuint framebuffer = 0;
+    glGenFramebuffers(1, &framebuffer);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+    glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, pixels.data());
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &framebuffer);
     starnt::Image image(width, height);
     const size_t row = size_t(width) * 4;
     for (int y = 0; y < height; ++y)  // GL row 0 is the bottom; Image row 0 is the top
@@ -286,16 +300,18 @@ bool differsFromBackground(const starnt::Image& image, const glm::vec3& backgrou
     return false;
 }
 
-int run(const std::filesystem::path& outdir) {
+int run(const std::filesystem::path& outdir, bool es) {
     starnt::setLogCallback([](starnt::LogLevel level, const std::string& message) {
         std::fprintf(stderr, "starnt: %s: %s\n", level == starnt::LogLevel::Warning ? "warning" : "note",
                      message.c_str());
     });
 
     EglContext egl;
+    egl.es = es;
     std::string why;
     if (!egl.create(why)) {
-        std::fprintf(stderr, "minimal_engine: no headless OpenGL 4.5 core context: %s\n", why.c_str());
+        std::fprintf(stderr, "minimal_engine: no headless %s context: %s\n", es ? "OpenGL ES 3.2" : "OpenGL 4.5 core",
+                     why.c_str());
         return 1;
     }
     std::fprintf(stderr, "minimal_engine: EGL %s, %s, OpenGL %s\n", egl.platform.c_str(),
@@ -376,8 +392,13 @@ int run(const std::filesystem::path& outdir) {
 
 int main(int argc, char** argv) {
     const std::filesystem::path outdir = argc > 1 ? argv[1] : ".";
+    const std::string api = argc > 2 ? argv[2] : "gl";
+    if (api != "gl" && api != "gles") {
+        std::fprintf(stderr, "minimal_engine: unknown API \"%s\" (gl or gles)\n", api.c_str());
+        return 1;
+    }
     try {
-        return run(outdir);
+        return run(outdir, api == "gles");
     } catch (const starnt::Error& e) {
         std::fprintf(stderr, "minimal_engine: starnt error: %s\n", e.what());
     } catch (const std::exception& e) {
