@@ -70,7 +70,18 @@ TEST(Cli, NeuralMemoryTargetsSumToTheTotal) {
         const bool reduced = extra.find("50,50") != std::string::npos;
         EXPECT_EQ(targets["pass2_peel_depth_reduced"].get<size_t>(), reduced ? size_t(32 * 24 * 4) : 0u) << extra;
         EXPECT_EQ(targets["tile_overlay_debug"].get<size_t>(), 0u) << "counted before the overlay is made: " << extra;
+        // STAR-NT keeps pass 3's fragment count alone (R32F): it reads no sum of C (issue 17).
+        EXPECT_EQ(targets["pass3_count"].get<size_t>(), size_t(64 * 48 * 4)) << extra;
+        EXPECT_FALSE(targets.contains("pass3_color_count")) << extra;
     }
+    // DFAOIT reads the unweighted colour sum: sum C and N stay in one RGBA32F target.
+    const CliRun r = run("render --scene builtin:tubes --method dfaoit --width 64 --height 48 --out " +
+                         (dir / "d.png").string() + " --stats " + (dir / "d.json").string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::ifstream f(dir / "d.json");
+    const nlohmann::json dfaoit = nlohmann::json::parse(f);
+    EXPECT_EQ(dfaoit["memory_targets"]["pass3_color_count"].get<size_t>(), size_t(64 * 48 * 16));
+    EXPECT_FALSE(dfaoit["memory_targets"].contains("pass3_count"));
 }
 
 TEST(Cli, CompareIdenticalIsZeroAndJsonShape) {

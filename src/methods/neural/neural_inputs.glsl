@@ -7,7 +7,7 @@
 layout(binding = STARNT_UNIT_NEAREST) uniform sampler2D u_nearest;        // C1, a1
 layout(binding = STARNT_UNIT_SECOND) uniform sampler2D u_second;         // C2, a2
 layout(binding = STARNT_UNIT_ALPHA_COLOR) uniform sampler2D u_alphaColor;     // sum a C, sum a
-layout(binding = STARNT_UNIT_COLOR_COUNT) uniform sampler2D u_colorCount;     // sum C, N
+layout(binding = STARNT_UNIT_COLOR_COUNT) uniform sampler2D u_colorCount;     // sum C, N (N in .r with STARNT_COUNT_ONLY)
 layout(binding = STARNT_UNIT_TRANSMITTANCE) uniform sampler2D u_transmittance;  // prod (1 - a)
 #include "methods/neural/upsample.glsl"
 
@@ -62,16 +62,26 @@ PixelSums readPixelSums(ivec2 p) {
     float has1 = s.a1 > 0.0 ? 1.0 : 0.0, has2 = s.a2 > 0.0 ? 1.0 : 0.0;
     s.sumAlphaColor = tailAc.rgb + s.a1 * s.c1 + s.a2 * s.c2;
     s.sumAlpha = tailAc.a + s.a1 + s.a2;
+#ifdef STARNT_COUNT_ONLY
+    s.sumColor = vec3(0.0);  // not kept: only DFAOIT reads it
+    s.count = tailCn.r + has1 + has2;
+#else
     s.sumColor = tailCn.rgb + has1 * s.c1 + has2 * s.c2;
     s.count = tailCn.a + has1 + has2;
+#endif
     s.transmittance = tailT * (1.0 - s.a1) * (1.0 - s.a2);
 #else
     vec4 ac = upsampleLinear(u_alphaColor, p, u_pass3Size);
     vec4 cn = upsampleLinear(u_colorCount, p, u_pass3Size);
     s.sumAlphaColor = ac.rgb;
     s.sumAlpha = ac.a;
+#ifdef STARNT_COUNT_ONLY
+    s.sumColor = vec3(0.0);
+    s.count = cn.r;
+#else
     s.sumColor = cn.rgb;
     s.count = cn.a;
+#endif
     s.transmittance = upsampleLinear(u_transmittance, p, u_pass3Size).r;
 #endif
     return s;

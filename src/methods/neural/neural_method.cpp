@@ -28,7 +28,8 @@ public:
           spatial_(options.neural.spatial.value_or(config.spatialByDefault)),
           corners_(options.neural.inference == NeuralOptions::Inference::Corners),
           network_(loadMethodNetwork(config, options)),
-          passes_(surface),
+          // Only DFAOIT's inputs read the unweighted colour sum of pass 3 (SPEC 3).
+          passes_(surface, config.kind == nn::NetworkKind::DFAOIT),
           temporal_(options_) {
         if (spatial_ || corners_) tiles_ = std::make_unique<tiles::GpuTiles>();
         // Compile up front what the frames will need, so no frame pays for a shader compile: the
@@ -177,7 +178,7 @@ private:
 
     gl::Program buildInference(const std::string& stage, bool fullResolutionInputs) const {
         const std::string defines = std::string(fullResolutionInputs ? "#define STARNT_INPUTS_FULL_RESOLUTION\n" : "") +
-                                    (joint() ? "#define STARNT_UPSAMPLE_JOINT\n" : "") +
+                                    (joint() ? "#define STARNT_UPSAMPLE_JOINT\n" : "") + passes_.countLayoutDefine() +
                                     neuralEpsilonDefines() + nn::generateInferenceGlsl(network_);
         return buildFullscreenProgram(config_.name + "_" + stage + (fullResolutionInputs ? "" : "_upsampled"),
                                       {config_.compositeShader, "methods/neural/" + stage + ".frag.glsl"}, defines);

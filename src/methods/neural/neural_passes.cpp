@@ -37,9 +37,9 @@ std::string neuralEpsilonDefines() {
            floatLiteral(nn::kTailAlphaEpsilon) + "\n";
 }
 
-gl::Program buildTailResolveProgram() {
+gl::Program buildTailResolveProgram(const std::string& defines) {
     return gl::buildProgram("tail_resolve", gl::embeddedSource("methods/common/fullscreen.vert.glsl"),
-                            gl::embeddedSource("methods/neural/tail_resolve.frag.glsl"), neuralEpsilonDefines());
+                            gl::embeddedSource("methods/neural/tail_resolve.frag.glsl"), defines + neuralEpsilonDefines());
 }
 
 void resolveTails(const TailResolveInputs& in, GLuint pass3Framebuffer, const gl::VertexArrayHandle& emptyVao,
@@ -49,11 +49,11 @@ void resolveTails(const TailResolveInputs& in, GLuint pass3Framebuffer, const gl
         // No glTextureBarrier on ES: read copies of the pass-3 rectangle (36 bytes per reduced
         // pass-3 texel) instead of the targets this draw writes.
         gl::Texture2D* copies[3] = {&esCopies.alphaColor, &esCopies.colorCount, &esCopies.transmittance};
-        const GLenum formats[3] = {GL_RGBA32F, GL_RGBA32F, GL_R32F};
         for (int i = 0; i < 3; ++i) {
             gl::Texture2D& copy = *copies[i];
-            if (copy.width() != in.pass3.width || copy.height() != in.pass3.height) {
-                copy = gl::Texture2D(formats[i], in.pass3.width, in.pass3.height);
+            const GLenum format = gl::textureInternalFormat(sums[i]);  // the count may be R32F (count only)
+            if (copy.width() != in.pass3.width || copy.height() != in.pass3.height || copy.format() != format) {
+                copy = gl::Texture2D(format, in.pass3.width, in.pass3.height);
             }
             glCopyImageSubData(sums[i], GL_TEXTURE_2D, 0, 0, 0, 0, copy.id(), GL_TEXTURE_2D, 0, 0, 0, 0, in.pass3.width,
                                in.pass3.height, 1);
@@ -75,13 +75,15 @@ void resolveTails(const TailResolveInputs& in, GLuint pass3Framebuffer, const gl
     resetPassState();
 }
 
-NeuralPasses::NeuralPasses(const SurfaceShader& surface)
+NeuralPasses::NeuralPasses(const SurfaceShader& surface, bool colorSums)
     : pass1_(buildSurfaceProgram(surface, "neural_pass1", "methods/neural/pass1_nearest.frag.glsl")),
       pass2_(buildSurfaceProgram(surface, "neural_pass2", "methods/neural/pass2_second.frag.glsl")),
-      pass3_(buildSurfaceProgram(surface, "neural_pass3", "methods/neural/pass3_accumulate.frag.glsl")),
+      pass3_(buildSurfaceProgram(surface, "neural_pass3", "methods/neural/pass3_accumulate.frag.glsl",
+                                 colorSums ? "" : "#define STARNT_COUNT_ONLY\n")),
       depthDownsample_(gl::buildComputeProgram("depth_downsample", "#include \"methods/neural/depth_downsample.comp.glsl\"\n")),
-      tailResolve_(buildTailResolveProgram()),
-      emptyVao_(gl::makeEmptyVertexArray()) {}
+      tailResolve_(buildTailResolveProgram(colorSums ? "" : "#define STARNT_COUNT_ONLY\n")),
+      emptyVao_(gl::makeEmptyVertexArray()),
+      colorSums_(colorSums) {}
 
 void NeuralPasses::resize(int width, int height) {
     if (width == width_ && height == height_) return;
@@ -93,7 +95,7 @@ void NeuralPasses::resize(int width, int height) {
     second_ = gl::Texture2D(GL_RGBA32F, width, height);
     secondDepth_ = gl::Texture2D(GL_DEPTH_COMPONENT32F, width, height);
     alphaColor_ = gl::Texture2D(GL_RGBA32F, width, height, GL_LINEAR);
-    colorCount_ = gl::Texture2D(GL_RGBA32F, width, height, GL_LINEAR);
+    colorCount_ = gl::Texture2D(colorSums_ ? GL_RGBA32F : GL_R32F, width, height, GL_LINEAR);
     transmittance_ = gl::Texture2D(GL_R32F, width, height, GL_LINEAR);
     pass1Fb_ = gl::makeFramebuffer({&nearest_}, &nearestDepth_);
     pass2Fb_ = gl::makeFramebuffer({&second_}, &secondDepth_);
@@ -107,7 +109,7 @@ void NeuralPasses::addMemoryTargets(OitMethod::MemoryTargets& out) const {
                            {"pass2_color", second_.bytes()},
                            {"pass2_depth", secondDepth_.bytes()},
                            {"pass3_alpha_color", alphaColor_.bytes()},
-                           {"pass3_color_count", colorCount_.bytes()},
+                           {colorSums_ ? "pass3_color_count" : "pass3_count", colorCount_.bytes()},
                            {"pass3_transmittance", transmittance_.bytes()},
                            {"pass3_resolve_copies_es", esResolveCopies_.bytes()}});
 }

@@ -38,7 +38,7 @@ std::string neuralEpsilonDefines();
 // The tail resolve (tail_resolve.frag.glsl, CPU reference upsamplePassSums): turns the pass-3
 // targets' sums into tails in place over the pass3 rectangle. Run when pass 2 or 3 was reduced.
 // `pass3Framebuffer` has alphaColor, colorCount and transmittance attached, in that order.
-gl::Program buildTailResolveProgram();
+gl::Program buildTailResolveProgram(const std::string& defines = {});
 struct TailResolveInputs {
     const gl::Program* program;
     GLuint nearest, second, alphaColor, colorCount, transmittance;  // textures, as NeuralPasses has them
@@ -62,8 +62,12 @@ public:
     // would otherwise flicker between first and second with rounding.
     static constexpr float kDefaultPeelEpsilon = 1e-6f;
 
-    // Builds the three geometry-pass programs around the engine's surface shader.
-    explicit NeuralPasses(const SurfaceShader& surface);
+    // Builds the three geometry-pass programs around the engine's surface shader. Without
+    // `colorSums` pass 3 keeps the fragment count alone in an R32F target instead of sum C and N in
+    // an RGBA32F one (STARNT_COUNT_ONLY): the STAR-NT inputs never read sum C, only DFAOIT's do.
+    explicit NeuralPasses(const SurfaceShader& surface, bool colorSums = true);
+    // The define the programs that read pass 3 (neural_inputs.glsl, the tail resolve) need.
+    const char* countLayoutDefine() const { return colorSums_ ? "" : "#define STARNT_COUNT_ONLY\n"; }
 
     void resize(int width, int height);
     // Renders the three passes; pass2Size / pass3Size are the reduced sizes (the full size for s = 1).
@@ -95,6 +99,7 @@ private:
     Size2 pass2Size_, pass3Size_;
     gl::Texture2D nearest_, nearestDepth_, reducedDepth_, second_, secondDepth_, alphaColor_, colorCount_, transmittance_;
     TailResolveCopies esResolveCopies_;  // OpenGL ES only: what the tail resolve reads
+    bool colorSums_ = true;
     gl::FramebufferHandle pass1Fb_, pass2Fb_, pass3Fb_;
 };
 

@@ -39,7 +39,11 @@ void main() {
     vec4 ac = texelFetch(u_alphaColor, t, 0), cn = texelFetch(u_colorCount, t, 0);
     float transmittance = texelFetch(u_transmittance, t, 0).r;
     o_alphaColor = max(ac - vec4(f1.rgb * f1.a, f1.a) - vec4(f2.rgb * f2.a, f2.a), vec4(0.0));
+#ifdef STARNT_COUNT_ONLY
+    o_colorCount = vec4(max(cn.r - has1 - has2, 0.0));  // the count alone, in .r (pass3_accumulate)
+#else
     o_colorCount = max(cn - vec4(f1.rgb, 1.0) * has1 - vec4(f2.rgb, 1.0) * has2, vec4(0.0));
+#endif
     float t2 = (1.0 - f1.a) * (1.0 - f2.a);
     o_transmittance = vec4(t2 > STARNT_EPS_TRANSMITTANCE ? clamp(transmittance / t2, 0.0, 1.0) : 1.0);
 }
