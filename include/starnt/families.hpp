@@ -57,6 +57,9 @@ struct FamilyErrors {
     double network = 0.0;   // starnt or dfaoit, the network given
     double hybrid = 0.0;    // STAR-NT's closed-form tail (1 - t_tail) C_tilde
     double wboit = 0.0;     // weighted blended OIT, weight eq. 10 (the default)
+    // The same means over the tail pixels only (N > 3): where STAR-NT's network decides the colour
+    // (below that STAR-NT and hybrid are exact, and the whole-family means flatter them).
+    double networkTail = 0.0, hybridTail = 0.0, wboitTail = 0.0;
 };
 FamilyErrors familyErrors(NetworkKind kind, const Network& net, const std::vector<FragmentList>& lists,
                           float alphaCutoff = kDefaultAlphaCutoff);

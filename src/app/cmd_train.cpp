@@ -195,13 +195,17 @@ void addTrainCommand(CLI::App& app) {
         nlohmann::json report = {{"network", nn::kindName(kind)}, {"held_out", a->holdOut},
                                  {"samples", a->samples},     {"seed", a->seed},
                                  {"families", nlohmann::json::array()}};
-        std::printf("%-10s %-9s %8s %11s %11s %11s %9s\n", "family", "trained", "pixels", nn::kindName(kind), "hybrid",
-                    "wboit", "net/wboit");
+        // Whole family (every covered pixel), then its tail pixels (N > 3) alone.
+        std::printf("%-10s %-9s %7s %10s %10s %10s %9s %7s %10s %10s %10s %9s\n", "family", "trained", "pixels",
+                    nn::kindName(kind), "hybrid", "wboit", "net/wboit", "tail", "net tail", "hyb tail", "wb tail",
+                    "tail n/w");
         for (const nn::TrainingFamily& f : families) {
             const nn::FamilyErrors e = nn::familyErrors(kind, net, f.validation);
             const bool heldOut = f.name == a->holdOut;
-            std::printf("%-10s %-9s %8zu %11.4e %11.4e %11.4e %9.3f\n", f.name.c_str(), heldOut ? "HELD-OUT" : "yes",
-                        e.pixels, e.network, e.hybrid, e.wboit, e.wboit > 0.0 ? e.network / e.wboit : 0.0);
+            std::printf("%-10s %-9s %7zu %10.3e %10.3e %10.3e %9.3f %7zu %10.3e %10.3e %10.3e %9.3f\n", f.name.c_str(),
+                        heldOut ? "HELD-OUT" : "yes", e.pixels, e.network, e.hybrid, e.wboit,
+                        e.wboit > 0.0 ? e.network / e.wboit : 0.0, e.tailPixels, e.networkTail, e.hybridTail,
+                        e.wboitTail, e.wboitTail > 0.0 ? e.networkTail / e.wboitTail : 0.0);
             report["families"].push_back({{"family", f.name},
                                           {"held_out", heldOut},
                                           {"captured", !nn::isProceduralFamily(f.name)},
@@ -210,7 +214,10 @@ void addTrainCommand(CLI::App& app) {
                                           {"validation_tail_pixels", e.tailPixels},
                                           {"mse_network", e.network},
                                           {"mse_hybrid", e.hybrid},
-                                          {"mse_wboit", e.wboit}});
+                                          {"mse_wboit", e.wboit},
+                                          {"tail_mse_network", e.networkTail},
+                                          {"tail_mse_hybrid", e.hybridTail},
+                                          {"tail_mse_wboit", e.wboitTail}});
         }
         if (!a->report.empty()) {
             std::ofstream out(a->report);

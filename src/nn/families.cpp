@@ -251,16 +251,20 @@ FamilyErrors familyErrors(NetworkKind kind, const Network& net, const std::vecto
         const PixelSums sums = sumsFromFragments(list, alphaCutoff);
         const glm::vec3 predicted =
             kind == NetworkKind::StarNT ? compositeStarnt(net, sums, black) : compositeDfaoit(net, sums, black);
-        e.network += squaredError(predicted, exact);
-        e.hybrid += squaredError(compositeHybrid(sums, black), exact);
-        e.wboit += squaredError(compositeWboit(sorted, black, alphaCutoff), exact);
+        const double network = squaredError(predicted, exact), hybrid = squaredError(compositeHybrid(sums, black), exact),
+                     wboit = squaredError(compositeWboit(sorted, black, alphaCutoff), exact);
+        e.network += network;
+        e.hybrid += hybrid;
+        e.wboit += wboit;
+        if (sorted.size() > 3) {
+            e.networkTail += network;
+            e.hybridTail += hybrid;
+            e.wboitTail += wboit;
+        }
     }
-    if (e.pixels > 0) {
-        const double n = static_cast<double>(e.pixels);
-        e.network /= n;
-        e.hybrid /= n;
-        e.wboit /= n;
-    }
+    const auto mean = [](double& sum, size_t n) { sum = n > 0 ? sum / static_cast<double>(n) : 0.0; };
+    for (double* sum : {&e.network, &e.hybrid, &e.wboit}) mean(*sum, e.pixels);
+    for (double* sum : {&e.networkTail, &e.hybridTail, &e.wboitTail}) mean(*sum, e.tailPixels);
     return e;
 }
 
