@@ -203,7 +203,7 @@ void addTrainCommand(CLI::App& app) {
             const nn::FamilyErrors e = nn::familyErrors(kind, net, f.validation);
             const bool heldOut = f.name == a->holdOut;
             std::printf("%-10s %-9s %7zu %10.3e %10.3e %10.3e %9.3f %7zu %10.3e %10.3e %10.3e %9.3f\n", f.name.c_str(),
-                        heldOut ? "HELD-OUT" : "yes", e.pixels, e.network, e.hybrid, e.wboit,
+                        heldOut ? "HELD-OUT" : f.train.empty() ? "no" : "yes", e.pixels, e.network, e.hybrid, e.wboit,
                         e.wboit > 0.0 ? e.network / e.wboit : 0.0, e.tailPixels, e.networkTail, e.hybridTail,
                         e.wboitTail, e.wboitTail > 0.0 ? e.networkTail / e.wboitTail : 0.0);
             report["families"].push_back({{"family", f.name},
