@@ -46,7 +46,8 @@ void checkHoldOut(const std::vector<std::string>& familyNames, const std::string
 // followed by `extra` (the generic synthetic lists), as one training set of `kind`. Throws
 // starnt::Error when `holdOut` is not empty and names none of `families`.
 TrainingSet buildFamilyTrainingSet(NetworkKind kind, const std::vector<TrainingFamily>& families,
-                                   const std::string& holdOut, const std::vector<FragmentList>& extra);
+                                   const std::string& holdOut, const std::vector<FragmentList>& extra,
+                                   SampleWeighting weighting = SampleWeighting::None);
 
 // Image-space errors on a family's validation lists: mean over pixels with at least one fragment
 // after the cut-off and over the 3 channels of (composite - exact composite)^2, over black (the

@@ -87,7 +87,7 @@ constexpr uint64_t kValidationSeedOffset = 1'000'003;
 
 void addTrainCommand(CLI::App& app) {
     struct Args {
-        std::string network, out, families, holdOut, report;
+        std::string network, out, families, holdOut, report, weighting = "none";
         uint64_t samples = 10'000'000, seed = 1, synthetic = 300'000, familyLists = 50'000, validationLists = 20'000;
         std::vector<std::string> scenes;
         int captureWidth = 96, captureHeight = 72;
@@ -109,6 +109,9 @@ void addTrainCommand(CLI::App& app) {
     cmd->add_option("--validation-lists", a->validationLists, "validation lists per procedural family")
         ->capture_default_str();
     cmd->add_option("--hold-out", a->holdOut, "train on every family but this one (a built-in scene or a procedural family)");
+    cmd->add_option("--weighting", a->weighting,
+                    "sample weights: none (default) or tail-visibility (starnt: ((1-a1)(1-a2))^2, the image-space error)")
+        ->capture_default_str();
     cmd->add_option("--report", a->report, "write the per-family validation errors to this JSON file");
     cmd->callback([a] {
         const nn::NetworkKind kind = nn::parseKind(a->network);
@@ -134,6 +137,11 @@ void addTrainCommand(CLI::App& app) {
                 capture.scenes.push_back(s.substr(8));
             }
         }
+        if (a->weighting != "none" && a->weighting != "tail-visibility") {
+            throw Error("--weighting " + a->weighting + ": expected none or tail-visibility");
+        }
+        const nn::SampleWeighting weighting =
+            a->weighting == "none" ? nn::SampleWeighting::None : nn::SampleWeighting::TailVisibility;
         const std::vector<std::string> procedural =
             parseFamilyList(a->families.empty() && !a->holdOut.empty() ? "all" : a->families);
         // Check the held-out name before minutes of capture: a captured scene or a procedural family.
@@ -168,7 +176,7 @@ void addTrainCommand(CLI::App& app) {
                                 nn::proceduralFamilyLists(name, a->validationLists, a->seed + kValidationSeedOffset)});
         }
         const auto synthetic = nn::syntheticFragmentLists(a->synthetic, a->seed);
-        nn::TrainingSet set = nn::buildFamilyTrainingSet(kind, families, a->holdOut, synthetic);
+        nn::TrainingSet set = nn::buildFamilyTrainingSet(kind, families, a->holdOut, synthetic, weighting);
         std::string composition;
         for (const nn::TrainingFamily& f : families) {
             composition += " " + f.name + " " + (f.name == a->holdOut ? "held out" : std::to_string(f.train.size()));
@@ -193,7 +201,7 @@ void addTrainCommand(CLI::App& app) {
 
         // Per-family image-space errors on lists never trained on (composite over black vs exact).
         nlohmann::json report = {{"network", nn::kindName(kind)}, {"held_out", a->holdOut},
-                                 {"samples", a->samples},     {"seed", a->seed},
+                                 {"samples", a->samples},     {"seed", a->seed}, {"weighting", a->weighting},
                                  {"families", nlohmann::json::array()}};
         // Whole family (every covered pixel), then its tail pixels (N > 3) alone.
         std::printf("%-10s %-9s %7s %10s %10s %10s %9s %7s %10s %10s %10s %9s\n", "family", "trained", "pixels",

@@ -225,16 +225,17 @@ void checkHoldOut(const std::vector<std::string>& familyNames, const std::string
 }
 
 TrainingSet buildFamilyTrainingSet(NetworkKind kind, const std::vector<TrainingFamily>& families,
-                                   const std::string& holdOut, const std::vector<FragmentList>& extra) {
+                                   const std::string& holdOut, const std::vector<FragmentList>& extra,
+                                   SampleWeighting weighting) {
     std::vector<std::string> names;
     for (const TrainingFamily& f : families) names.push_back(f.name);
     checkHoldOut(names, holdOut);
     TrainingSet set;
     set.inputs = kind == NetworkKind::StarNT ? kStarntInputs : kDfaoitInputs;
     for (const TrainingFamily& family : families) {
-        if (family.name != holdOut) set.append(buildTrainingSet(kind, family.train));
+        if (family.name != holdOut) set.append(buildTrainingSet(kind, family.train, kDefaultAlphaCutoff, weighting));
     }
-    set.append(buildTrainingSet(kind, extra));
+    set.append(buildTrainingSet(kind, extra, kDefaultAlphaCutoff, weighting));
     return set;
 }
 
