@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "core/hue_color.hpp"
 #include "nn/random.hpp"
 #include "starnt/error.hpp"
 #include "starnt/nn.hpp"
@@ -32,20 +33,8 @@ float windowDepth(double s) {
 // The headlight Lambert factor of the project's lit shading (docs/DESIGN.md, "Shading").
 double litFactor(double cosine) { return 0.35 + 0.65 * std::fabs(cosine); }
 
-glm::dvec3 hueColor(double hue01, double pastel) {
-    const double h = 6.0 * (hue01 - std::floor(hue01));
-    const double x = 1.0 - std::fabs(std::fmod(h, 2.0) - 1.0);
-    glm::dvec3 c;
-    switch (std::min(static_cast<int>(h), 5)) {
-        case 0: c = {1, x, 0}; break;
-        case 1: c = {x, 1, 0}; break;
-        case 2: c = {0, 1, x}; break;
-        case 3: c = {0, x, 1}; break;
-        case 4: c = {x, 0, 1}; break;
-        default: c = {1, 0, x}; break;
-    }
-    return glm::mix(c, glm::dvec3(1.0), pastel);
-}
+// A saturated colour of any hue (wrapped into [0, 1)), mixed with white by `pastel`.
+glm::dvec3 hueColor(double hue, double pastel) { return starnt::hueColor<double>(hue - std::floor(hue), pastel); }
 
 Fragment makeFragment(const glm::dvec3& color, double alpha, double s, uint32_t order) {
     Fragment f;

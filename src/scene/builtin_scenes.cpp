@@ -22,10 +22,12 @@
 //            complexity from +Z 6-12.
 //   Depth complexities: maximum triangles over one pixel centre, orthographic along -Z over [-1,1]^2.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <random>
 
+#include "core/hue_color.hpp"
 #include "starnt/error.hpp"
 #include "starnt/scene.hpp"
 
@@ -54,24 +56,8 @@ private:
     std::mt19937 gen_;
 };
 
-// A saturated colour of hue `hue01` in [0, 1) (the RGB hue ramp), mixed with white by `pastel`.
-glm::vec3 hueColor(float hue01, float pastel) {
-    const float h = hue01 * 6.0f;
-    const float x = 1.0f - std::fabs(std::fmod(h, 2.0f) - 1.0f);
-    glm::vec3 c;
-    switch (int(h)) {
-        case 0: c = {1, x, 0}; break;
-        case 1: c = {x, 1, 0}; break;
-        case 2: c = {0, 1, x}; break;
-        case 3: c = {0, x, 1}; break;
-        case 4: c = {x, 0, 1}; break;
-        default: c = {1, 0, x}; break;
-    }
-    return glm::mix(c, glm::vec3(1.0f), pastel);
-}
-
 // A saturated-ish random colour: a random hue at full saturation, mixed with white by `pastel`.
-glm::vec3 randomColor(Rng& rng, float pastel) { return hueColor(rng.uniform(), pastel); }
+glm::vec3 randomColor(Rng& rng, float pastel) { return hueColor<float>(rng.uniform(), pastel); }
 
 Material blendMaterial(bool unlit) {
     Material m;
@@ -91,6 +77,18 @@ glm::vec3 catmullRom(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& 
 glm::vec3 anyPerpendicular(const glm::vec3& t) {
     const glm::vec3 a = std::fabs(t.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
     return glm::normalize(glm::cross(t, a));
+}
+
+// Appends the quad corners[0..3] (counter-clockwise seen from the side `normal` points to) as two
+// triangles with one normal and one colour.
+void appendQuad(Mesh& mesh, const std::array<glm::vec3, 4>& corners, const glm::vec3& normal, const glm::vec4& color) {
+    const uint32_t base = uint32_t(mesh.positions.size());
+    for (const glm::vec3& c : corners) {
+        mesh.positions.push_back(c);
+        mesh.normals.push_back(normal);
+        mesh.colors.push_back(color);
+    }
+    mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
 }
 
 Scene makeTubes(uint32_t seed) {
@@ -158,14 +156,10 @@ Scene makeSmoke(uint32_t seed) {
         const float grey = rng.range(0.55f, 0.95f);
         const glm::vec3 tint = randomColor(rng, 0.85f);
         const glm::vec4 color(grey * tint, rng.range(0.05f, 0.4f));
-        const uint32_t base = uint32_t(mesh.positions.size());
-        const glm::vec3 corners[4] = {{x - h, y - h, z}, {x + h, y - h, z}, {x + h, y + h, z}, {x - h, y + h, z}};
-        for (const glm::vec3& c : corners) {
-            mesh.positions.push_back(c);
-            mesh.normals.emplace_back(0.0f, 0.0f, 1.0f);
-            mesh.colors.push_back(color);
-        }
-        mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+        appendQuad(mesh,
+                   {glm::vec3(x - h, y - h, z), glm::vec3(x + h, y - h, z), glm::vec3(x + h, y + h, z),
+                    glm::vec3(x - h, y + h, z)},
+                   glm::vec3(0.0f, 0.0f, 1.0f), color);
     }
     s.meshes.push_back(std::move(mesh));
     return s;
@@ -239,7 +233,7 @@ Scene makeCurtains(uint32_t seed) {
         // Hues spread around the circle (with jitter) so that the sheets really differ in colour.
         float hue = hue0 + float(sheet) / float(kSheets) + rng.range(-0.05f, 0.05f);
         hue -= std::floor(hue);
-        const glm::vec3 hueRgb = hueColor(hue, rng.range(0.0f, 0.2f));
+        const glm::vec3 hueRgb = hueColor<float>(hue, rng.range(0.0f, 0.2f));
         const glm::vec4 color(hueRgb, rng.range(0.15f, 0.7f));
         // A zig-zag in the sheet's local x-z plane: pleat corners alternate between z = 0 and z = depth.
         const glm::mat3 rotation(glm::vec3(std::cos(turn), 0.0f, -std::sin(turn)), glm::vec3(0.0f, 1.0f, 0.0f),
@@ -252,14 +246,8 @@ Scene makeCurtains(uint32_t seed) {
             const glm::vec3 a = rotation * glm::vec3(x0, -0.5f * height, z0), b = rotation * glm::vec3(x1, -0.5f * height, z1);
             const glm::vec3 up = rotation * glm::vec3(0.0f, height, 0.0f);
             const glm::vec3 centre(cx, cy, cz);
-            const glm::vec3 normal = glm::normalize(glm::cross(b - a, up));
-            const uint32_t base = uint32_t(mesh.positions.size());
-            for (const glm::vec3& v : {a, b, b + up, a + up}) {
-                mesh.positions.push_back(centre + v);
-                mesh.normals.push_back(normal);
-                mesh.colors.push_back(color);
-            }
-            mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+            appendQuad(mesh, {centre + a, centre + b, centre + b + up, centre + a + up},
+                       glm::normalize(glm::cross(b - a, up)), color);
         }
     }
     s.meshes.push_back(std::move(mesh));
