@@ -199,6 +199,15 @@ TEST(NnFamiliesCli, HoldOutNamingNoFamilyIsAnError) {
     const test::CliRun bad = test::run("train --network starnt --out " + out + " --families sheets,glass");
     EXPECT_NE(bad.exitCode, 0);
     EXPECT_NE(bad.err.find("glass"), std::string::npos) << bad.err;
+    // Bad --weighting and --report are refused before any capture or training.
+    const test::CliRun weighting = test::run("train --network starnt --out " + out + " --weighting linear");
+    EXPECT_NE(weighting.exitCode, 0);
+    EXPECT_EQ(weighting.err, "starnt: error: --weighting linear: expected none or tail-visibility\n");
+    const test::CliRun report = test::run("train --network starnt --out " + out + " --report " + (dir / "r.txt").string());
+    EXPECT_NE(report.err.find("the report must be a .json file"), std::string::npos) << report.err;
+    const test::CliRun folder =
+        test::run("train --network starnt --out " + out + " --report " + (dir / "missing" / "r.json").string());
+    EXPECT_NE(folder.err.find("does not exist"), std::string::npos) << folder.err;
     // A procedural family left out of --families cannot be held out.
     const test::CliRun notTrained = test::run("train --network starnt --out " + out + " --families sheets --hold-out shells");
     EXPECT_NE(notTrained.err.find("--hold-out shells: no such training family"), std::string::npos) << notTrained.err;
@@ -230,4 +239,25 @@ TEST(NnFamiliesCli, HoldOutTrainsAndReportsEveryFamily) {
     EXPECT_EQ(j.at("families")[1].at("training_lists"), 0);
     EXPECT_EQ(j.at("families")[2].at("training_lists"), 1000);
     EXPECT_GT(j.at("families")[0].at("training_lists").get<size_t>(), 0u);
+}
+
+TEST(NnFamiliesCli, HoldingOutABuiltinSceneDropsItsCaptures) {
+    const auto dir = test::makeTempDir("families-cli");
+    const std::string out = (dir / "w.json").string(), report = (dir / "r.json").string();
+    const test::CliRun r = test::run("train --network dfaoit --out " + out + " --report " + report +
+                                     " --scenes builtin:panes builtin:curtains --capture-width 16 --capture-height 12"
+                                     " --hold-out curtains --families foliage --family-lists 500 --validation-lists 200"
+                                     " --samples 2000 --synthetic 100");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find(" curtains held out foliage 500;"), std::string::npos) << r.err;
+    std::ifstream in(report);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_EQ(j.at("network"), "dfaoit");
+    ASSERT_EQ(j.at("families").size(), 3u);
+    EXPECT_EQ(j.at("families")[1].at("family"), "curtains");
+    EXPECT_TRUE(j.at("families")[1].at("held_out").get<bool>());
+    EXPECT_TRUE(j.at("families")[1].at("captured").get<bool>());
+    EXPECT_EQ(j.at("families")[1].at("training_lists"), 0);
+    EXPECT_GT(j.at("families")[1].at("validation_pixels").get<size_t>(), 20u);
+    EXPECT_FALSE(j.at("families")[2].at("captured").get<bool>());
 }

@@ -29,19 +29,20 @@ void progressBar(const char* label, double fraction, const std::string& suffix) 
     std::fflush(stderr);
 }
 
-// Training takes minutes: check --out first (a .json file in an existing folder we can write).
-void checkWeightsOutput(const std::string& out) {
+// Training takes minutes: check the outputs first (a .json file in an existing folder we can write).
+// `flag` names the option and `what` the file in the messages.
+void checkJsonOutput(const std::string& flag, const std::string& what, const std::string& out) {
     namespace fs = std::filesystem;
     std::string ext = fs::path(out).extension().string();
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    if (ext != ".json") throw Error("--out " + out + ": a weights file must be a .json file");
+    if (ext != ".json") throw Error(flag + " " + out + ": " + what + " must be a .json file");
     std::error_code ec;
-    if (fs::is_directory(out, ec)) throw Error("--out " + out + ": is a directory");
+    if (fs::is_directory(out, ec)) throw Error(flag + " " + out + ": is a directory");
     const fs::path dir = fs::path(out).parent_path().empty() ? fs::path(".") : fs::path(out).parent_path();
-    if (!fs::is_directory(dir, ec)) throw Error("--out " + out + ": folder " + dir.string() + " does not exist");
+    if (!fs::is_directory(dir, ec)) throw Error(flag + " " + out + ": folder " + dir.string() + " does not exist");
     const std::string probe = out + ".tmp-probe-" + std::to_string(::getpid());
     const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd < 0) throw Error("--out " + out + ": cannot write in folder " + dir.string() + ": " + std::strerror(errno));
+    if (fd < 0) throw Error(flag + " " + out + ": cannot write in folder " + dir.string() + ": " + std::strerror(errno));
     ::close(fd);
     ::unlink(probe.c_str());
 }
@@ -115,7 +116,8 @@ void addTrainCommand(CLI::App& app) {
     cmd->add_option("--report", a->report, "write the per-family validation errors to this JSON file");
     cmd->callback([a] {
         const nn::NetworkKind kind = nn::parseKind(a->network);
-        checkWeightsOutput(a->out);
+        checkJsonOutput("--out", "a weights file", a->out);
+        if (!a->report.empty()) checkJsonOutput("--report", "the report", a->report);
         if (a->samples < 1000 || a->samples > 10'000'000'000ull) throw Error("--samples must be in 1000..1e10");
         if (a->captureWidth < 8 || a->captureHeight < 8 || a->captureWidth > 1024 || a->captureHeight > 1024) {
             throw Error("--capture-width/--capture-height must be in 8..1024");
@@ -228,9 +230,17 @@ void addTrainCommand(CLI::App& app) {
                                           {"tail_mse_wboit", e.wboitTail}});
         }
         if (!a->report.empty()) {
-            std::ofstream out(a->report);
-            out << report.dump(1) << "\n";
-            if (!out) throw Error("--report " + a->report + ": cannot write");
+            // Under a temporary name, renamed when complete: a failed write leaves no partial report.
+            const std::string temporary = a->report + ".tmp-" + std::to_string(::getpid());
+            {
+                std::ofstream out(temporary);
+                out << report.dump(1) << "\n";
+                if (!out) {
+                    std::filesystem::remove(temporary);
+                    throw Error("--report " + a->report + ": cannot write");
+                }
+            }
+            std::filesystem::rename(temporary, a->report);
         }
     });
 }
