@@ -75,7 +75,8 @@ TEST(Cli, NeuralMemoryTargetsSumToTheTotal) {
 
 TEST(Cli, CompareIdenticalIsZeroAndJsonShape) {
     fs::path dir = starnt::test::makeTempDir("cli");
-    ASSERT_EQ(run("render --scene builtin:panes --method abuffer --width 40 --height 30 --out " + (dir / "a.png").string()).exitCode, 0);
+    const CliRun first = run("render --scene builtin:panes --method abuffer --width 40 --height 30 --out " + (dir / "a.png").string());
+    ASSERT_EQ(first.exitCode, 0) << first.err;
     ASSERT_EQ(run("render --scene builtin:panes --method unsorted --width 40 --height 30 --out " + (dir / "u.png").string()).exitCode, 0);
     CliRun same = run("compare --reference " + (dir / "a.png").string() + " --test " + (dir / "a.png").string() + " --json");
     ASSERT_EQ(same.exitCode, 0) << same.err;

@@ -35,7 +35,7 @@ const glm::vec3 kBackground(0.9f, 0.85f, 0.8f);
 // Uploads RGBA rows bottom-first (GL order) into a new RGBA32F texture.
 gl::Texture2D upload(const std::vector<glm::vec4>& pixels, int w, int h, GLenum filter = GL_NEAREST) {
     gl::Texture2D t(GL_RGBA32F, w, h, filter);
-    glTextureSubImage2D(t.id(), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, pixels.data());
+    starnt::gl::uploadTexture(t.id(), w, h, GL_RGBA, GL_FLOAT, pixels.data());
     return t;
 }
 
@@ -256,7 +256,7 @@ void main() {
     glUseProgram(program.id());
     glUniform2i(program.uniform("u_fullSize"), fullW, fullH);
     glUniform2i(program.uniform("u_pass2Size"), w, h);
-    glBindTextureUnit(0, src.id());
+    starnt::gl::bindTexture(0, src.id());
     glBindImageTexture(0, linear.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glBindImageTexture(1, weighted.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glDispatchCompute((fullW + 7) / 8, (fullH + 7) / 8, 1);
@@ -318,13 +318,15 @@ TEST(GlTiles, PassSumsUpsampleMatchesCpu) {
                 transmittance[i] = glm::vec4(t.transmittance.back());
             }
         gl::Texture2D depthTex(GL_R32F, full.width, full.height);
-        glTextureSubImage2D(depthTex.id(), 0, 0, 0, full.width, full.height, GL_RED, GL_FLOAT, t.nearestDepth.data());
+        starnt::gl::uploadTexture(depthTex.id(), full.width, full.height, GL_RED, GL_FLOAT, t.nearestDepth.data());
         const gl::Texture2D nearestTex = upload(t.nearest, full.width, full.height),
                             secondTex = upload(second, full.width, full.height),
                             alphaColorTex = upload(alphaColor, full.width, full.height, GL_LINEAR),
                             colorCountTex = upload(colorCount, full.width, full.height, GL_LINEAR);
         gl::Texture2D transmittanceTex(GL_R32F, full.width, full.height, GL_LINEAR);  // as pass 3's
-        glTextureSubImage2D(transmittanceTex.id(), 0, 0, 0, full.width, full.height, GL_RGBA, GL_FLOAT, transmittance.data());
+        std::vector<float> transmittanceRed;  // R32F takes GL_RED data (OpenGL ES accepts nothing else)
+        for (const glm::vec4& v : transmittance) transmittanceRed.push_back(v.r);
+        starnt::gl::uploadTexture(transmittanceTex.id(), full.width, full.height, GL_RED, GL_FLOAT, transmittanceRed.data());
         std::vector<gl::Texture2D> outputs;
         for (int i = 0; i < 5; ++i) outputs.emplace_back(GL_RGBA32F, full.width, full.height);
         const bool plain = pass2 == full && pass3 == full;
@@ -332,9 +334,10 @@ TEST(GlTiles, PassSumsUpsampleMatchesCpu) {
             const gl::Program resolve = buildTailResolveProgram();
             const gl::FramebufferHandle pass3Fb = gl::makeFramebuffer({&alphaColorTex, &colorCountTex, &transmittanceTex});
             const gl::VertexArrayHandle vao = gl::makeEmptyVertexArray();
+            TailResolveCopies esCopies;
             resolveTails({&resolve, nearestTex.id(), secondTex.id(), alphaColorTex.id(), colorCountTex.id(),
                           transmittanceTex.id(), full, pass2, pass3},
-                         pass3Fb.id(), vao);
+                         pass3Fb.id(), vao, esCopies);
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
         }
         const std::string defines =
@@ -364,10 +367,10 @@ void main() {
         glUniform2i(program.uniform("u_pass2Size"), pass2.width, pass2.height);
         glUniform2i(program.uniform("u_pass3Size"), pass3.width, pass3.height);
         glUniform4fv(program.uniform("u_depthUnproject"), 1, &t.depthUnproject[0]);
-        glBindTextureUnit(5, depthTex.id());
+        starnt::gl::bindTexture(5, depthTex.id());
         const gl::Texture2D* inputs[] = {&nearestTex, &secondTex, &alphaColorTex, &colorCountTex, &transmittanceTex};
         for (GLuint i = 0; i < 5; ++i) {
-            glBindTextureUnit(i, inputs[i]->id());
+            starnt::gl::bindTexture(i, inputs[i]->id());
             glBindImageTexture(i, outputs[i].id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         }
         glDispatchCompute(GLuint(full.width + 7) / 8, GLuint(full.height + 7) / 8, 1);
@@ -460,17 +463,16 @@ TEST(GlTiles, DepthDownsampleMatchesCpuMax) {
     std::vector<float> depth(size_t(fullW * fullH));
     for (float& d : depth) d = u(rng);
     gl::Texture2D src(GL_R32F, fullW, fullH), dst(GL_R32F, fullW, fullH);
-    glTextureSubImage2D(src.id(), 0, 0, 0, fullW, fullH, GL_RED, GL_FLOAT, depth.data());
+    starnt::gl::uploadTexture(src.id(), fullW, fullH, GL_RED, GL_FLOAT, depth.data());
     gl::Program program = gl::buildComputeProgram("downsample_test", "#include \"methods/neural/depth_downsample.comp.glsl\"\n");
     glUseProgram(program.id());
     glUniform2i(program.uniform("u_fullSize"), fullW, fullH);
     glUniform2i(program.uniform("u_reducedSize"), w, h);
-    glBindTextureUnit(0, src.id());
+    starnt::gl::bindTexture(0, src.id());
     glBindImageTexture(0, dst.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     glDispatchCompute((w + 7) / 8, (h + 7) / 8, 1);
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
-    std::vector<float> all(size_t(fullW * fullH));
-    glGetTextureImage(dst.id(), 0, GL_RED, GL_FLOAT, GLsizei(all.size() * sizeof(float)), all.data());
+    const std::vector<float> all = starnt::gl::readTextureFloats(dst.id(), fullW, fullH, 1);
     const auto want = maxDownsampleDepth(depth, {fullW, fullH}, {w, h});
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) EXPECT_EQ(all[size_t(y * fullW + x)], want[size_t(y * w + x)]) << x << "," << y;

@@ -1,6 +1,7 @@
 // Inputs from the user campaign that broke the error contract (SPEC 9: one line `starnt: error:
 // ...`, non-zero exit, no output files left): each is rejected where the data enters, with the file,
 // field and value in the message. Numbered by the item of the hardening round that found them.
+#include <cstring>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -288,6 +289,64 @@ TEST(Hardening, ImagesBeyondTheSizeLimit) {
         expectOneLineError(run("compare --reference " + (dir / name).string() + " --test " + (dir / name).string()),
                            {name, "larger than"}, name);
     }
+}
+
+// An EXR of a few hundred bytes whose header attribute claims 2 GB: OpenEXR would allocate the
+// claimed size before reading it (found by fuzz/fuzz_image); the loader refuses it first.
+TEST(Hardening, ExrAttributeLargerThanTheFile) {
+    const fs::path dir = makeTempDir("exr_attr");
+    const fs::path good = dir / "good.exr", bad = dir / "bad.exr";
+    Image image(4, 3);
+    for (float& v : image.rgba) v = 0.5f;
+    saveImage(image, good.string());
+    std::ifstream in(good, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    // The first attribute follows the 8-byte signature and version: name NUL, type NUL, int32 size.
+    const size_t nameEnd = bytes.find('\0', 8), typeEnd = bytes.find('\0', nameEnd + 1);
+    ASSERT_NE(typeEnd, std::string::npos);
+    const std::string attribute = bytes.substr(8, nameEnd - 8);
+    const unsigned char huge[4] = {0x00, 0x00, 0x00, 0x7f};  // 2,130,706,432 bytes, little-endian
+    bytes.replace(typeEnd + 1, 4, reinterpret_cast<const char*>(huge), 4);
+    std::ofstream(bad, std::ios::binary) << bytes;
+    EXPECT_EQ(loadImage(good.string()).width, 4);  // the walk accepts a well-formed file
+    const std::string msg = errorOf([&] { loadImage(bad.string()); });
+    EXPECT_CONTAINS(msg, "bad.exr");
+    EXPECT_CONTAINS(msg, "'" + attribute + "'");
+    EXPECT_CONTAINS(msg, "2130706432");
+    expectOneLineError(run("compare --reference " + bad.string() + " --test " + good.string()), {"bad.exr", "claims"},
+                       "exr attribute");
+    // A data window wider than the tool reads is refused by the same walk, before OpenEXR sizes its
+    // buffers by it: xMax (the third int32 of the box) becomes 19999.
+    std::string wide((std::istreambuf_iterator<char>(std::ifstream(good, std::ios::binary).rdbuf())), {});
+    const std::string key = std::string("dataWindow") + '\0' + "box2i" + '\0';
+    const size_t box = wide.find(key);
+    ASSERT_NE(box, std::string::npos);
+    const unsigned char xMax[4] = {0x1f, 0x4e, 0x00, 0x00};  // 19999
+    wide.replace(box + key.size() + 4 + 8, 4, reinterpret_cast<const char*>(xMax), 4);
+    std::ofstream(dir / "wide.exr", std::ios::binary) << wide;
+    const std::string wideMsg = errorOf([&] { loadImage((dir / "wide.exr").string()); });
+    EXPECT_CONTAINS(wideMsg, "20000x3");
+    EXPECT_CONTAINS(wideMsg, "larger than");
+    // The fuzzer's out-of-memory input, rebuilt: a channel list that claims 40 bytes more than it
+    // has (OpenEXR reads it by structure and ignores the size) before a data window 16,777,216
+    // wide, for which OpenEXR would size a 2 GB line buffer. Under a 1.5 GB address-space limit
+    // the command must still end in the size error, not in an allocation failure.
+    std::string lying = wide;
+    const size_t channelsSize = lying.find(std::string("chlist") + '\0') + 7;
+    int32_t claimed = 0;
+    std::memcpy(&claimed, lying.data() + channelsSize, 4);
+    claimed += 40;
+    std::memcpy(lying.data() + channelsSize, &claimed, 4);
+    const unsigned char xMin[4] = {0x00, 0x00, 0x00, 0xff};  // -16,777,216
+    lying.replace(box + key.size() + 4, 4, reinterpret_cast<const char*>(xMin), 4);
+    std::ofstream(dir / "lying.exr", std::ios::binary) << lying;
+    EXPECT_CONTAINS(errorOf([&] { loadImage((dir / "lying.exr").string()); }), "larger than");
+#if !defined(__SANITIZE_ADDRESS__)
+    expectOneLineError(run("compare --reference " + (dir / "lying.exr").string() + " --test " + good.string(),
+                           "ulimit -v 1500000; "),
+                       {"lying.exr", "larger than"}, "lying channel list");
+#endif
+    fs::remove_all(dir);
 }
 
 TEST(Hardening, SceneExhaustingMemoryNamesFileAndTriangles) {

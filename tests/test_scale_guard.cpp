@@ -1,5 +1,6 @@
 // Issue 13: scale rules, the scale guard (GPU against its CPU reference, and what it sees), and the
 // work counters that show what reduced passes save.
+#include <cstring>
 #include <gtest/gtest.h>
 
 #include <array>
@@ -30,13 +31,14 @@ const glm::vec3 kBackground(0.9f, 0.85f, 0.8f);
 
 std::vector<glm::vec4> readGl(GLuint texture, int w, int h) {
     std::vector<glm::vec4> out(size_t(w) * size_t(h));
-    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(out.size() * sizeof(glm::vec4)), out.data());
+    const std::vector<float> floats = starnt::gl::readTextureFloats(texture, w, h, 4);
+    std::memcpy(out.data(), floats.data(), floats.size() * sizeof(float));
     return out;
 }
 
 gl::Texture2D upload(const std::vector<glm::vec4>& pixels, int w, int h) {
     gl::Texture2D t(GL_RGBA32F, w, h);
-    glTextureSubImage2D(t.id(), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, pixels.data());
+    starnt::gl::uploadTexture(t.id(), w, h, GL_RGBA, GL_FLOAT, pixels.data());
     return t;
 }
 

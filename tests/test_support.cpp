@@ -33,7 +33,12 @@ std::filesystem::path makeTempDir(const std::string& tag) {
 
 namespace starnt::test {
 HeadlessGlContext& glContext() {
-    static HeadlessGlContext* context = new HeadlessGlContext();  // lives until exit
+    // STARNT_TEST_GL_API=gles runs a GL test executable on an OpenGL ES 3.2 context instead (CTest
+    // registers the GL tests a second time that way, as Gles.*).
+    static HeadlessGlContext* context = [] {
+        const char* api = std::getenv("STARNT_TEST_GL_API");
+        return new HeadlessGlContext(api ? parseGlApi(api) : GlApi::Desktop);
+    }();  // lives until exit
     context->makeCurrent();
     return *context;
 }

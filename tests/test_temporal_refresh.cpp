@@ -1,5 +1,6 @@
 // Issue 14: refresh frames (`--temporal-mode refresh`): pass 1 rendered at the new camera, what lay
 // behind the kept frame's nearest layer reprojected under it.
+#include <cstring>
 #include <gtest/gtest.h>
 
 #include <random>
@@ -26,13 +27,14 @@ const glm::vec3 kBackground(0.9f, 0.85f, 0.8f);
 
 gl::Texture2D uploadRgba(const std::vector<glm::vec4>& p, int w, int h) {
     gl::Texture2D t(GL_RGBA32F, w, h);
-    glTextureSubImage2D(t.id(), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, p.data());
+    starnt::gl::uploadTexture(t.id(), w, h, GL_RGBA, GL_FLOAT, p.data());
     return t;
 }
 
 std::vector<glm::vec4> readRgba(GLuint texture, int w, int h) {
     std::vector<glm::vec4> out(size_t(w) * size_t(h));
-    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(out.size() * sizeof(glm::vec4)), out.data());
+    const std::vector<float> floats = starnt::gl::readTextureFloats(texture, w, h, 4);
+    std::memcpy(out.data(), floats.data(), floats.size() * sizeof(float));
     return out;
 }
 
@@ -84,7 +86,7 @@ TEST(TemporalRefresh, GpuMatchesCpuReference) {
     }
     gl::Texture2D color = uploadRgba(kept.color, w, h), kn = uploadRgba(keptNearest, w, h), fresh = uploadRgba(nearest, w, h);
     gl::Texture2D depth(GL_R32F, w, h), output(GL_RGBA32F, w, h);
-    glTextureSubImage2D(depth.id(), 0, 0, 0, w, h, GL_RED, GL_FLOAT, kept.depth.data());
+    starnt::gl::uploadTexture(depth.id(), w, h, GL_RED, GL_FLOAT, kept.depth.data());
     MethodOptions options;
     options.neural.temporalInterval = 2;
     options.neural.temporalMode = NeuralOptions::TemporalMode::Refresh;

@@ -2,6 +2,7 @@
 // reference and against analytic expectations, and the TemporalFrames facade.
 //
 // Pixel grids are in GL order (row 0 at the bottom), as the reprojector sees its textures.
+#include <cstring>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -38,19 +39,20 @@ glm::mat4 viewProj(int w, int h, glm::vec3 eye, float yawDeg, float pitchDeg = 0
 
 gl::Texture2D uploadColor(const ReprojectionFrame& f) {
     gl::Texture2D t(GL_RGBA32F, f.width, f.height);
-    glTextureSubImage2D(t.id(), 0, 0, 0, f.width, f.height, GL_RGBA, GL_FLOAT, f.color.data());
+    starnt::gl::uploadTexture(t.id(), f.width, f.height, GL_RGBA, GL_FLOAT, f.color.data());
     return t;
 }
 
 gl::Texture2D uploadDepth(const ReprojectionFrame& f) {
     gl::Texture2D t(GL_DEPTH_COMPONENT32F, f.width, f.height);
-    glTextureSubImage2D(t.id(), 0, 0, 0, f.width, f.height, GL_DEPTH_COMPONENT, GL_FLOAT, f.depth.data());
+    starnt::gl::uploadTexture(t.id(), f.width, f.height, GL_DEPTH_COMPONENT, GL_FLOAT, f.depth.data());
     return t;
 }
 
 std::vector<glm::vec4> download(GLuint texture, int w, int h) {
     std::vector<glm::vec4> out(size_t(w) * size_t(h));
-    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(out.size() * sizeof(glm::vec4)), out.data());
+    const std::vector<float> floats = starnt::gl::readTextureFloats(texture, w, h, 4);
+    std::memcpy(out.data(), floats.data(), floats.size() * sizeof(float));
     return out;
 }
 
@@ -353,7 +355,7 @@ TEST(TemporalFrames, FixedTwoAlternatesAndKeepsItsOwnCopy) {
     temporal.endRealFrame(composite.id(), depth.id(), vp, w, h);
     EXPECT_EQ(temporal.interval(), 2);
     // The method overwrites its targets: the kept copy must not change.
-    glTextureSubImage2D(composite.id(), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, second.color.data());
+    starnt::gl::uploadTexture(composite.id(), w, h, GL_RGBA, GL_FLOAT, second.color.data());
 
     ASSERT_FALSE(temporal.beginFrame(w, h));
     EXPECT_TRUE(temporal.lastWasInterpolated());

@@ -180,6 +180,24 @@ TEST(Viewer, ScriptedScreenshotMatchesHeadlessRender) {
     fs::remove_all(dir);
 }
 
+// `view --api gles`: a window with an OpenGL ES 3.2 context (GLFW through EGL) shows what the
+// desktop headless render of the same camera shows.
+TEST(Viewer, EsWindowMatchesTheDesktopHeadlessRender) {
+    REQUIRE_VIEWER_AND_XVFB();
+    const fs::path dir = starnt::test::makeTempDir("viewer");
+    const fs::path shot = dir / "es.png";
+    const ProcessResult r = runViewer("--api gles --scene builtin:tubes --method wboit",
+                                      "frames 3; orbit 40 15; frames 2; screenshot " + shot.string() + "; quit", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const starnt::Image image = starnt::loadImage(shot.string());
+    EXPECT_GT(coverage(image), 0.05) << "blank screenshot";
+    const nlohmann::json stats = readJson(dir / "es.json");
+    EXPECT_NE(stats["gl_version"].get<std::string>().find("OpenGL ES 3.2"), std::string::npos) << stats["gl_version"];
+    EXPECT_EQ(stats["method"], "wboit");
+    EXPECT_LT(starnt::mseSrgb(headlessRender(stats, dir), image), kMaxMse);
+    fs::remove_all(dir);
+}
+
 // Live switches: each screenshot must show what was switched to, equal to the headless render
 // with those settings.
 TEST(Viewer, LiveSwitchesShowInScreenshotsAndStats) {

@@ -1,4 +1,4 @@
-// Headless OpenGL 4.5 core context through EGL.
+// Headless OpenGL 4.5 core or OpenGL ES 3.2 context through EGL.
 //
 // Tries EGL_EXT_platform_device first (a GPU, or Mesa's software device), then
 // EGL_MESA_platform_surfaceless. No window system is needed: all rendering goes to framebuffer
@@ -13,17 +13,25 @@
 
 namespace starnt {
 
+// Which API a headless context speaks. The methods run the same passes on both (SPEC section 12):
+// Desktop is OpenGL 4.5 core with GLSL 450, Es is OpenGL ES 3.2 with GLSL ES 3.10, the mobile path.
+enum class GlApi { Desktop, Es };
+// "gl" or "gles" (the command line's --api); throws starnt::Error for anything else.
+GlApi parseGlApi(const std::string& name);
+const char* glApiName(GlApi api);
+
 struct GlContextInfo {
     std::string platform;  // "device" or "surfaceless"
     std::string vendor;
     std::string renderer;
     std::string version;
+    GlApi api = GlApi::Desktop;
     bool software = false;  // llvmpipe/softpipe: true
 };
 
 class HeadlessGlContext {
 public:
-    HeadlessGlContext();
+    explicit HeadlessGlContext(GlApi api = GlApi::Desktop);
     ~HeadlessGlContext();
     HeadlessGlContext(const HeadlessGlContext&) = delete;
     HeadlessGlContext& operator=(const HeadlessGlContext&) = delete;

@@ -103,8 +103,11 @@ std::vector<std::string> methodNames();
 std::unique_ptr<OitMethod> createMethod(const std::string& name, const SurfaceShader& surface,
                                         const MethodOptions& options = {});
 
-// Throws starnt::Error naming what the current context lacks (no current context, OpenGL below
-// 4.5 core, too few fragment storage blocks or draw buffers). createMethod calls it.
+// Throws starnt::Error naming what the current context lacks (no current context, desktop OpenGL
+// below 4.5 core, OpenGL ES below 3.2 or without EXT_color_buffer_float, EXT_float_blend and
+// OES_texture_float_linear, too few fragment storage blocks or draw buffers). createMethod calls
+// it. Both APIs run the same passes: the methods read the API from the current context and pick
+// the GLSL dialect (450 core or 320 es) and the few calls that differ (docs/INTEGRATION.md).
 void checkGlRequirements();
 
 }  // namespace starnt

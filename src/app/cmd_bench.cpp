@@ -46,6 +46,7 @@ std::string commandLine(const bench::Request& r, const std::string& out, bool no
     if (r.frames) line += " --frames " + std::to_string(r.frames);
     if (!r.cameraPath.empty()) line += " --camera-path " + r.cameraPath;
     if (r.abufferCapMib > 0.0) line += " --abuffer-cap-mib " + std::to_string(r.abufferCapMib);
+    if (r.api != "gl") line += " --api " + r.api;
     line += " --suite-dir " + r.suiteDir;
     if (noPlots) line += " --no-plots";
     return line + " --out " + out;
@@ -78,6 +79,7 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--camera-path", a->request.cameraPath, "override the preset's path: orbit:START,END[,ELEV] or keyframe .json");
     cmd->add_option("--abuffer-cap-mib", a->request.abufferCapMib, "A-buffer memory cap in MiB (default 2048)")
         ->check(CLI::Range(0.0, kMaxAbufferCapMib));  // 0: the default
+    cmd->add_option("--api", a->request.api, "gl (OpenGL 4.5 core) or gles (OpenGL ES 3.2)")->capture_default_str();
     cmd->add_option("--python", a->python, "Python with matplotlib for the plots")->capture_default_str();
     cmd->add_flag("--no-plots", a->noPlots, "skip the plots");
     cmd->callback([a] {

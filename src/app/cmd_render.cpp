@@ -86,6 +86,7 @@ void addRenderCommand(CLI::App& app) {
         bool unlit = false;
         std::string wboitWeight = "eq10", weights;
         std::string mboitMoments = "6";
+        std::string api = "gl";
     };
     auto a = std::make_shared<Args>();
     CLI::App* cmd = app.add_subcommand("render", "render a scene with one OIT method");
@@ -104,6 +105,7 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--mboit-moments", a->mboitMoments, "mboit: 4|6 power moments, t2|t3 trigonometric moments")
         ->capture_default_str();
     cmd->add_option("--abuffer-cap-mib", a->abufferCapMib, "abuffer: memory cap in MiB")->capture_default_str();
+    cmd->add_option("--api", a->api, "gl (OpenGL 4.5 core) or gles (OpenGL ES 3.2, the mobile path)")->capture_default_str();
     cmd->add_option("--camera-path", a->cameraPath, "sequence camera: orbit:START,END[,ELEV] or a keyframe .json");
     addAccelerationOptions(cmd, a->acceleration);
     cmd->add_option("--tiles-image", a->tilesImage, "write the tile levels over the last frame (.png)");
@@ -117,6 +119,7 @@ void addRenderCommand(CLI::App& app) {
     const CLI::Option* temporalModeOption = cmd->get_option("--temporal-mode");
     cmd->callback([a, alphaOption, temporalModeOption] {
         checkImageSize(a->width, a->height);
+        const GlApi api = parseGlApi(a->api);
         if (a->frames < 1 || a->frames > 100000) throw Error("--frames must be in 1..100000");
         if (alphaOption->count() > 0 && !(a->alpha >= 0.0 && a->alpha <= 1.0)) {
             throw Error("--alpha " + alphaOption->as<std::string>() + ": must be in [0, 1]");
@@ -159,7 +162,7 @@ void addRenderCommand(CLI::App& app) {
         const glm::vec3 background = parseColor(a->background, "--background");
 
         Scene scene = loadScene(a->scene);
-        HeadlessGlContext context;
+        HeadlessGlContext context(api);
         SceneGpu sceneGpu(scene);
 
         RenderJob job;
@@ -208,6 +211,8 @@ void addRenderCommand(CLI::App& app) {
         out.stats["scene"] = a->scene;
         out.stats["triangles"] = scene.triangleCount();
         out.stats["gl_renderer"] = context.info().renderer;
+        out.stats["gl_api"] = glApiName(context.info().api);
+        out.stats["gl_version"] = context.info().version;
         if (!numbered) outputs.stageImage(out.image, a->out);
         if (!a->exr.empty() && !numberedExr) outputs.stageImage(out.image, a->exr);
         if (!a->frameStats.empty()) outputs.stage(a->frameStats, frameLines);

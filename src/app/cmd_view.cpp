@@ -17,7 +17,7 @@ void addViewCommand(CLI::App& app) {
     struct Args {
         std::string scene = "builtin:tubes", method = "starnt", split, view = "final", alpha, background = "1,1,1";
         AccelerationFlags acceleration;
-        std::string script, scriptFile, scenesDir;
+        std::string script, scriptFile, scenesDir, api = "gl";
         int width = 1280, height = 720, framesLimit = 0;
         bool noUi = false;
     };
@@ -36,6 +36,7 @@ void addViewCommand(CLI::App& app) {
     cmd->add_option("--script-file", a->scriptFile, "scripted input from a file (one command per line)");
     cmd->add_option("--frames-limit", a->framesLimit, "close after this many frames (0: never)")->capture_default_str();
     cmd->add_option("--scenes-dir", a->scenesDir, "folder listed in the scene menu (default ../shared/scenes)");
+    cmd->add_option("--api", a->api, "gl (OpenGL 4.5 core) or gles (OpenGL ES 3.2 through EGL)")->capture_default_str();
     cmd->add_flag("--no-ui", a->noUi, "start with the panels hidden (H toggles them)");
     cmd->callback([a] {
 #ifdef STARNT_HAVE_VIEWER
@@ -45,6 +46,7 @@ void addViewCommand(CLI::App& app) {
         config.height = a->height;
         config.framesLimit = a->framesLimit;
         config.showUi = !a->noUi;
+        config.api = parseGlApi(a->api);
         config.scenesFolder = a->scenesDir.empty() ? viewer::defaultScenesFolder() : a->scenesDir;
         // The same spellings as the script commands and `starnt render`, checked by one parser.
         viewer::ViewerSettings& s = config.settings;

@@ -186,6 +186,7 @@ Plan makePlan(const Request& request) {
     checkImageSize(plan.width, plan.height);
     if (plan.frames < 1 || plan.frames > 10000) throw Error("--frames must be in 1..10000");
     // 0 = the default cap; anything else is checked and converted without wrapping (1e30 MiB).
+    plan.api = parseGlApi(request.api);
     plan.abufferCapBytes = request.abufferCapMib == 0.0 ? AbufferOptions{}.memoryCapBytes
                                                         : abufferCapBytes(request.abufferCapMib, "--abuffer-cap-mib");
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "render/scene_gpu.hpp"
+#include "starnt/gl_context.hpp"
 #include "starnt/oit_method.hpp"
 
 namespace starnt::bench {
@@ -60,6 +61,7 @@ struct Request {
     int width = 0, height = 0, frames = 0;
     std::string cameraPath;
     double abufferCapMib = 0.0;  // 0: MethodOptions default
+    std::string api = "gl";      // gl | gles: the context the whole run renders in
 };
 
 // The resolved run: concrete scenes (sources made absolute), variants and sizes.
@@ -77,6 +79,7 @@ struct Plan {
     std::string suiteDir;  // the folder used, empty when built-ins replaced the suite
     std::string suiteNote;  // one line on where the scenes came from
     size_t abufferCapBytes = 0;
+    GlApi api = GlApi::Desktop;
 };
 
 // Resolves names and checks every value before anything renders; throws starnt::Error with the

@@ -178,7 +178,7 @@ Results runBench(const Plan& plan, const std::string& outDir, std::FILE* progres
     Results results;
     results.plan = plan;
     results.date = isoUtcNow();
-    HeadlessGlContext context;
+    HeadlessGlContext context(plan.api);
     results.machine = collectMachineInfo(context.info());
     fs::create_directories(outDir);
     Progress progress(progressOut, totalFrames(plan));

@@ -60,8 +60,8 @@ struct HeadlessGlContext::Impl {
     EGLContext context = EGL_NO_CONTEXT;
     GlContextInfo info;
 
-    // Creates a 4.5 core context on `dpy`; returns false (with a reason) when it cannot.
-    bool tryDisplay(EGLDisplay dpy, const char* platform, std::string& why) {
+    // Creates a 4.5 core (or ES 3.2) context on `dpy`; returns false (with a reason) when it cannot.
+    bool tryDisplay(EGLDisplay dpy, const char* platform, GlApi api, std::string& why) {
         EGLint major = 0, minor = 0;
         if (dpy == EGL_NO_DISPLAY || !eglInitialize(dpy, &major, &minor)) {
             why += std::string(platform) + ": eglInitialize failed; ";
@@ -73,18 +73,21 @@ struct HeadlessGlContext::Impl {
             eglTerminate(dpy);
             return false;
         }
-        if (!eglBindAPI(EGL_OPENGL_API)) {
-            why += std::string(platform) + ": desktop OpenGL API unavailable; ";
+        const bool es = api == GlApi::Es;
+        if (!eglBindAPI(es ? EGL_OPENGL_ES_API : EGL_OPENGL_API)) {
+            why += std::string(platform) + (es ? ": OpenGL ES API unavailable; " : ": desktop OpenGL API unavailable; ");
             eglTerminate(dpy);
             return false;
         }
-        const EGLint configAttribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+        const EGLint configAttribs[] = {EGL_RENDERABLE_TYPE, es ? EGL_OPENGL_ES3_BIT : EGL_OPENGL_BIT, EGL_NONE};
         EGLConfig config = nullptr;
         EGLint numConfigs = 0;
         bool haveConfig = eglChooseConfig(dpy, configAttribs, &config, 1, &numConfigs) && numConfigs > 0;
-        std::vector<EGLint> ctxAttribs = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                                          EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                          EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT};
+        std::vector<EGLint> ctxAttribs = {EGL_CONTEXT_MAJOR_VERSION, es ? 3 : 4, EGL_CONTEXT_MINOR_VERSION, es ? 2 : 5};
+        if (!es) {
+            ctxAttribs.push_back(EGL_CONTEXT_OPENGL_PROFILE_MASK);
+            ctxAttribs.push_back(EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT);
+        }
 #ifdef STARNT_GL_DEBUG
         ctxAttribs.push_back(EGL_CONTEXT_OPENGL_DEBUG);
         ctxAttribs.push_back(EGL_TRUE);
@@ -93,7 +96,7 @@ struct HeadlessGlContext::Impl {
         EGLContext ctx = eglCreateContext(dpy, haveConfig ? config : EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT,
                                           ctxAttribs.data());
         if (ctx == EGL_NO_CONTEXT) {
-            why += std::string(platform) + ": no OpenGL 4.5 core context (EGL error 0x" +
+            why += std::string(platform) + (es ? ": no OpenGL ES 3.2 context" : ": no OpenGL 4.5 core context") + " (EGL error 0x" +
                    std::to_string(eglGetError()) + "); ";
             eglTerminate(dpy);
             return false;
@@ -107,11 +110,20 @@ struct HeadlessGlContext::Impl {
         display = dpy;
         context = ctx;
         info.platform = platform;
+        info.api = api;
         return true;
     }
 };
 
-HeadlessGlContext::HeadlessGlContext() : impl_(std::make_unique<Impl>()) {
+GlApi parseGlApi(const std::string& name) {
+    if (name == "gl") return GlApi::Desktop;
+    if (name == "gles") return GlApi::Es;
+    throw Error("unknown --api '" + name + "' (expected gl or gles)");
+}
+
+const char* glApiName(GlApi api) { return api == GlApi::Es ? "gles" : "gl"; }
+
+HeadlessGlContext::HeadlessGlContext(GlApi api) : impl_(std::make_unique<Impl>()) {
     std::string why;
     const char* clientExts = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     if (!clientExts) {
@@ -136,7 +148,7 @@ HeadlessGlContext::HeadlessGlContext() : impl_(std::make_unique<Impl>()) {
         }
         for (EGLDeviceEXT dev : ordered) {
             EGLDisplay dpy = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, dev, nullptr);
-            if (impl_->tryDisplay(dpy, "device", why)) {
+            if (impl_->tryDisplay(dpy, "device", api, why)) {
                 done = true;
                 break;
             }
@@ -147,12 +159,13 @@ HeadlessGlContext::HeadlessGlContext() : impl_(std::make_unique<Impl>()) {
     }
     if (!done && hasExtension(clientExts, "EGL_MESA_platform_surfaceless")) {
         EGLDisplay dpy = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-        done = impl_->tryDisplay(dpy, "surfaceless", why);
+        done = impl_->tryDisplay(dpy, "surfaceless", api, why);
     } else if (!done) {
         why += "EGL_MESA_platform_surfaceless not offered; ";
     }
     if (!done) {
-        throw Error("cannot create a headless OpenGL 4.5 core context: " + why +
+        throw Error(std::string("cannot create a headless ") +
+                    (api == GlApi::Es ? "OpenGL ES 3.2" : "OpenGL 4.5 core") + " context: " + why +
                     "install libgl1-mesa-dri and libegl-mesa0 (Mesa llvmpipe) or a GPU driver with EGL");
     }
     auto str = [](GLenum e) {

@@ -11,10 +11,26 @@ namespace starnt {
 void checkGlRequirements() {
     // Without a current context GL calls do nothing and glGetString returns null.
     if (glGetString(GL_VERSION) == nullptr) throw Error("no OpenGL context is current on this thread");
-    int version = epoxy_gl_version();
-    if (version < 45 || epoxy_is_desktop_gl() == false) {
-        throw Error("OpenGL 4.5 core is required; the current context offers " +
-                    std::to_string(version / 10) + "." + std::to_string(version % 10));
+    const int version = epoxy_gl_version();
+    const std::string offered = std::to_string(version / 10) + "." + std::to_string(version % 10);
+    if (epoxy_is_desktop_gl()) {
+        if (version < 45) throw Error("OpenGL 4.5 core is required; the current context offers " + offered);
+    } else {
+        if (version < 32) {
+            throw Error("OpenGL ES 3.2 is required (or desktop OpenGL 4.5 core); the current context offers OpenGL ES " +
+                        offered);
+        }
+        // What ES 3.2 leaves optional and the methods need: float colour targets (every pass
+        // writes RGBA32F/R32F), blending into them (pass 3, WBOIT, MBOIT, the depth-complexity
+        // count), and linear filtering of float textures (the upsampling of reduced passes).
+        std::string missing;
+        for (const char* ext : {"GL_EXT_color_buffer_float", "GL_EXT_float_blend", "GL_OES_texture_float_linear"}) {
+            if (!epoxy_has_gl_extension(ext)) missing += std::string(missing.empty() ? "" : ", ") + ext;
+        }
+        if (!missing.empty()) {
+            throw Error("this OpenGL ES " + offered + " context lacks " + missing +
+                        " (float colour buffers, float blending and filtering), which the methods need");
+        }
     }
     GLint maxSsboFrag = 0, maxDrawBuffers = 0;
     glGetIntegerv(GL_MAX_FRAGMENT_SHADER_STORAGE_BLOCKS, &maxSsboFrag);

@@ -4,8 +4,10 @@
 #include <epoxy/gl.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <utility>
+#include <vector>
 
 
 namespace starnt::gl {
@@ -84,6 +86,45 @@ private:
 
 // A framebuffer with the given colour attachments (in order) and an optional depth texture.
 FramebufferHandle makeFramebuffer(std::initializer_list<const Texture2D*> colors, const Texture2D* depth = nullptr);
+
+// ---- One code for OpenGL 4.5 core and OpenGL ES 3.2 -------------------------------------------
+// The methods run the same passes and shaders on both APIs. Where GL 4.5 has a direct-state-access
+// call that ES 3.2 lacks, the calls below keep the desktop call (so desktop behaviour is what it
+// was) and use the ES 3.2 bind-to-edit equivalent on ES; each says which. The binding points they
+// touch on ES (GL_TEXTURE_2D of the active unit, GL_COPY_READ/WRITE_BUFFER, GL_READ_FRAMEBUFFER,
+// GL_FRAMEBUFFER) are in the list of state docs/INTEGRATION.md says render() may change.
+
+// True when the current context is OpenGL ES.
+bool isEs();
+// glBindTextureUnit (ES: glActiveTexture + glBindTexture(GL_TEXTURE_2D); every texture the methods
+// bind is 2D).
+void bindTexture(GLuint unit, GLuint texture);
+// Sets every 32-bit word of a buffer to `value` (glClearNamedBufferData; ES: glBufferSubData).
+void fillBufferUint(const Buffer& buffer, uint32_t value);
+// Reads `bytes` at `offset` (glGetNamedBufferSubData; ES: glMapBufferRange for reading).
+void readBuffer(GLuint buffer, size_t offset, size_t bytes, void* out);
+// glCopyNamedBufferSubData (ES: glCopyBufferSubData through the copy binding points).
+void copyBuffer(GLuint source, GLuint destination, size_t bytes);
+// Level 0 of a 2D colour texture as floats: `channels` 1 (GL_RED) or 4 (GL_RGBA), rows bottom-up
+// as GL stores them (glGetTextureImage; ES, which cannot read textures back, attaches it to a
+// framebuffer and calls glReadPixels with RGBA/FLOAT, which EXT_color_buffer_float guarantees).
+std::vector<float> readTextureFloats(GLuint texture, int width, int height, int channels);
+// glTextureSubImage2D of the whole level 0 (ES: glBindTexture + glTexSubImage2D).
+void uploadTexture(GLuint texture, int width, int height, GLenum format, GLenum type, const void* pixels);
+// The sized internal format of level 0 (glGetTextureLevelParameteriv; ES 3.1: glGetTexLevelParameteriv).
+GLenum textureInternalFormat(GLuint texture);
+// A framebuffer name (glCreateFramebuffers; ES: glGenFramebuffers + a first bind, which creates it).
+FramebufferHandle makeFramebufferName();
+// Attaches level 0 of `texture` (or 0 to detach) and checks completeness; returns the status.
+GLenum attachTexture(GLuint framebuffer, GLenum attachment, GLuint texture);
+// The size a framebuffer without attachments rasterises at (glNamedFramebufferParameteri; ES 3.1:
+// glFramebufferParameteri).
+void setFramebufferDefaultSize(GLuint framebuffer, int width, int height);
+// Viewport 0 with a fractional origin (glViewportIndexedf). ES needs OES_viewport_array for it
+// (llvmpipe and most ES 3.2 drivers have it); without it, a fractional origin is an error, since
+// the reduced passes' samples would miss the full-resolution pixel centres.
+void setViewportF(float x, float y, float width, float height);
+bool hasFractionalViewport();
 
 // An empty vertex array for attribute-less full-screen triangles (gl_VertexID based). Each
 // owner keeps its own: vertex arrays are not shared between contexts.

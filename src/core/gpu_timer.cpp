@@ -21,6 +21,19 @@ bool currentContextIsSoftware() {
            renderer.find("swrast") != std::string_view::npos;
 }
 
+bool wallClockTimingNeeded() {
+    return currentContextIsSoftware() || (!epoxy_is_desktop_gl() && !epoxy_has_gl_extension("GL_EXT_disjoint_timer_query"));
+}
+
+const char* passTimingDescription() {
+    if (currentContextIsSoftware()) return "glFinish + wall clock (software rasteriser)";
+    if (!epoxy_is_desktop_gl()) {
+        return wallClockTimingNeeded() ? "glFinish + wall clock (OpenGL ES without EXT_disjoint_timer_query)"
+                                       : "GL_TIMESTAMP_EXT pairs (EXT_disjoint_timer_query)";
+    }
+    return "GL_TIMESTAMP pairs";
+}
+
 namespace {
 constexpr std::array<GLenum, 3> kCounterTargets = {GL_VERTEX_SHADER_INVOCATIONS_ARB,
                                                    GL_FRAGMENT_SHADER_INVOCATIONS_ARB,

@@ -91,6 +91,12 @@ private:
 
 // True when the current context is a software rasteriser (llvmpipe, softpipe, swrast).
 bool currentContextIsSoftware();
+// True when pass timing must use glFinish + wall clock: a software rasteriser (its GL_TIME_ELAPSED
+// and timestamps are not GPU times), or OpenGL ES without EXT_disjoint_timer_query (ES 3.2 has no
+// timestamp queries of its own).
+bool wallClockTimingNeeded();
+// How the current context's passes are timed, for stats and the viewer.
+const char* passTimingDescription();
 
 // RAII: reports the enclosed GL work as pass `pass` to the engine's timing hook; no-op for nullptr.
 class ScopedPass {

@@ -2,6 +2,7 @@
 // functions and the atomic file write every output goes through.
 #include "starnt/error.hpp"
 #include "starnt/image.hpp"
+#include "core/image_limits.hpp"
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -51,7 +52,13 @@ void checkWritable(const Image& image, const std::string& path) {
 std::string encodePng(const Image& image, const std::string& path);
 std::string encodeExr(const Image& image, const std::string& path);
 
+long long gImagePixelBudget = kMaxImagePixels;  // core/image_limits.hpp
+
 void checkImageDimensions(long long w, long long h, const std::string& path) {
+    if (w * h > gImagePixelBudget && w <= kMaxImageSide && h <= kMaxImageSide && w * h <= kMaxImagePixels) {
+        throw Error("image " + path + " is " + std::to_string(w) + "x" + std::to_string(h) +
+                    ": over the decode budget of " + std::to_string(gImagePixelBudget) + " pixels set for fuzzing");
+    }
     if (w > kMaxImageSide || h > kMaxImageSide || w * h > kMaxImagePixels)
         throw Error("image " + path + " is " + std::to_string(w) + "x" + std::to_string(h) +
                     ": larger than this tool reads (at most " + std::to_string(kMaxImageSide) + " pixels on a side and " +
@@ -102,11 +109,76 @@ Image loadPng(const std::string& path) {
     return img;
 }
 
-Image loadExr(const std::string& path) {
-    {
-        std::ifstream probe(path, std::ios::binary);
-        if (!probe) throw Error("cannot open image " + path + ": " + std::strerror(errno));
+// Walks the attribute list of an OpenEXR header (magic, version, then per attribute: name NUL,
+// type NUL, int32 size, value; an empty name ends a header; multi-part files have one header per
+// part and an empty one after the last) and rejects an attribute whose size is negative or larger
+// than what is left of the file. OpenEXR allocates an attribute's declared size before reading it:
+// a 400-byte file could make it allocate a gigabyte (the fuzzer found such files by the thousand).
+// The data window gets the size check of checkImageDimensions here too: OpenEXR sizes buffers by it
+// while opening the file. A header this walk cannot follow is left to OpenEXR, which reports it.
+void checkExrAttributeSizes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error("cannot open image " + path + ": " + std::strerror(errno));
+    in.seekg(0, std::ios::end);
+    const std::streamoff fileSize = in.tellg();
+    in.seekg(0);
+    unsigned char head[8] = {};
+    if (!in.read(reinterpret_cast<char*>(head), 8) || head[0] != 0x76 || head[1] != 0x2f || head[2] != 0x31 ||
+        head[3] != 0x01) {
+        return;  // too short or not an EXR signature: OpenEXR names the problem
     }
+    const bool multipart = (head[5] & 0x10) != 0;  // version field bit 12
+    auto readName = [&](std::string& out) {
+        out.clear();
+        return bool(std::getline(in, out, '\0'));
+    };
+    for (int part = 0;; ++part) {
+        for (bool firstAttribute = true;; firstAttribute = false) {
+            std::string name, type;
+            if (!readName(name)) return;
+            if (name.empty()) {
+                if (firstAttribute && multipart && part > 0) return;  // the empty header after the last part
+                break;
+            }
+            unsigned char sizeBytes[4] = {};
+            if (!readName(type) || !in.read(reinterpret_cast<char*>(sizeBytes), 4)) return;
+            const int32_t size = int32_t(uint32_t(sizeBytes[0]) | uint32_t(sizeBytes[1]) << 8 |
+                                         uint32_t(sizeBytes[2]) << 16 | uint32_t(sizeBytes[3]) << 24);
+            const std::streamoff left = fileSize - in.tellg();
+            if (size < 0 || std::streamoff(size) > left) {
+                throw Error("cannot read EXR " + path + ": header attribute '" + name + "' claims " +
+                            std::to_string(size) + " bytes, but the file has " + std::to_string(left) + " left");
+            }
+            if (type == "chlist") {
+                // OpenEXR reads a channel list by its structure (name NUL, then 16 bytes, until an
+                // empty name), not by the declared size, and goes on from where the list ended:
+                // follow it the same way, or a list that lies about its size would put this walk
+                // out of step with what OpenEXR reads next (found by fuzz/fuzz_image).
+                std::string channel;
+                while (readName(channel) && !channel.empty()) in.seekg(16, std::ios::cur);
+                if (!in) return;
+                continue;
+            }
+            if (name == "dataWindow" && type == "box2i" && size == 16) {
+                // The size check of checkImageDimensions, before OpenEXR sizes its line buffers by it.
+                unsigned char box[16] = {};
+                if (!in.read(reinterpret_cast<char*>(box), 16)) return;
+                auto int32At = [&](int i) {
+                    return int32_t(uint32_t(box[i]) | uint32_t(box[i + 1]) << 8 | uint32_t(box[i + 2]) << 16 |
+                                   uint32_t(box[i + 3]) << 24);
+                };
+                const long long w = (long long)int32At(8) - int32At(0) + 1, h = (long long)int32At(12) - int32At(4) + 1;
+                if (w > 0 && h > 0) checkImageDimensions(w, h, path);
+                continue;
+            }
+            in.seekg(size, std::ios::cur);
+        }
+        if (!multipart) return;
+    }
+}
+
+Image loadExr(const std::string& path) {
+    checkExrAttributeSizes(path);
     try {
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dw = file.header().dataWindow();
@@ -293,3 +365,10 @@ void OutputFiles::commit() {
 }
 
 }  // namespace starnt
+
+namespace starnt::detail {
+
+void setImagePixelBudget(long long pixels) { gImagePixelBudget = pixels; }
+long long imagePixelBudget() { return gImagePixelBudget; }
+
+}  // namespace starnt::detail

@@ -40,7 +40,7 @@ std::string header(GLenum stage) {
     if (glslDialect() == GlslDialect::Desktop450) {
         h = "#version 450 core\n";
     } else {
-        h = "#version 310 es\n"
+        h = "#version 320 es\n"
             "precision highp float;\nprecision highp int;\nprecision highp sampler2D;\n"
             "precision highp image2D;\nprecision highp uimage2D;\n#define STARNT_GLSL_ES 1\n";
     }
@@ -105,7 +105,7 @@ Program link(const std::string& label, const std::vector<GLuint>& shaders) {
 
 }  // namespace
 
-GlslDialect glslDialect() { return epoxy_is_desktop_gl() ? GlslDialect::Desktop450 : GlslDialect::Es310; }
+GlslDialect glslDialect() { return epoxy_is_desktop_gl() ? GlslDialect::Desktop450 : GlslDialect::Es320; }
 
 namespace {
 std::vector<const EmbeddedFiles*>& extraTables() {

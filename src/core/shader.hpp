@@ -17,10 +17,12 @@
 
 namespace starnt::gl {
 
-enum class GlslDialect { Desktop450, Es310 };
+enum class GlslDialect { Desktop450, Es320 };
 
 // The dialect programs are built for: that of the current context (GLSL 4.50 on desktop GL, GLSL ES
-// 3.10 on OpenGL ES), so a method built in an engine's ES context gets ES shaders.
+// 3.20 on OpenGL ES), so a method built in an engine's ES context gets ES shaders. ES 3.20 rather
+// than 3.10 since the context must be ES 3.2 anyway, and the tools' fragment capture reads
+// gl_PrimitiveID in the fragment stage, which ES 3.10 has only through OES_geometry_shader.
 GlslDialect glslDialect();
 
 // An embedded file's text with its #include lines expanded. Throws starnt::Error when missing.

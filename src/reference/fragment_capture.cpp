@@ -27,10 +27,10 @@ CapturedFrame FragmentCapture::capture(const FrameDesc& frame, const DrawCallbac
     const size_t count = size_t(lists_.fragmentCount());
     std::vector<uint32_t> heads(pixelCount);
     std::vector<glm::uvec4> nodes(count), extras(count);
-    glGetNamedBufferSubData(lists_.heads().id(), 0, GLsizeiptr(pixelCount * 4), heads.data());
+    gl::readBuffer(lists_.heads().id(), 0, GLsizeiptr(pixelCount * 4), heads.data());
     if (count) {
-        glGetNamedBufferSubData(lists_.nodes().id(), 0, GLsizeiptr(count * 16), nodes.data());
-        glGetNamedBufferSubData(lists_.orders().id(), 0, GLsizeiptr(count * 16), extras.data());
+        gl::readBuffer(lists_.nodes().id(), 0, GLsizeiptr(count * 16), nodes.data());
+        gl::readBuffer(lists_.orders().id(), 0, GLsizeiptr(count * 16), extras.data());
     }
     CapturedFrame out;
     out.width = frame.width;
@@ -73,8 +73,7 @@ unsigned DepthComplexityCounter::count(const FrameDesc& frame, const DrawCallbac
     glBlendFunc(GL_ONE, GL_ONE);
     runGeometryPass("count", program_, frame, draw);
     resetPassState();
-    std::vector<float> counts(size_t(width_) * size_t(height_));
-    glGetTextureImage(output_.id(), 0, GL_RED, GL_FLOAT, GLsizei(counts.size() * 4), counts.data());
+    const std::vector<float> counts = gl::readTextureFloats(output_.id(), width_, height_, 1);
     float m = 0.0f;
     for (float c : counts) m = std::max(m, c);
     return unsigned(m + 0.5f);

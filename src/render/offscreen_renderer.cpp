@@ -87,7 +87,7 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
     frame.height = job.height;
     frame.background = job.background;
     frame.alphaCutoff = job.alphaCutoff;
-    gl::GpuPassTimer timer(gl::currentContextIsSoftware());
+    gl::GpuPassTimer timer(gl::wallClockTimingNeeded());
 
     // Per-frame timings; the first frame compiles shaders on first use and is excluded when there
     // are others.
@@ -214,7 +214,7 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
         {"timed_frames", frameMs.size()},
         {"warmup_frames", job.warmupFrames},
         {"interpolated_frames", interpolatedFrames},
-        {"pass_timing", timer.usesWallClock() ? "glFinish + wall clock (software rasteriser)" : "GL_TIMESTAMP pairs"},
+        {"pass_timing", gl::passTimingDescription()},
         {"method_stats", methodStats},
     };
     for (auto& [key, value] : methodStats.items()) {

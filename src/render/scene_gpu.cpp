@@ -38,11 +38,13 @@ SceneGpu::SceneGpu(const Scene& scene) : materials_(scene.materials) {
         }
         while (glGetError() != GL_NO_ERROR) {
         }
+        // Bind-to-edit calls that OpenGL 4.5 and OpenGL ES 3.2 share (the scene renderer runs on both).
         GLuint id = 0;
-        glCreateTextures(GL_TEXTURE_2D, 1, &id);
+        glGenTextures(1, &id);
+        glBindTexture(GL_TEXTURE_2D, id);
         int levels = 1;
         while ((std::max(t.width, t.height) >> levels) > 0) ++levels;
-        glTextureStorage2D(id, levels, GL_SRGB8_ALPHA8, t.width, t.height);
+        glTexStorage2D(GL_TEXTURE_2D, levels, GL_SRGB8_ALPHA8, t.width, t.height);
         if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
             glDeleteTextures(1, &id);
             if (!textures_.empty()) glDeleteTextures(GLsizei(textures_.size()), textures_.data());
@@ -54,23 +56,25 @@ SceneGpu::SceneGpu(const Scene& scene) : materials_(scene.materials) {
                         }() + ")");
         }
         glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-        glTextureSubImage2D(id, 0, 0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, t.rgba8.data());
-        glGenerateTextureMipmap(id);
-        glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-        glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, t.rgba8.data());
+        glGenerateMipmap(GL_TEXTURE_2D);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         textures_.push_back(id);
         bytes_ += size_t(t.width) * size_t(t.height) * 4 * 4 / 3;
     }
     for (const Mesh& m : scene.meshes) {
         MeshGpu g;
+        // Separate attribute formats on the bound vertex array: GL 4.3+ and ES 3.1+ alike.
         GLuint vao = 0;
-        glCreateVertexArrays(1, &vao);
+        glGenVertexArrays(1, &vao);
+        glBindVertexArray(vao);
         g.vao = gl::VertexArrayHandle(vao);
         auto attach = [&](GLuint location, gl::Buffer buffer, GLint components) {
-            glVertexArrayVertexBuffer(vao, location, buffer.id(), 0, GLsizei(components * sizeof(float)));
-            glVertexArrayAttribFormat(vao, location, components, GL_FLOAT, GL_FALSE, 0);
-            glVertexArrayAttribBinding(vao, location, location);
-            glEnableVertexArrayAttrib(vao, location);
+            glBindVertexBuffer(location, buffer.id(), 0, GLsizei(components * sizeof(float)));
+            glVertexAttribFormat(location, components, GL_FLOAT, GL_FALSE, 0);
+            glVertexAttribBinding(location, location);
+            glEnableVertexAttribArray(location);
             bytes_ += buffer.bytes();
             g.buffers.push_back(std::move(buffer));
         };
@@ -79,12 +83,13 @@ SceneGpu::SceneGpu(const Scene& scene) : materials_(scene.materials) {
         if (!m.uvs.empty()) attach(STARNT_ATTRIB_UV, upload(m.uvs), 2);
         if (!m.colors.empty()) attach(STARNT_ATTRIB_COLOR, upload(m.colors), 4);
         gl::Buffer indices = upload(m.indices);
-        glVertexArrayElementBuffer(vao, indices.id());
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices.id());  // recorded in the bound vertex array
         bytes_ += indices.bytes();
         g.buffers.push_back(std::move(indices));
         g.indexCount = GLsizei(m.indices.size());
         g.material = m.material;
         g.hasNormals = !m.normals.empty();
+        glBindVertexArray(0);
         meshes_.push_back(std::move(g));
     }
 }
@@ -114,7 +119,7 @@ void SceneGpu::draw(const GeometryPass& pass, const glm::mat4& view, const glm::
         glUniform1i(hasNormals, m.hasNormals ? 1 : 0);
         glUniform1i(hasTexture, mat.baseColorTexture >= 0 ? 1 : 0);
         if (mat.baseColorTexture >= 0) {
-            glBindTextureUnit(STARNT_SURFACE_TEXTURE_UNIT, textures_[size_t(mat.baseColorTexture)]);
+            gl::bindTexture(STARNT_SURFACE_TEXTURE_UNIT, textures_[size_t(mat.baseColorTexture)]);
         }
         if (drawIndex >= 0) glUniform1i(drawIndex, GLint(i));
         glBindVertexArray(m.vao.id());

@@ -18,11 +18,11 @@ void DisplayPass::draw(GLuint left, GLuint right, int splitX, glm::ivec2 size) {
     glDisable(GL_BLEND);
     glDisable(GL_SCISSOR_TEST);
     glDisable(GL_CULL_FACE);
-    glDisable(GL_FRAMEBUFFER_SRGB);  // encoded in the shader
+    if (!gl::isEs()) glDisable(GL_FRAMEBUFFER_SRGB);  // encoded in the shader (ES never converts a linear window)
     glUseProgram(program_.id());
     glUniform1i(program_.uniform("u_splitX"), right ? splitX : -1);
-    glBindTextureUnit(0, left);
-    glBindTextureUnit(1, right ? right : left);
+    gl::bindTexture(0, left);
+    gl::bindTexture(1, right ? right : left);
     gl::drawFullscreenTriangle(emptyVao_);
 }
 
@@ -52,7 +52,7 @@ gl::Texture2D uploadImage(const Image& image) {
         std::copy_n(&image.rgba[size_t(image.height - 1 - y) * row], row, &flipped[size_t(y) * row]);
     }
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTextureSubImage2D(texture.id(), 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT, flipped.data());
+    gl::uploadTexture(texture.id(), image.width, image.height, GL_RGBA, GL_FLOAT, flipped.data());
     return texture;
 }
 

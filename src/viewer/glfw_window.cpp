@@ -36,15 +36,22 @@ std::string noDisplayMessage(const std::string& detail) {
            "use, `starnt render` (images, stats, --camera-path sequences) and `starnt bench` need no display.";
 }
 
-GlfwWindow::GlfwWindow(int width, int height, const std::string& title) {
+GlfwWindow::GlfwWindow(int width, int height, const std::string& title, GlApi api) {
     // Checked first: without it GLFW's X11 message is correct but does not say what to do instead.
     if (!haveDisplayVariable()) throw Error(noDisplayMessage("neither DISPLAY nor WAYLAND_DISPLAY is set"));
     glfwSetErrorCallback(recordGlfwError);
     if (!glfwInit()) throw Error(noDisplayMessage("cannot open it: " + lastGlfwError()));
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
-    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    if (api == GlApi::Es) {
+        glfwWindowHint(GLFW_CLIENT_API, GLFW_OPENGL_ES_API);
+        glfwWindowHint(GLFW_CONTEXT_CREATION_API, GLFW_EGL_CONTEXT_API);
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 2);
+    } else {
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+        glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+        glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    }
     // No depth/stencil on the window: every method renders into its own framebuffers.
     glfwWindowHint(GLFW_DEPTH_BITS, 0);
     glfwWindowHint(GLFW_STENCIL_BITS, 0);
@@ -52,7 +59,8 @@ GlfwWindow::GlfwWindow(int width, int height, const std::string& title) {
     if (!window_) {
         const std::string why = lastGlfwError();
         glfwTerminate();
-        throw Error("cannot create a window with an OpenGL 4.5 core context: " + why);
+        throw Error(std::string("cannot create a window with an ") +
+                    (api == GlApi::Es ? "OpenGL ES 3.2" : "OpenGL 4.5 core") + " context: " + why);
     }
     glfwMakeContextCurrent(window_);
     // Uncapped: the timing panel should show what the methods cost, not the monitor's refresh.

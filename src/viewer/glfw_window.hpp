@@ -1,9 +1,11 @@
-// The viewer's window: GLFW with an OpenGL 4.5 core context, and the dropped-file queue.
+// The viewer's window: GLFW with an OpenGL 4.5 core (or ES 3.2) context, and the dropped-file queue.
 #pragma once
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#include "starnt/gl_context.hpp"
 
 struct GLFWwindow;
 
@@ -16,7 +18,8 @@ class GlfwWindow {
 public:
     // Opens the window and makes its context current. Throws starnt::Error with noDisplayMessage
     // when there is no display, or naming what the driver lacks (GL 4.5 core).
-    GlfwWindow(int width, int height, const std::string& title);
+    // api Es asks GLFW for an OpenGL ES 3.2 context created through EGL.
+    GlfwWindow(int width, int height, const std::string& title, GlApi api = GlApi::Desktop);
     ~GlfwWindow();
     GlfwWindow(const GlfwWindow&) = delete;
     GlfwWindow& operator=(const GlfwWindow&) = delete;

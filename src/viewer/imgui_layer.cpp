@@ -1,5 +1,6 @@
 #include "viewer/imgui_layer.hpp"
 
+#include <epoxy/gl.h>
 #include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
@@ -18,7 +19,8 @@ ImGuiLayer::ImGuiLayer(GLFWwindow* window) {
         ImGui::DestroyContext();
         throw Error("cannot initialise the Dear ImGui GLFW backend");
     }
-    if (!ImGui_ImplOpenGL3_Init("#version 450")) {
+    // ImGui's own shaders: GLSL 450 on desktop, GLSL ES 3.00 on an ES context.
+    if (!ImGui_ImplOpenGL3_Init(epoxy_is_desktop_gl() ? "#version 450" : "#version 300 es")) {
         ImGui_ImplGlfw_Shutdown();
         ImGui::DestroyContext();
         throw Error("cannot initialise the Dear ImGui OpenGL 3 backend");

@@ -27,7 +27,7 @@ FrameDesc frameDesc(const Camera& camera, glm::ivec2 size, const ViewerSettings&
     return frame;
 }
 
-MethodSet::MethodSet(const ViewerSettings& initial) : built_(initial), timer_(gl::currentContextIsSoftware()) {
+MethodSet::MethodSet(const ViewerSettings& initial) : built_(initial), timer_(gl::wallClockTimingNeeded()) {
     primary_ = makeMethod(initial.method, initial.options);
     if (!initial.splitMethod.empty()) split_ = makeMethod(initial.splitMethod, initial.options);
 }
@@ -75,7 +75,7 @@ size_t MethodSet::gpuMemoryBytes() const {
 }
 
 const char* MethodSet::timingMode() const {
-    return timer_.usesWallClock() ? "glFinish + wall clock (software rasteriser)" : "GL timestamps";
+    return gl::passTimingDescription();
 }
 
 }  // namespace starnt::viewer

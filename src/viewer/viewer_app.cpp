@@ -54,6 +54,7 @@ public:
         : config_(config), window_(window), imgui_(window.handle()), settings_(config.settings), methods_(config.settings), script_(std::move(script)), showUi_(config.showUi) {
         scenes_ = listScenes(config.scenesFolder);
         renderer_ = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+        glVersion_ = reinterpret_cast<const char*>(glGetString(GL_VERSION));
         installScene(scene, config.scene);
         computeErrorRequested_ = settings_.view == ViewMode::Error;  // --view error: one map to start with
         double x = 0, y = 0;
@@ -367,6 +368,7 @@ private:
               {"far", camera.farPlane},
               {"mode", camera_.mode() == CameraMode::Orbit ? "orbit" : "fly"}}},
             {"gl_renderer", renderer_},
+            {"gl_version", glVersion_},
             {"last_error", error_.empty() ? nlohmann::json(nullptr) : nlohmann::json(error_)},
         };
         if (GLuint heatmap = errorView_.heatmapFor(sceneGeneration_, camera, size, settings_); heatmap) {
@@ -433,7 +435,7 @@ private:
     size_t sceneTriangles_ = 0;
     int sceneGeneration_ = 0;
     std::vector<SceneEntry> scenes_;
-    std::string renderer_, error_, message_;
+    std::string renderer_, glVersion_, error_, message_;
 
     std::vector<ScriptCommand> script_;
     size_t scriptPos_ = 0;
@@ -458,7 +460,7 @@ void runViewer(const ViewerConfig& config) {
     checkImageSize(config.width, config.height);
     if (config.framesLimit < 0) throw Error("--frames-limit must not be negative");
     const Scene scene = loadScene(config.scene);
-    GlfwWindow window(config.width, config.height, "starnt view");
+    GlfwWindow window(config.width, config.height, "starnt view", config.api);
     ViewerApp app(config, window, scene, std::move(script));
     app.run();
 }

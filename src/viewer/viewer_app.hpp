@@ -2,6 +2,7 @@
 #pragma once
 #include <string>
 
+#include "starnt/gl_context.hpp"
 #include "viewer/viewer_settings.hpp"
 
 namespace starnt::viewer {
@@ -14,6 +15,7 @@ struct ViewerConfig {
     int framesLimit = 0;             // close after this many frames; 0: run until closed
     std::string scenesFolder;        // listed in the scene menu
     bool showUi = true;
+    GlApi api = GlApi::Desktop;  // gl: a 4.5 core window context; gles: ES 3.2 through EGL
 };
 
 // Opens the window and runs until it is closed, the script says quit or the frame limit is reached.

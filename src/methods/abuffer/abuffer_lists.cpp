@@ -24,11 +24,8 @@ void ABufferLists::allocate(int width, int height, uint64_t capacity) {
     }
     if (width != width_ || height != height_) {
         heads_ = gl::Buffer(size_t(width) * size_t(height) * 4);
-        GLuint fb = 0;
-        glCreateFramebuffers(1, &fb);
-        emptyFb_ = gl::FramebufferHandle(fb);
-        glNamedFramebufferParameteri(fb, GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
-        glNamedFramebufferParameteri(fb, GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+        emptyFb_ = gl::makeFramebufferName();
+        gl::setFramebufferDefaultSize(emptyFb_.id(), width, height);
         width_ = width;
         height_ = height;
     }
@@ -56,8 +53,8 @@ void ABufferLists::build(const FrameDesc& frame, const DrawCallback& draw, const
     regrows_ = 0;
     for (;;) {
         const GLuint end = STARNT_ABUFFER_END, zero = 0;
-        glClearNamedBufferData(heads_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &end);
-        glClearNamedBufferData(counters_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        gl::fillBufferUint(heads_, end);
+        gl::fillBufferUint(counters_, zero);
         bindBuffers();
         resetPassState();
         glBindFramebuffer(GL_FRAMEBUFFER, emptyFb_.id());
@@ -73,7 +70,7 @@ void ABufferLists::build(const FrameDesc& frame, const DrawCallback& draw, const
         }
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         GLuint count = 0;
-        glGetNamedBufferSubData(counters_.id(), 0, 4, &count);
+        gl::readBuffer(counters_.id(), 0, 4, &count);
         lastCount_ = count;
         if (count <= capacity_) break;
         // The counter is 32-bit: a frame of more than 4G fragments cannot be represented at all.

@@ -98,9 +98,9 @@ public:
             glUniform1f(shade_.uniform("u_momentBias"), setting_.bias);
             glUniform1fv(shade_.uniform("u_biasVector"), 6, setting_.biasVector);
             glUniform1f(shade_.uniform("u_overestimation"), mboit::kOverestimation);
-            glBindTextureUnit(0, b0_.id());
-            glBindTextureUnit(1, moments_tex_.id());
-            if (extra_) glBindTextureUnit(2, extra_.id());
+            gl::bindTexture(0, b0_.id());
+            gl::bindTexture(1, moments_tex_.id());
+            if (extra_) gl::bindTexture(2, extra_.id());
             runGeometryPass("mboit_shade", shade_, frame, draw);
             resetPassState();
         }
@@ -108,8 +108,8 @@ public:
             gl::ScopedPass timing(frame.timing, "resolve");
             bindOutputFramebuffer();
             glUseProgram(resolve_.id());
-            glBindTextureUnit(0, b0_.id());
-            glBindTextureUnit(1, accum_.id());
+            gl::bindTexture(0, b0_.id());
+            gl::bindTexture(1, accum_.id());
             glUniform3fv(resolve_.uniform("u_background"), 1, &frame.background[0]);
             drawFullscreen();
         }

@@ -71,6 +71,9 @@ float mboitFractionInFront(float b0, vec2 moments[MBOIT_COUNT], float z) {
     for (int k = 1; k <= n; ++k) b[k] = moments[k - 1] * ((1.0 - u_momentBias) / b0);
     // LDL^H of the Hermitian Toeplitz matrix M_jk = b_{j-k}.
     vec2 L[(n + 1) * (n + 1)];
+    // Every entry read is written first (column k before row j > k reads it); zeroed so that the
+    // compiler can see that too (Mesa warns, and debug contexts turn the warning into an error).
+    for (int i = 0; i < (n + 1) * (n + 1); ++i) L[i] = vec2(0.0);
     float D[n + 1];
     for (int j = 0; j <= n; ++j) {
         float dj = 1.0;
@@ -85,6 +88,7 @@ float mboitFractionInFront(float b0, vec2 moments[MBOIT_COUNT], float z) {
     float phase = mboitPhase(z);
     vec2 x0 = vec2(cos(phase), sin(phase));
     vec2 q[n + 1];
+    for (int i = 0; i <= n; ++i) q[i] = vec2(0.0);  // written before read; zeroed for the compiler
     vec2 xk = vec2(1.0, 0.0);
     for (int j = 0; j <= n; ++j) {
         vec2 y = xk;
@@ -163,6 +167,7 @@ float mboitFractionInFront(float b0, float moments[MBOIT_COUNT], float z) {
     for (int k = 1; k <= 2 * n; ++k) b[k] = mix(moments[k - 1] / b0, u_biasVector[k - 1], u_momentBias);
     // LDL^T of the Hankel matrix M_jk = b_{j+k}.
     float L[(n + 1) * (n + 1)];
+    for (int i = 0; i < (n + 1) * (n + 1); ++i) L[i] = 0.0;  // as above: written before read
     float D[n + 1];
     for (int j = 0; j <= n; ++j) {
         float dj = b[2 * j];
@@ -175,6 +180,7 @@ float mboitFractionInFront(float b0, float moments[MBOIT_COUNT], float z) {
         }
     }
     float q[n + 1];
+    for (int i = 0; i <= n; ++i) q[i] = 0.0;  // written before read; zeroed for the compiler
     float zk = 1.0;
     for (int j = 0; j <= n; ++j) {
         float y = zk;

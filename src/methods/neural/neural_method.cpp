@@ -253,7 +253,7 @@ private:
 
         bindOutputFramebuffer();
         setCommonUniforms(inference("infer_fill", fullResolution), frame);
-        glBindTextureUnit(kUnitCornerNetwork, cornerNetwork_.id());
+        gl::bindTexture(kUnitCornerNetwork, cornerNetwork_.id());
         drawFullscreen();
     }
 

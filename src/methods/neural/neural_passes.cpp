@@ -26,8 +26,8 @@ void useRectangle(Size2 size) {
 // but applies them exactly, GlTiles.ReducedPassesSampleFullPixelCentres checks it; NVIDIA keeps 8).
 void useReducedRectangle(Size2 size, Size2 full) {
     useRectangle(size);
-    glViewportIndexedf(0, reducedViewportOffset(size.width, full.width), reducedViewportOffset(size.height, full.height),
-                       float(size.width), float(size.height));
+    gl::setViewportF(reducedViewportOffset(size.width, full.width), reducedViewportOffset(size.height, full.height),
+                     float(size.width), float(size.height));
 }
 
 }  // namespace
@@ -42,11 +42,29 @@ gl::Program buildTailResolveProgram() {
                             gl::embeddedSource("methods/neural/tail_resolve.frag.glsl"), neuralEpsilonDefines());
 }
 
-void resolveTails(const TailResolveInputs& in, GLuint pass3Framebuffer, const gl::VertexArrayHandle& emptyVao) {
-    glTextureBarrier();  // pass 3's blended writes become visible to this draw's fetches
+void resolveTails(const TailResolveInputs& in, GLuint pass3Framebuffer, const gl::VertexArrayHandle& emptyVao,
+                  TailResolveCopies& esCopies) {
+    GLuint sums[3] = {in.alphaColor, in.colorCount, in.transmittance};
+    if (gl::isEs()) {
+        // No glTextureBarrier on ES: read copies of the pass-3 rectangle (36 bytes per reduced
+        // pass-3 texel) instead of the targets this draw writes.
+        gl::Texture2D* copies[3] = {&esCopies.alphaColor, &esCopies.colorCount, &esCopies.transmittance};
+        const GLenum formats[3] = {GL_RGBA32F, GL_RGBA32F, GL_R32F};
+        for (int i = 0; i < 3; ++i) {
+            gl::Texture2D& copy = *copies[i];
+            if (copy.width() != in.pass3.width || copy.height() != in.pass3.height) {
+                copy = gl::Texture2D(formats[i], in.pass3.width, in.pass3.height);
+            }
+            glCopyImageSubData(sums[i], GL_TEXTURE_2D, 0, 0, 0, 0, copy.id(), GL_TEXTURE_2D, 0, 0, 0, 0, in.pass3.width,
+                               in.pass3.height, 1);
+            sums[i] = copy.id();
+        }
+    } else {
+        glTextureBarrier();  // pass 3's blended writes become visible to this draw's fetches
+    }
     glUseProgram(in.program->id());
-    const GLuint textures[] = {in.nearest, in.second, in.alphaColor, in.colorCount, in.transmittance};
-    for (GLuint unit = 0; unit < 5; ++unit) glBindTextureUnit(unit, textures[unit]);
+    const GLuint textures[] = {in.nearest, in.second, sums[0], sums[1], sums[2]};
+    for (GLuint unit = 0; unit < 5; ++unit) gl::bindTexture(unit, textures[unit]);
     glUniform2i(in.program->uniform("u_fullSize"), in.full.width, in.full.height);
     glUniform2i(in.program->uniform("u_pass2Size"), in.pass2.width, in.pass2.height);
     glUniform2i(in.program->uniform("u_pass3Size"), in.pass3.width, in.pass3.height);
@@ -90,12 +108,13 @@ void NeuralPasses::addMemoryTargets(OitMethod::MemoryTargets& out) const {
                            {"pass2_depth", secondDepth_.bytes()},
                            {"pass3_alpha_color", alphaColor_.bytes()},
                            {"pass3_color_count", colorCount_.bytes()},
-                           {"pass3_transmittance", transmittance_.bytes()}});
+                           {"pass3_transmittance", transmittance_.bytes()},
+                           {"pass3_resolve_copies_es", esResolveCopies_.bytes()}});
 }
 
 size_t NeuralPasses::gpuMemoryBytes() const {
     return nearest_.bytes() + nearestDepth_.bytes() + reducedDepth_.bytes() + second_.bytes() + secondDepth_.bytes() +
-           alphaColor_.bytes() + colorCount_.bytes() + transmittance_.bytes();
+           alphaColor_.bytes() + colorCount_.bytes() + transmittance_.bytes() + esResolveCopies_.bytes();
 }
 
 void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) {
@@ -129,7 +148,7 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
         }
         gl::ScopedPass timing(frame.timing, "depth_downsample");
         glUseProgram(depthDownsample_.id());
-        glBindTextureUnit(0, nearestDepth_.id());
+        gl::bindTexture(0, nearestDepth_.id());
         glBindImageTexture(0, reducedDepth_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
         glUniform2i(depthDownsample_.uniform("u_fullSize"), full.width, full.height);
         glUniform2i(depthDownsample_.uniform("u_reducedSize"), pass2Size.width, pass2Size.height);
@@ -146,7 +165,7 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
         glDepthFunc(GL_LESS);
         glUseProgram(pass2_.id());
         glUniform1f(pass2_.uniform("u_peelEpsilon"), peelEpsilon);
-        glBindTextureUnit(0, reduced2 ? reducedDepth_.id() : nearestDepth_.id());
+        gl::bindTexture(0, reduced2 ? reducedDepth_.id() : nearestDepth_.id());
         MethodBase::runGeometryPass("pass2", pass2_, frame, draw);
         resetPassState();
     }
@@ -169,18 +188,18 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
         gl::ScopedPass timing(frame.timing, "tail_resolve");
         resolveTails({&tailResolve_, nearest_.id(), second_.id(), alphaColor_.id(), colorCount_.id(), transmittance_.id(),
                       full, pass2Size, pass3Size},
-                     pass3Fb_.id(), emptyVao_);
+                     pass3Fb_.id(), emptyVao_, esResolveCopies_);
     }
     glViewport(0, 0, width_, height_);
 }
 
 void NeuralPasses::bindInputs(const gl::Program& program) const {
-    glBindTextureUnit(kUnitNearest, nearest_.id());
-    glBindTextureUnit(kUnitSecond, second_.id());
-    glBindTextureUnit(kUnitAlphaColor, alphaColor_.id());
-    glBindTextureUnit(kUnitColorCount, colorCount_.id());
-    glBindTextureUnit(kUnitTransmittance, transmittance_.id());
-    glBindTextureUnit(kUnitNearestDepth, nearestDepth_.id());
+    gl::bindTexture(kUnitNearest, nearest_.id());
+    gl::bindTexture(kUnitSecond, second_.id());
+    gl::bindTexture(kUnitAlphaColor, alphaColor_.id());
+    gl::bindTexture(kUnitColorCount, colorCount_.id());
+    gl::bindTexture(kUnitTransmittance, transmittance_.id());
+    gl::bindTexture(kUnitNearestDepth, nearestDepth_.id());
     glUniform2i(program.uniform("u_fullSize"), width_, height_);
     glUniform2i(program.uniform("u_pass2Size"), pass2Size_.width, pass2Size_.height);
     glUniform2i(program.uniform("u_pass3Size"), pass3Size_.width, pass3Size_.height);

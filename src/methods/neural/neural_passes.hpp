@@ -44,7 +44,15 @@ struct TailResolveInputs {
     GLuint nearest, second, alphaColor, colorCount, transmittance;  // textures, as NeuralPasses has them
     Size2 full, pass2, pass3;
 };
-void resolveTails(const TailResolveInputs& inputs, GLuint pass3Framebuffer, const gl::VertexArrayHandle& emptyVao);
+// OpenGL ES has no texture barrier, so there the resolve reads copies of the pass-3 rectangle
+// (glCopyImageSubData) kept in `esCopies`, (re)allocated at the pass-3 size on first use; on
+// desktop GL they stay empty and a glTextureBarrier makes the in-place loop defined.
+struct TailResolveCopies {
+    gl::Texture2D alphaColor, colorCount, transmittance;
+    size_t bytes() const { return alphaColor.bytes() + colorCount.bytes() + transmittance.bytes(); }
+};
+void resolveTails(const TailResolveInputs& inputs, GLuint pass3Framebuffer, const gl::VertexArrayHandle& emptyVao,
+                  TailResolveCopies& esCopies);
 
 class NeuralPasses {
 public:
@@ -86,6 +94,7 @@ private:
     int width_ = 0, height_ = 0;
     Size2 pass2Size_, pass3Size_;
     gl::Texture2D nearest_, nearestDepth_, reducedDepth_, second_, secondDepth_, alphaColor_, colorCount_, transmittance_;
+    TailResolveCopies esResolveCopies_;  // OpenGL ES only: what the tail resolve reads
     gl::FramebufferHandle pass1Fb_, pass2Fb_, pass3Fb_;
 };
 

@@ -69,7 +69,7 @@ public:
                 glDepthMask(GL_TRUE);
                 glUseProgram(layer_.id());
                 glUniform1i(layer_.uniform("u_firstLayer"), layer == 0 ? 1 : 0);
-                glBindTextureUnit(0, depth_[cur ^ 1].id());
+                gl::bindTexture(0, depth_[cur ^ 1].id());
                 glBeginQuery(GL_ANY_SAMPLES_PASSED, query_.id());
                 runGeometryPass("peel", layer_, frame, draw);
                 glEndQuery(GL_ANY_SAMPLES_PASSED);
@@ -83,14 +83,14 @@ public:
             glEnable(GL_BLEND);
             glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
             glUseProgram(accumulate_.id());
-            glBindTextureUnit(0, layerColor_.id());
+            gl::bindTexture(0, layerColor_.id());
             drawFullscreen();
             resetPassState();
         }
         gl::ScopedPass timing(frame.timing, "composite");
         bindOutputFramebuffer();
         glUseProgram(composite_.id());
-        glBindTextureUnit(0, accum_.id());
+        gl::bindTexture(0, accum_.id());
         glUniform3fv(composite_.uniform("u_background"), 1, &frame.background[0]);
         drawFullscreen();
     }

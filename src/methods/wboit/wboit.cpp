@@ -55,8 +55,8 @@ public:
             gl::ScopedPass timing(frame.timing, "composite");
             bindOutputFramebuffer();
             glUseProgram(composite_.id());
-            glBindTextureUnit(0, accum_.id());
-            glBindTextureUnit(1, reveal_.id());
+            gl::bindTexture(0, accum_.id());
+            gl::bindTexture(1, reveal_.id());
             glUniform3fv(composite_.uniform("u_background"), 1, &frame.background[0]);
             drawFullscreen();
         }

@@ -54,12 +54,14 @@ vec2 sourceFor(vec2 c, float z, out float newViewDepth) {
 }
 
 // The search state of one pixel: the nearest consistent source so far, and the farthest texel
-// any search visited (the fallback for a disoccluded pixel).
-ivec2 bestTexel;
-vec2 bestPosition;  // the consistent source's old window position (continuous)
-float bestViewDepth;
-ivec2 farTexel;
-float farDepth;
+// any search visited (the fallback for a disoccluded pixel). main() resets them; they are
+// initialised here too so that the compiler sees no read before a write (Mesa warns, and debug
+// contexts turn the warning into an error).
+ivec2 bestTexel = ivec2(-1);
+vec2 bestPosition = vec2(0.0);  // the consistent source's old window position (continuous)
+float bestViewDepth = uintBitsToFloat(0x7F800000u);  // +infinity
+ivec2 farTexel = ivec2(-1);
+float farDepth = -1.0;
 
 void search(vec2 c, float z) {
     for (int step = 0; step < STARNT_TEMPORAL_SEARCH_STEPS; ++step) {

@@ -9,12 +9,6 @@
 namespace starnt::temporal {
 namespace {
 
-GLenum internalFormatOf(GLuint texture) {
-    GLint format = 0;
-    glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
-    return GLenum(format);
-}
-
 gl::Program buildPass(const char* label, const char* file, const std::string& defines = {}) {
     return gl::buildProgram(label, gl::embeddedSource("methods/common/fullscreen.vert.glsl"),
                             gl::embeddedSource(std::string("methods/neural/temporal/") + file), defines);
@@ -34,13 +28,8 @@ Reprojector::Reprojector()
 // across calls could have been deleted and reused) with a full viewport and no depth, blending or
 // scissor.
 void Reprojector::drawInto(GLuint texture, int width, int height) {
-    if (!framebuffer_) {
-        GLuint id = 0;
-        glCreateFramebuffers(1, &id);
-        framebuffer_ = gl::FramebufferHandle(id);
-    }
-    glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, texture, 0);
-    if (glCheckNamedFramebufferStatus(framebuffer_.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    if (!framebuffer_) framebuffer_ = gl::makeFramebufferName();
+    if (gl::attachTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, texture) != GL_FRAMEBUFFER_COMPLETE) {
         throw Error("temporal reprojection: the output texture is not colour-renderable");
     }
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
@@ -53,7 +42,7 @@ void Reprojector::drawInto(GLuint texture, int width, int height) {
 void Reprojector::capture(GLuint colorTexture, GLuint depthTexture, int width, int height, const glm::mat4& viewProj,
                           GLuint nearestTexture) {
     if (width < 1 || height < 1) throw Error("temporal capture: empty frame size");
-    const GLenum colorFormat = internalFormatOf(colorTexture), depthFormat = internalFormatOf(depthTexture);
+    const GLenum colorFormat = gl::textureInternalFormat(colorTexture), depthFormat = gl::textureInternalFormat(depthTexture);
     if (colorFormat != GL_RGBA32F) throw Error("temporal capture: the composite must be an RGBA32F texture");
     if (depthFormat != GL_DEPTH_COMPONENT32F && depthFormat != GL_R32F) {
         throw Error("temporal capture: the depth must be a DEPTH_COMPONENT32F or R32F texture");
@@ -68,7 +57,7 @@ void Reprojector::capture(GLuint colorTexture, GLuint depthTexture, int width, i
         width_ = width;
         height_ = height;
     }
-    if (nearestTexture && internalFormatOf(nearestTexture) != GL_RGBA32F) {
+    if (nearestTexture && gl::textureInternalFormat(nearestTexture) != GL_RGBA32F) {
         throw Error("temporal capture: the nearest layer must be an RGBA32F texture");
     }
     if (nearestTexture && (keptNearest_.width() != width || keptNearest_.height() != height)) {
@@ -87,12 +76,12 @@ void Reprojector::capture(GLuint colorTexture, GLuint depthTexture, int width, i
     drawInto(blockMinMax_.id(), blocksX, blocksY);
     glUseProgram(blockSeeds_.id());
     glUniform2i(blockSeeds_.uniform("u_sourceSize"), width, height);
-    glBindTextureUnit(0, depth_.id());
+    gl::bindTexture(0, depth_.id());
     gl::drawFullscreenTriangle(emptyVao_);
     drawInto(seeds_.id(), blocksX, blocksY);
     glUseProgram(dilateSeeds_.id());
     glUniform2i(dilateSeeds_.uniform("u_sourceSize"), blocksX, blocksY);
-    glBindTextureUnit(0, blockMinMax_.id());
+    gl::bindTexture(0, blockMinMax_.id());
     gl::drawFullscreenTriangle(emptyVao_);
     if (hasNearest_) {
         if (behind_.width() != width || behind_.height() != height) behind_ = gl::Texture2D(GL_RGBA32F, width, height);
@@ -101,9 +90,9 @@ void Reprojector::capture(GLuint colorTexture, GLuint depthTexture, int width, i
         glUniform2i(behindProgram_.uniform("u_size"), width, height);
         const Reprojection r = makeReprojection(viewProj, viewProj);
         glUniform4fv(behindProgram_.uniform("u_sourceScale"), 1, glm::value_ptr(r.sourceScale));
-        glBindTextureUnit(0, color_.id());
-        glBindTextureUnit(1, depth_.id());
-        glBindTextureUnit(3, keptNearest_.id());
+        gl::bindTexture(0, color_.id());
+        gl::bindTexture(1, depth_.id());
+        gl::bindTexture(3, keptNearest_.id());
         gl::drawFullscreenTriangle(emptyVao_);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -119,9 +108,9 @@ void Reprojector::setSearchUniforms(const gl::Program& program, const glm::mat4&
     glUniform4fv(program.uniform("u_row1"), 1, glm::value_ptr(r.row1));
     glUniform4fv(program.uniform("u_row3"), 1, glm::value_ptr(r.row3));
     glUniform4fv(program.uniform("u_sourceScale"), 1, glm::value_ptr(r.sourceScale));
-    glBindTextureUnit(0, color_.id());
-    glBindTextureUnit(1, depth_.id());
-    glBindTextureUnit(2, seeds_.id());
+    gl::bindTexture(0, color_.id());
+    gl::bindTexture(1, depth_.id());
+    gl::bindTexture(2, seeds_.id());
 }
 
 void Reprojector::reproject(const glm::mat4& newViewProj, GLuint outputTexture) {
@@ -138,9 +127,9 @@ void Reprojector::reprojectRefresh(const glm::mat4& newViewProj, GLuint nearestT
     if (!hasNearest_) throw Error("internal: a refresh frame needs the kept frame's nearest layer");
     drawInto(outputTexture, width_, height_);
     setSearchUniforms(searchRefresh_, newViewProj);
-    glBindTextureUnit(3, keptNearest_.id());
-    glBindTextureUnit(4, nearestTexture);
-    glBindTextureUnit(5, behind_.id());
+    gl::bindTexture(3, keptNearest_.id());
+    gl::bindTexture(4, nearestTexture);
+    gl::bindTexture(5, behind_.id());
     glUniform3fv(searchRefresh_.uniform("u_background"), 1, glm::value_ptr(background));
     gl::drawFullscreenTriangle(emptyVao_);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -6,7 +6,7 @@ namespace starnt {
 
 TemporalFrames::TemporalFrames(const MethodOptions& options)
     : schedule_(options),
-      clock_(gl::currentContextIsSoftware()),
+      clock_(gl::wallClockTimingNeeded()),
       refresh_(options.neural.temporalMode == NeuralOptions::TemporalMode::Refresh) {}
 
 bool TemporalFrames::beginFrame(int width, int height) {

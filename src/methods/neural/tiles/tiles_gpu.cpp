@@ -55,8 +55,8 @@ void GpuTiles::resize(int width, int height) {
 
 void GpuTiles::reset() {
     const uint32_t zero = 0;
-    for (auto& m : masks_) glClearNamedBufferData(m.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    glClearNamedBufferData(occupancy_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    for (auto& m : masks_) gl::fillBufferUint(m, zero);
+    gl::fillBufferUint(occupancy_, zero);
     clearReadbacks();
     hasHistogram_ = false;
     histogram_ = {};
@@ -71,8 +71,8 @@ void GpuTiles::update(GLuint composite, GLuint nearest, TileSignal signal, GLuin
     // Evaluate: current -> other. Balance twice: other -> current -> other. Result in `other`.
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(evaluate_.id());
-    glBindTextureUnit(0, composite);
-    glBindTextureUnit(1, nearest);
+    gl::bindTexture(0, composite);
+    gl::bindTexture(1, nearest);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STARNT_SSBO_TILE_MASKS_IN, masks_[current_].id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STARNT_SSBO_TILE_MASKS_OUT, masks_[other].id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STARNT_SSBO_TILE_OCCUPANCY, occupancy_.id());
@@ -94,7 +94,7 @@ void GpuTiles::update(GLuint composite, GLuint nearest, TileSignal signal, GLuin
     current_ = source;
 
     const uint32_t zero = 0;
-    glClearNamedBufferData(histogramBuffer_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    gl::fillBufferUint(histogramBuffer_, zero);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(histogramProgram_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STARNT_SSBO_TILE_MASKS_IN, masks_[current_].id());
@@ -104,9 +104,9 @@ void GpuTiles::update(GLuint composite, GLuint nearest, TileSignal signal, GLuin
 
     if (second) {
         glUseProgram(guardTiles_.id());
-        glBindTextureUnit(0, composite);
-        glBindTextureUnit(1, nearest);
-        glBindTextureUnit(2, second);
+        gl::bindTexture(0, composite);
+        gl::bindTexture(1, nearest);
+        gl::bindTexture(2, second);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STARNT_SSBO_TILE_GUARD, guardTileSums_.id());
         glUniform2i(guardTiles_.uniform("u_size"), width_, height_);
         glUniform2i(guardTiles_.uniform("u_tiles"), tilesX_, tilesY_);
@@ -121,7 +121,7 @@ void GpuTiles::update(GLuint composite, GLuint nearest, TileSignal signal, GLuin
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     Readback& slot = readbacks_[size_t(nextReadback_)];
     if (slot.fence) glDeleteSync(slot.fence);  // the GPU is 3 frames behind: drop the oldest
-    glCopyNamedBufferSubData(histogramBuffer_.id(), slot.buffer.id(), 0, 0, GLsizeiptr(kReadbackBytes));
+    gl::copyBuffer(histogramBuffer_.id(), slot.buffer.id(), kReadbackBytes);
     slot.hasGuard = second != 0;
     slot.fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
     readbackSequence_[size_t(nextReadback_)] = ++submitted_;
@@ -143,9 +143,9 @@ bool GpuTiles::pollHistogram() {
     Readback& r = readbacks_[size_t(newest)];
     uint32_t counts[4];
     float guard[STARNT_GUARD_VALUES];
-    glGetNamedBufferSubData(r.buffer.id(), 0, sizeof counts, counts);
+    gl::readBuffer(r.buffer.id(), 0, sizeof counts, counts);
     if (r.hasGuard) {
-        glGetNamedBufferSubData(r.buffer.id(), sizeof counts, sizeof guard, guard);
+        gl::readBuffer(r.buffer.id(), sizeof counts, sizeof guard, guard);
         guard_.occupied = guard[STARNT_GUARD_OCCUPIED];
         guard_.energy2 = guard[STARNT_GUARD_ENERGY_PASS2];
         guard_.energy3 = guard[STARNT_GUARD_ENERGY_PASS3];
@@ -176,14 +176,14 @@ void GpuTiles::bindMasks() const {
 std::vector<uint32_t> GpuTiles::readMasks() const {
     std::vector<uint32_t> out(size_t(tilesX_ * tilesY_));
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glGetNamedBufferSubData(masks_[current_].id(), 0, GLsizeiptr(out.size() * sizeof(uint32_t)), out.data());
+    gl::readBuffer(masks_[current_].id(), 0, GLsizeiptr(out.size() * sizeof(uint32_t)), out.data());
     return out;
 }
 
 void GpuTiles::renderOverlay(GLuint composite, GLuint overlay) const {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(overlay_.id());
-    glBindTextureUnit(0, composite);
+    gl::bindTexture(0, composite);
     glBindImageTexture(0, overlay, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     bindMasks();
     glUniform2i(overlay_.uniform("u_size"), width_, height_);
