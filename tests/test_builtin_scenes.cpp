@@ -52,7 +52,7 @@ float maxRadius(const Scene& s) {
 
 TEST(BuiltinScenes, NamesAreListedAndLoadable) {
     const auto names = builtinSceneNames();
-    EXPECT_EQ(names, (std::vector<std::string>{"tubes", "smoke", "panes", "random"}));
+    EXPECT_EQ(names, (std::vector<std::string>{"tubes", "smoke", "panes", "random", "curtains"}));
     for (const std::string& n : names) {
         SCOPED_TRACE(n);
         Scene s = loadScene("builtin:" + n);
@@ -130,6 +130,26 @@ TEST(BuiltinScenes, SizesAndAttributes) {
         for (const glm::vec3& p : m.positions) EXPECT_LE(std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}), 1.0f);
     }
     EXPECT_TRUE(random.materials[0].unlit);
+
+    // Curtains: 3 flat panes (2 triangles) and 3 pleated curtains (2 x 6..10 panels); one colour
+    // per sheet, alpha 0.15-0.7, lit; the six sheet colours differ clearly.
+    const Scene curtains = makeBuiltinScene("curtains");
+    EXPECT_GE(curtains.triangleCount(), 3u * 2u + 3u * 24u);
+    EXPECT_LE(curtains.triangleCount(), 3u * 2u + 3u * 40u);
+    EXPECT_FALSE(curtains.materials[0].unlit);
+    std::vector<glm::vec4> sheetColors;
+    for (const Mesh& m : curtains.meshes) {
+        ASSERT_EQ(m.colors.size(), m.positions.size());
+        ASSERT_EQ(m.normals.size(), m.positions.size());
+        for (const glm::vec4& c : m.colors) {
+            EXPECT_GE(c.a, 0.15f);
+            EXPECT_LE(c.a, 0.7f);
+            if (sheetColors.empty() || sheetColors.back() != c) sheetColors.push_back(c);
+        }
+    }
+    ASSERT_EQ(sheetColors.size(), 6u);
+    for (size_t i = 0; i < 6; ++i)
+        for (size_t j = i + 1; j < 6; ++j) EXPECT_GT(glm::length(glm::vec3(sheetColors[i] - sheetColors[j])), 0.3f);
 }
 
 TEST(BuiltinScenes, DepthComplexityFromPlusZ) {
@@ -139,6 +159,8 @@ TEST(BuiltinScenes, DepthComplexityFromPlusZ) {
     EXPECT_LE(maxDepthComplexity(makeBuiltinScene("smoke"), 256), 45);
     EXPECT_GE(maxDepthComplexity(makeBuiltinScene("random"), 256), 8);
     EXPECT_LE(maxDepthComplexity(makeBuiltinScene("random"), 256), 25);
+    EXPECT_GE(maxDepthComplexity(makeBuiltinScene("curtains"), 256), 6);
+    EXPECT_LE(maxDepthComplexity(makeBuiltinScene("curtains"), 256), 12);
 }
 
 TEST(BuiltinScenes, PanesMatchTheDocumentedLayout) {

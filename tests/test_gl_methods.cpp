@@ -9,6 +9,7 @@
 #include "render/offscreen_renderer.hpp"
 #include "starnt/camera.hpp"
 #include "starnt/error.hpp"
+#include "starnt/families.hpp"
 #include "test_support.hpp"
 
 using namespace starnt;
@@ -97,18 +98,8 @@ TEST(GlMethods, UnsortedMatchesSubmissionOrderBlend) {
 
 TEST(GlMethods, WboitMatchesMcGuireBavoilFormula) {
     SceneSetup s = makeSetup("random");
-    expectMatchesReference(render(s, "wboit").image, cpuReference(s), [](const FragmentList& list) {
-        glm::vec3 sumColor(0.0f);
-        float sumWeight = 0.0f, reveal = 1.0f;
-        for (const Fragment& f : list) {
-            float d = 1.0f - f.depth;
-            float w = f.alpha * std::clamp(3e3f * d * d * d, 1e-2f, 3e3f);
-            sumColor += f.color * f.alpha * w;
-            sumWeight += f.alpha * w;
-            reveal *= 1.0f - f.alpha;
-        }
-        return sumColor / std::clamp(sumWeight, 1e-4f, 5e4f) * (1.0f - reveal) + kBackground * reveal;
-    });
+    expectMatchesReference(render(s, "wboit").image, cpuReference(s),
+                           [](const FragmentList& list) { return nn::compositeWboit(list, kBackground); });
 }
 
 TEST(GlMethods, CaptureSeesTheSameFragmentsAsTheCpuRasteriser) {

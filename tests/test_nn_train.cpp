@@ -236,3 +236,60 @@ TEST(NnTrain, DISABLED_Benchmark) {
     std::printf("image-space MSE (linear, over black) on %zu held-out pixels: starnt %.4g, dfaoit %.4g\n", pixels,
                 err[0] / pixels, err[1] / pixels);
 }
+
+// Sample weights: the same inputs with two targets, one of them weighted 0, must be fitted to the
+// other; without weights the network settles between them.
+TEST(NnTrain, SampleWeightsDecideBetweenConflictingTargets) {
+    TrainingSet set = toyProblem(2000);
+    const TrainingSet copy = set;
+    set.w.assign(set.size(), 1.0f);
+    TrainingSet conflicting = copy;
+    for (float& v : conflicting.y) v = 0.9f;
+    conflicting.w.assign(conflicting.size(), 0.0f);
+    set.append(conflicting);
+    ASSERT_EQ(set.w.size(), set.size());
+    TrainOptions o;
+    o.samples = 200'000;
+    o.learningRate = 3e-3f;
+    o.batchSize = 32;
+    o.validationFraction = 0.01;
+    const Network weighted = train(NetworkKind::StarNT, set, o);
+    TrainingSet unweighted = set;
+    unweighted.w.clear();
+    const Network plain = train(NetworkKind::StarNT, unweighted, o);
+    const double weightedMse = evaluateMse(weighted, copy), plainMse = evaluateMse(plain, copy);
+    std::printf("MSE on the weighted targets: weighted training %.3g, unweighted %.3g\n", weightedMse, plainMse);
+    EXPECT_LT(weightedMse, 2e-3);
+    EXPECT_GT(plainMse, 0.03);
+    // Appending an unweighted set gives its samples weight 1.
+    TrainingSet mixed = copy;
+    mixed.append(conflicting);
+    EXPECT_EQ(mixed.w.size(), mixed.size());
+    EXPECT_EQ(mixed.w.front(), 1.0f);
+    EXPECT_EQ(mixed.w.back(), 0.0f);
+    TrainingSet negative = copy;
+    negative.w.assign(negative.size(), 1.0f);
+    negative.w[5] = -1.0f;
+    EXPECT_THROW(train(NetworkKind::StarNT, negative, o), Error);
+}
+
+TEST(NnTrainingSet, TailVisibilityWeightsAreTheSquaredTransmittanceOfTheFirstTwoLayers) {
+    const auto lists = syntheticFragmentLists(500, 9);
+    const TrainingSet plain = buildTrainingSet(NetworkKind::StarNT, lists);
+    const TrainingSet s = buildTrainingSet(NetworkKind::StarNT, lists, kDefaultAlphaCutoff, SampleWeighting::TailVisibility);
+    EXPECT_TRUE(plain.w.empty());
+    EXPECT_EQ(s.x, plain.x);
+    EXPECT_EQ(s.y, plain.y);
+    ASSERT_EQ(s.w.size(), s.size());
+    size_t i = 0;
+    for (const auto& list : lists) {
+        const FragmentList sorted = preparedFragments(list);
+        if (sorted.size() <= 3) continue;
+        const float t2 = (1.0f - sorted[0].alpha) * (1.0f - sorted[1].alpha);
+        EXPECT_FLOAT_EQ(s.w[i], t2 * t2);
+        ++i;
+    }
+    EXPECT_EQ(i, s.size());
+    // DFAOIT predicts the whole pixel: no weights.
+    EXPECT_TRUE(buildTrainingSet(NetworkKind::DFAOIT, lists, kDefaultAlphaCutoff, SampleWeighting::TailVisibility).w.empty());
+}

@@ -18,18 +18,29 @@ std::vector<FragmentList> syntheticFragmentLists(size_t count, uint64_t seed);
 
 // Samples stored row by row: sample i has inputs x[i*inputs .. i*inputs+inputs) (raw, not
 // normalised) and target y[3*i .. 3*i+3).
+// Optional weights w[i] >= 0 scale sample i's squared error in the training loss (empty: all 1;
+// appending a weighted and an unweighted set gives the unweighted samples weight 1).
 struct TrainingSet {
     int inputs = 0;
-    std::vector<float> x, y;
+    std::vector<float> x, y, w;
     size_t size() const { return inputs > 0 ? x.size() / static_cast<size_t>(inputs) : 0; }
     void append(const TrainingSet& other);  // same `inputs` (or this one empty)
+};
+
+// How buildTrainingSet weights the samples.
+enum class SampleWeighting {
+    None,
+    // STAR-NT only: weight T2^2 = ((1 - a1)(1 - a2))^2, the factor by which an error of the tail
+    // colour reaches the image, so that the loss is the image-space squared error. (DFAOIT's target
+    // is the whole pixel already: its weights stay 1.)
+    TailVisibility,
 };
 
 // Features (sumsFromFragments + starntFeatures/dfaoitFeatures) and targets (starntTarget /
 // dfaoitTarget of the cut-off, sorted list) of every list that the network is used for:
 // STAR-NT keeps pixels with N > 3 (the others are composited exactly), DFAOIT keeps N >= 1.
 TrainingSet buildTrainingSet(NetworkKind kind, const std::vector<FragmentList>& lists,
-                             float alphaCutoff = kDefaultAlphaCutoff);
+                             float alphaCutoff = kDefaultAlphaCutoff, SampleWeighting weighting = SampleWeighting::None);
 
 struct TrainOptions {
     uint64_t samples = 10'000'000;  // samples seen in total (epochs over the training split as needed)

@@ -1,14 +1,19 @@
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
+#include <fstream>
 #include <unistd.h>
+
+#include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
 #include "reference/training_data.hpp"
 #include "starnt/error.hpp"
+#include "starnt/families.hpp"
 #include "starnt/gl_context.hpp"
 #include "starnt/scene.hpp"
 #include "starnt/train.hpp"
@@ -24,29 +29,67 @@ void progressBar(const char* label, double fraction, const std::string& suffix) 
     std::fflush(stderr);
 }
 
-// Training takes minutes: check --out first (a .json file in an existing folder we can write).
-void checkWeightsOutput(const std::string& out) {
+// Training takes minutes: check the outputs first (a .json file in an existing folder we can write).
+// `flag` names the option and `what` the file in the messages.
+void checkJsonOutput(const std::string& flag, const std::string& what, const std::string& out) {
     namespace fs = std::filesystem;
     std::string ext = fs::path(out).extension().string();
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    if (ext != ".json") throw Error("--out " + out + ": a weights file must be a .json file");
+    if (ext != ".json") throw Error(flag + " " + out + ": " + what + " must be a .json file");
     std::error_code ec;
-    if (fs::is_directory(out, ec)) throw Error("--out " + out + ": is a directory");
+    if (fs::is_directory(out, ec)) throw Error(flag + " " + out + ": is a directory");
     const fs::path dir = fs::path(out).parent_path().empty() ? fs::path(".") : fs::path(out).parent_path();
-    if (!fs::is_directory(dir, ec)) throw Error("--out " + out + ": folder " + dir.string() + " does not exist");
+    if (!fs::is_directory(dir, ec)) throw Error(flag + " " + out + ": folder " + dir.string() + " does not exist");
     const std::string probe = out + ".tmp-probe-" + std::to_string(::getpid());
     const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd < 0) throw Error("--out " + out + ": cannot write in folder " + dir.string() + ": " + std::strerror(errno));
+    if (fd < 0) throw Error(flag + " " + out + ": cannot write in folder " + dir.string() + ": " + std::strerror(errno));
     ::close(fd);
     ::unlink(probe.c_str());
 }
+
+// Procedural families named by --families (comma-separated names or "all"), in the project's
+// order whatever the order given, so that the training set does not depend on how they are listed.
+std::vector<std::string> parseFamilyList(const std::string& text) {
+    if (text.empty()) return {};
+    if (text == "all") return nn::proceduralFamilyNames();
+    std::vector<std::string> named;
+    size_t start = 0;
+    while (start <= text.size()) {
+        const size_t comma = std::min(text.find(',', start), text.size());
+        const std::string name = text.substr(start, comma - start);
+        if (!nn::isProceduralFamily(name)) nn::proceduralFamilyLists(name, 0, 0);  // throws, naming the valid ones
+        named.push_back(name);
+        start = comma + 1;
+    }
+    std::vector<std::string> ordered;
+    for (const std::string& name : nn::proceduralFamilyNames()) {
+        if (std::find(named.begin(), named.end(), name) != named.end()) ordered.push_back(name);
+    }
+    return ordered;
+}
+
+// Validation captures of a built-in family: another scene seed and other cameras than training.
+std::vector<FragmentList> captureValidationLists(const std::string& scene, int width, int height) {
+    CaptureSetOptions o;
+    o.scenes = {scene};
+    o.seeds = {31};
+    o.azimuths = {40.0f, 200.0f};
+    o.elevations = {10.0f};
+    o.alphaOverrides = {-1.0f, 0.3f};
+    o.width = width;
+    o.height = height;
+    return captureTrainingLists(o);
+}
+
+// Seeds of the procedural families' validation lists: never the training stream.
+constexpr uint64_t kValidationSeedOffset = 1'000'003;
 
 }  // namespace
 
 void addTrainCommand(CLI::App& app) {
     struct Args {
-        std::string network, out;
-        uint64_t samples = 10'000'000, seed = 1, synthetic = 300'000;
+        std::string network, out, families, holdOut, report, weighting = "none";
+        uint64_t samples = 10'000'000, seed = 1, synthetic = 300'000, familyLists = 50'000, validationLists = 20'000;
         std::vector<std::string> scenes;
         int captureWidth = 96, captureHeight = 72;
     };
@@ -60,12 +103,27 @@ void addTrainCommand(CLI::App& app) {
     cmd->add_option("--scenes", a->scenes, "built-in scenes to capture (builtin:NAME; default: all built-ins)");
     cmd->add_option("--capture-width", a->captureWidth, "capture resolution width")->capture_default_str();
     cmd->add_option("--capture-height", a->captureHeight, "capture resolution height")->capture_default_str();
+    cmd->add_option("--families", a->families,
+                    "procedural families to train on too: all or NAME,NAME (sheets, particles, foliage, shells, "
+                    "strands); default none (the shipped training set), all with --hold-out");
+    cmd->add_option("--family-lists", a->familyLists, "training lists per procedural family")->capture_default_str();
+    cmd->add_option("--validation-lists", a->validationLists, "validation lists per procedural family")
+        ->capture_default_str();
+    cmd->add_option("--hold-out", a->holdOut, "train on every family but this one (a built-in scene or a procedural family)");
+    cmd->add_option("--weighting", a->weighting,
+                    "sample weights: none (default) or tail-visibility (starnt: ((1-a1)(1-a2))^2, the image-space error)")
+        ->capture_default_str();
+    cmd->add_option("--report", a->report, "write the per-family validation errors to this JSON file");
     cmd->callback([a] {
         const nn::NetworkKind kind = nn::parseKind(a->network);
-        checkWeightsOutput(a->out);
+        checkJsonOutput("--out", "a weights file", a->out);
+        if (!a->report.empty()) checkJsonOutput("--report", "the report", a->report);
         if (a->samples < 1000 || a->samples > 10'000'000'000ull) throw Error("--samples must be in 1000..1e10");
         if (a->captureWidth < 8 || a->captureHeight < 8 || a->captureWidth > 1024 || a->captureHeight > 1024) {
             throw Error("--capture-width/--capture-height must be in 8..1024");
+        }
+        if (a->familyLists > 10'000'000 || a->validationLists < 1 || a->validationLists > 10'000'000) {
+            throw Error("--family-lists must be in 0..1e7 and --validation-lists in 1..1e7");
         }
         CaptureSetOptions capture;
         capture.width = a->captureWidth;
@@ -81,19 +139,52 @@ void addTrainCommand(CLI::App& app) {
                 capture.scenes.push_back(s.substr(8));
             }
         }
+        if (a->weighting != "none" && a->weighting != "tail-visibility") {
+            throw Error("--weighting " + a->weighting + ": expected none or tail-visibility");
+        }
+        const nn::SampleWeighting weighting =
+            a->weighting == "none" ? nn::SampleWeighting::None : nn::SampleWeighting::TailVisibility;
+        const std::vector<std::string> procedural =
+            parseFamilyList(a->families.empty() && !a->holdOut.empty() ? "all" : a->families);
+        // Check the held-out name before minutes of capture: a captured scene or a procedural family.
+        std::vector<std::string> familyNames = capture.scenes;
+        familyNames.insert(familyNames.end(), procedural.begin(), procedural.end());
+        nn::checkHoldOut(familyNames, a->holdOut);
+        const bool reportFamilies = !a->holdOut.empty() || !procedural.empty() || !a->report.empty();
+
         const auto t0 = std::chrono::steady_clock::now();
         HeadlessGlContext context;
-        capture.progress = [](size_t done, size_t total) {
-            progressBar("capture", double(done) / double(total), std::to_string(done) + "/" + std::to_string(total));
-        };
-        std::vector<FragmentList> lists = captureTrainingLists(capture);
+        // One capture per scene, in the order of capture.scenes: concatenated, the same lists in
+        // the same order as one capture of all of them (the shipped weights depend on that order).
+        std::vector<nn::TrainingFamily> families;
+        const std::vector<std::string> scenes = capture.scenes;
+        size_t done = 0;
+        const size_t total = scenes.size() * capture.seeds.size() * capture.azimuths.size() * capture.elevations.size() *
+                             capture.alphaOverrides.size();
+        for (const std::string& scene : scenes) {
+            capture.scenes = {scene};
+            const size_t before = done;
+            capture.progress = [&](size_t d, size_t) {
+                done = before + d;
+                progressBar("capture", double(done) / double(total), std::to_string(done) + "/" + std::to_string(total));
+            };
+            nn::TrainingFamily family{scene, captureTrainingLists(capture), {}};
+            if (reportFamilies) family.validation = captureValidationLists(scene, a->captureWidth, a->captureHeight);
+            families.push_back(std::move(family));
+        }
         std::fprintf(stderr, "\n");
-        const size_t captured = lists.size();
-        auto synthetic = nn::syntheticFragmentLists(a->synthetic, a->seed);
-        lists.insert(lists.end(), std::make_move_iterator(synthetic.begin()), std::make_move_iterator(synthetic.end()));
-        nn::TrainingSet set = nn::buildTrainingSet(kind, lists);
-        std::fprintf(stderr, "training set: %zu samples (%zu captured pixel lists, %llu synthetic lists)\n", set.size(),
-                     captured, (unsigned long long)a->synthetic);
+        for (const std::string& name : procedural) {
+            families.push_back({name, nn::proceduralFamilyLists(name, a->familyLists, a->seed),
+                                nn::proceduralFamilyLists(name, a->validationLists, a->seed + kValidationSeedOffset)});
+        }
+        const auto synthetic = nn::syntheticFragmentLists(a->synthetic, a->seed);
+        nn::TrainingSet set = nn::buildFamilyTrainingSet(kind, families, a->holdOut, synthetic, weighting);
+        std::string composition;
+        for (const nn::TrainingFamily& f : families) {
+            composition += " " + f.name + " " + (f.name == a->holdOut ? "held out" : std::to_string(f.train.size()));
+        }
+        std::fprintf(stderr, "training set: %zu samples (lists per family:%s; %llu synthetic lists)\n", set.size(),
+                     composition.c_str(), (unsigned long long)a->synthetic);
         nn::TrainOptions options;
         options.samples = a->samples;
         options.seed = a->seed;
@@ -108,6 +199,49 @@ void addTrainCommand(CLI::App& app) {
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         std::printf("%s network: validation MSE %.4e after %llu samples (%.1f s) -> %s\n", nn::kindName(kind),
                     net.validationMse, (unsigned long long)net.trainingSamples, seconds, a->out.c_str());
+        if (!reportFamilies) return;
+
+        // Per-family image-space errors on lists never trained on (composite over black vs exact).
+        nlohmann::json report = {{"network", nn::kindName(kind)}, {"held_out", a->holdOut},
+                                 {"samples", a->samples},     {"seed", a->seed}, {"weighting", a->weighting},
+                                 {"families", nlohmann::json::array()}};
+        // Whole family (every covered pixel), then its tail pixels (N > 3) alone.
+        std::printf("%-10s %-9s %7s %10s %10s %10s %9s %7s %10s %10s %10s %9s\n", "family", "trained", "pixels",
+                    nn::kindName(kind), "hybrid", "wboit", "net/wboit", "tail", "net tail", "hyb tail", "wb tail",
+                    "tail n/w");
+        for (const nn::TrainingFamily& f : families) {
+            const nn::FamilyErrors e = nn::familyErrors(kind, net, f.validation);
+            const bool heldOut = f.name == a->holdOut;
+            std::printf("%-10s %-9s %7zu %10.3e %10.3e %10.3e %9.3f %7zu %10.3e %10.3e %10.3e %9.3f\n", f.name.c_str(),
+                        heldOut ? "HELD-OUT" : f.train.empty() ? "no" : "yes", e.pixels, e.network, e.hybrid, e.wboit,
+                        e.wboit > 0.0 ? e.network / e.wboit : 0.0, e.tailPixels, e.networkTail, e.hybridTail,
+                        e.wboitTail, e.wboitTail > 0.0 ? e.networkTail / e.wboitTail : 0.0);
+            report["families"].push_back({{"family", f.name},
+                                          {"held_out", heldOut},
+                                          {"captured", !nn::isProceduralFamily(f.name)},
+                                          {"training_lists", heldOut ? 0 : f.train.size()},
+                                          {"validation_pixels", e.pixels},
+                                          {"validation_tail_pixels", e.tailPixels},
+                                          {"mse_network", e.network},
+                                          {"mse_hybrid", e.hybrid},
+                                          {"mse_wboit", e.wboit},
+                                          {"tail_mse_network", e.networkTail},
+                                          {"tail_mse_hybrid", e.hybridTail},
+                                          {"tail_mse_wboit", e.wboitTail}});
+        }
+        if (!a->report.empty()) {
+            // Under a temporary name, renamed when complete: a failed write leaves no partial report.
+            const std::string temporary = a->report + ".tmp-" + std::to_string(::getpid());
+            {
+                std::ofstream out(temporary);
+                out << report.dump(1) << "\n";
+                if (!out) {
+                    std::filesystem::remove(temporary);
+                    throw Error("--report " + a->report + ": cannot write");
+                }
+            }
+            std::filesystem::rename(temporary, a->report);
+        }
     });
 }
 

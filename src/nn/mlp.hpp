@@ -94,13 +94,22 @@ const Mat<S>& forwardBatch(const Mlp<S>& m, const Eigen::Ref<const Mat<S>>& x, W
 
 // MSE loss (mean over batch and outputs) of the network on (x, y); when grad is given, fills it
 // with d loss / d parameters (grad must have the network's shapes, e.g. from zerosLike()).
+// `sampleWeights` (one per column of x, or null for all 1) weights each sample's squared error.
 template <class S>
 S lossAndGradients(const Mlp<S>& m, const Eigen::Ref<const Mat<S>>& x, const Eigen::Ref<const Mat<S>>& y,
-                   Mlp<S>* grad, Workspace<S>& ws) {
+                   Mlp<S>* grad, Workspace<S>& ws, const S* sampleWeights = nullptr) {
     const Mat<S>& out = forwardBatch(m, x, ws);
     const S count = static_cast<S>(out.rows() * out.cols());
     ws.delta = out - y;
-    const S loss = ws.delta.squaredNorm() / count;
+    S loss;
+    if (sampleWeights) {
+        // Weighted squared error: sum_c w_c |out_c - y_c|^2 / count; d/d out = 2 w_c (out_c - y_c) / count.
+        const Eigen::Map<const Eigen::Matrix<S, Eigen::Dynamic, 1>> w(sampleWeights, out.cols());
+        loss = (ws.delta.colwise().squaredNorm().transpose().cwiseProduct(w)).sum() / count;
+        ws.delta = ws.delta * w.asDiagonal();
+    } else {
+        loss = ws.delta.squaredNorm() / count;
+    }
     if (!grad) return loss;
     ws.delta *= S(2) / count;  // d loss / d out
     for (size_t l = m.w.size(); l-- > 0;) {

@@ -13,6 +13,7 @@
 // Determinism: everything runs on one thread in a fixed order, and all random draws come from
 // detail::Rng (no std distributions), so a seed gives bit-identical weights on every run of the
 // same binary.
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
@@ -30,11 +31,20 @@ void TrainingSet::append(const TrainingSet& other) {
     if (other.size() == 0) return;
     if (size() == 0) inputs = other.inputs;
     if (inputs != other.inputs) throw Error("cannot append training sets with different input counts");
+    if (!w.empty() || !other.w.empty()) {
+        w.resize(size(), 1.0f);
+        if (other.w.empty()) {
+            w.insert(w.end(), other.size(), 1.0f);
+        } else {
+            w.insert(w.end(), other.w.begin(), other.w.end());
+        }
+    }
     x.insert(x.end(), other.x.begin(), other.x.end());
     y.insert(y.end(), other.y.begin(), other.y.end());
 }
 
-TrainingSet buildTrainingSet(NetworkKind kind, const std::vector<FragmentList>& lists, float alphaCutoff) {
+TrainingSet buildTrainingSet(NetworkKind kind, const std::vector<FragmentList>& lists, float alphaCutoff,
+                             SampleWeighting weighting) {
     TrainingSet set;
     set.inputs = kind == NetworkKind::StarNT ? kStarntInputs : kDfaoitInputs;
     for (const FragmentList& list : lists) {
@@ -48,6 +58,10 @@ TrainingSet buildTrainingSet(NetworkKind kind, const std::vector<FragmentList>& 
             const auto f = starntFeatures(sums);
             set.x.insert(set.x.end(), f.begin(), f.end());
             target = starntTarget(sorted);
+            if (weighting == SampleWeighting::TailVisibility) {
+                const float visibility = (1.0f - sums.a1) * (1.0f - sums.a2);
+                set.w.push_back(visibility * visibility);
+            }
         } else {
             const auto f = dfaoitFeatures(sums);
             set.x.insert(set.x.end(), f.begin(), f.end());
@@ -62,7 +76,11 @@ namespace {
 
 // Copies the samples `indices` of `set` into column matrices, normalising the inputs.
 void gather(const TrainingSet& set, const std::vector<size_t>& indices, const std::vector<float>& offset,
-            const std::vector<float>& scale, Mat<float>& x, Mat<float>& y) {
+            const std::vector<float>& scale, Mat<float>& x, Mat<float>& y, std::vector<float>* weights = nullptr) {
+    if (weights) {
+        weights->resize(indices.size());
+        for (size_t c = 0; c < indices.size(); ++c) (*weights)[c] = set.w[indices[c]];
+    }
     const int inputs = set.inputs;
     x.resize(inputs, static_cast<Eigen::Index>(indices.size()));
     y.resize(3, static_cast<Eigen::Index>(indices.size()));
@@ -113,6 +131,10 @@ Network train(NetworkKind kind, const TrainingSet& set, const TrainOptions& opti
     if (n < 2) throw Error("training set has fewer than 2 samples");
     if (set.y.size() != 3 * n) throw Error("training set has inconsistent target count");
     if (options.batchSize < 1) throw Error("batch size must be at least 1");
+    const bool weighted = !set.w.empty();
+    if (weighted && set.w.size() != n) throw Error("training set has inconsistent weight count");
+    if (weighted && std::any_of(set.w.begin(), set.w.end(), [](float v) { return !(v >= 0.0f && std::isfinite(v)); }))
+        throw Error("training set has a negative or non-finite sample weight");
 
     detail::Rng rng(options.seed * 0x9e3779b97f4a7c15ULL + 0x7a11);
     std::vector<size_t> order(n);
@@ -162,6 +184,7 @@ Network train(NetworkKind kind, const TrainingSet& set, const TrainOptions& opti
     Mlp<float> grad = m.zerosLike(), m1 = m.zerosLike(), m2 = m.zerosLike();
     detail::Workspace<float> ws;
     Mat<float> xb, yb;
+    std::vector<float> wb;
     std::vector<size_t> batch;
 
     const uint64_t totalSamples = options.samples;
@@ -188,8 +211,8 @@ Network train(NetworkKind kind, const TrainingSet& set, const TrainOptions& opti
                          training.begin() + static_cast<std::ptrdiff_t>(cursor + take));
             cursor += take;
         }
-        gather(set, batch, net.inputOffset, net.inputScale, xb, yb);
-        lossSum += detail::lossAndGradients<float>(m, xb, yb, &grad, ws);
+        gather(set, batch, net.inputOffset, net.inputScale, xb, yb, weighted ? &wb : nullptr);
+        lossSum += detail::lossAndGradients<float>(m, xb, yb, &grad, ws, weighted ? wb.data() : nullptr);
         ++lossBatches;
         seen += size;
 

@@ -14,12 +14,20 @@
 //   random - 60 large triangles in [-1,1]^3 (roughly equilateral, circumradius 0.28-0.5, centres in
 //            [-0.55,0.55]^2 x [-0.5,0.5], each vertex's z jittered by 0.2), each with one flat COLOR_0
 //            (alpha 0.2-0.8), unlit. Max depth complexity 13-19.
+//   curtains - 6 large sheets of clearly different colours (hues spread around the circle) with
+//            alpha 0.15-0.7 in COLOR_0 (issue 15's user trial: curtains and glazing): sheets 0, 2, 4
+//            are flat glazing panes, sheets 1, 3, 5 pleated curtains (6-10 pleats 0.12-0.25 deep, so
+//            oblique views cross one curtain several times); 1.1-1.5 wide, 1.3-1.6 tall, centres at
+//            z in [-0.6, 0.6], turned by up to 25 degrees about Y; lit, with normals. Max depth
+//            complexity from +Z 6-12.
 //   Depth complexities: maximum triangles over one pixel centre, orthographic along -Z over [-1,1]^2.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <random>
 
+#include "core/hue_color.hpp"
 #include "starnt/error.hpp"
 #include "starnt/scene.hpp"
 
@@ -49,20 +57,7 @@ private:
 };
 
 // A saturated-ish random colour: a random hue at full saturation, mixed with white by `pastel`.
-glm::vec3 randomColor(Rng& rng, float pastel) {
-    const float h = rng.uniform() * 6.0f;
-    const float x = 1.0f - std::fabs(std::fmod(h, 2.0f) - 1.0f);
-    glm::vec3 c;
-    switch (int(h)) {
-        case 0: c = {1, x, 0}; break;
-        case 1: c = {x, 1, 0}; break;
-        case 2: c = {0, 1, x}; break;
-        case 3: c = {0, x, 1}; break;
-        case 4: c = {x, 0, 1}; break;
-        default: c = {1, 0, x}; break;
-    }
-    return glm::mix(c, glm::vec3(1.0f), pastel);
-}
+glm::vec3 randomColor(Rng& rng, float pastel) { return hueColor<float>(rng.uniform(), pastel); }
 
 Material blendMaterial(bool unlit) {
     Material m;
@@ -82,6 +77,18 @@ glm::vec3 catmullRom(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& 
 glm::vec3 anyPerpendicular(const glm::vec3& t) {
     const glm::vec3 a = std::fabs(t.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
     return glm::normalize(glm::cross(t, a));
+}
+
+// Appends the quad corners[0..3] (counter-clockwise seen from the side `normal` points to) as two
+// triangles with one normal and one colour.
+void appendQuad(Mesh& mesh, const std::array<glm::vec3, 4>& corners, const glm::vec3& normal, const glm::vec4& color) {
+    const uint32_t base = uint32_t(mesh.positions.size());
+    for (const glm::vec3& c : corners) {
+        mesh.positions.push_back(c);
+        mesh.normals.push_back(normal);
+        mesh.colors.push_back(color);
+    }
+    mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
 }
 
 Scene makeTubes(uint32_t seed) {
@@ -149,14 +156,10 @@ Scene makeSmoke(uint32_t seed) {
         const float grey = rng.range(0.55f, 0.95f);
         const glm::vec3 tint = randomColor(rng, 0.85f);
         const glm::vec4 color(grey * tint, rng.range(0.05f, 0.4f));
-        const uint32_t base = uint32_t(mesh.positions.size());
-        const glm::vec3 corners[4] = {{x - h, y - h, z}, {x + h, y - h, z}, {x + h, y + h, z}, {x - h, y + h, z}};
-        for (const glm::vec3& c : corners) {
-            mesh.positions.push_back(c);
-            mesh.normals.emplace_back(0.0f, 0.0f, 1.0f);
-            mesh.colors.push_back(color);
-        }
-        mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+        appendQuad(mesh,
+                   {glm::vec3(x - h, y - h, z), glm::vec3(x + h, y - h, z), glm::vec3(x + h, y + h, z),
+                    glm::vec3(x - h, y + h, z)},
+                   glm::vec3(0.0f, 0.0f, 1.0f), color);
     }
     s.meshes.push_back(std::move(mesh));
     return s;
@@ -210,6 +213,47 @@ Scene makeRandom(uint32_t seed) {
     return s;
 }
 
+Scene makeCurtains(uint32_t seed) {
+    constexpr int kSheets = 6;
+    Rng rng(seed);
+    Scene s;
+    s.materials.push_back(blendMaterial(false));
+    Mesh mesh;
+    const float hue0 = rng.uniform();
+    for (int sheet = 0; sheet < kSheets; ++sheet) {
+        const bool pleated = sheet % 2 == 1;
+        const float width = rng.range(1.1f, 1.5f);
+        const float height = rng.range(1.3f, 1.6f);
+        const float cx = rng.range(-0.3f, 0.3f);
+        const float cy = rng.range(-0.15f, 0.15f);
+        const float cz = -0.6f + 1.2f * (float(sheet) + rng.uniform()) / float(kSheets);
+        const float turn = glm::radians(rng.range(-25.0f, 25.0f));
+        const int pleats = pleated ? 6 + int(rng.uniform() * 5.0f) : 1;
+        const float depth = pleated ? rng.range(0.12f, 0.25f) : 0.0f;
+        // Hues spread around the circle (with jitter) so that the sheets really differ in colour.
+        float hue = hue0 + float(sheet) / float(kSheets) + rng.range(-0.05f, 0.05f);
+        hue -= std::floor(hue);
+        const glm::vec3 hueRgb = hueColor<float>(hue, rng.range(0.0f, 0.2f));
+        const glm::vec4 color(hueRgb, rng.range(0.15f, 0.7f));
+        // A zig-zag in the sheet's local x-z plane: pleat corners alternate between z = 0 and z = depth.
+        const glm::mat3 rotation(glm::vec3(std::cos(turn), 0.0f, -std::sin(turn)), glm::vec3(0.0f, 1.0f, 0.0f),
+                                 glm::vec3(std::sin(turn), 0.0f, std::cos(turn)));
+        const int panels = pleated ? 2 * pleats : 1;
+        for (int p = 0; p < panels; ++p) {
+            const float x0 = -0.5f * width + width * float(p) / float(panels);
+            const float x1 = -0.5f * width + width * float(p + 1) / float(panels);
+            const float z0 = (p % 2 == 0) ? 0.0f : depth, z1 = (p % 2 == 0) ? depth : 0.0f;
+            const glm::vec3 a = rotation * glm::vec3(x0, -0.5f * height, z0), b = rotation * glm::vec3(x1, -0.5f * height, z1);
+            const glm::vec3 up = rotation * glm::vec3(0.0f, height, 0.0f);
+            const glm::vec3 centre(cx, cy, cz);
+            appendQuad(mesh, {centre + a, centre + b, centre + b + up, centre + a + up},
+                       glm::normalize(glm::cross(b - a, up)), color);
+        }
+    }
+    s.meshes.push_back(std::move(mesh));
+    return s;
+}
+
 }  // namespace
 
 std::vector<BuiltinPane> builtinPanes() {
@@ -223,7 +267,7 @@ std::vector<BuiltinPane> builtinPanes() {
     };
 }
 
-std::vector<std::string> builtinSceneNames() { return {"tubes", "smoke", "panes", "random"}; }
+std::vector<std::string> builtinSceneNames() { return {"tubes", "smoke", "panes", "random", "curtains"}; }
 
 Scene makeBuiltinScene(const std::string& name, uint32_t seed) {
     Scene s;
@@ -235,6 +279,8 @@ Scene makeBuiltinScene(const std::string& name, uint32_t seed) {
         s = makePanes();
     } else if (name == "random") {
         s = makeRandom(seed);
+    } else if (name == "curtains") {
+        s = makeCurtains(seed);
     } else {
         std::string list;
         for (const std::string& n : builtinSceneNames()) list += (list.empty() ? "" : ", ") + n;
