@@ -341,6 +341,14 @@ TEST(Hardening, ExrAttributeLargerThanTheFile) {
     lying.replace(box + key.size() + 4, 4, reinterpret_cast<const char*>(xMin), 4);
     std::ofstream(dir / "lying.exr", std::ios::binary) << lying;
     EXPECT_CONTAINS(errorOf([&] { loadImage((dir / "lying.exr").string()); }), "larger than");
+    // A data window of 2^32 x 2^32: the size check must not multiply the sides before checking
+    // them (signed overflow; UBSan in the sanitizer suite, found by fuzz/fuzz_image).
+    std::string giant = wide;
+    const unsigned char corners[16] = {0x00, 0x00, 0x00, 0x80, 0x00, 0x00, 0x00, 0x80,
+                                       0xff, 0xff, 0xff, 0x7f, 0xff, 0xff, 0xff, 0x7f};
+    giant.replace(box + key.size() + 4, 16, reinterpret_cast<const char*>(corners), 16);
+    std::ofstream(dir / "giant.exr", std::ios::binary) << giant;
+    EXPECT_CONTAINS(errorOf([&] { loadImage((dir / "giant.exr").string()); }), "4294967296x4294967296");
 #if !defined(__SANITIZE_ADDRESS__)
     expectOneLineError(run("compare --reference " + (dir / "lying.exr").string() + " --test " + good.string(),
                            "ulimit -v 1500000; "),

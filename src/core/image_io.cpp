@@ -55,7 +55,8 @@ std::string encodeExr(const Image& image, const std::string& path);
 long long gImagePixelBudget = kMaxImagePixels;  // core/image_limits.hpp
 
 void checkImageDimensions(long long w, long long h, const std::string& path) {
-    if (w * h > gImagePixelBudget && w <= kMaxImageSide && h <= kMaxImageSide && w * h <= kMaxImagePixels) {
+    // Sides first: an EXR data window gives sides up to 2^32, whose product overflows long long.
+    if (w <= kMaxImageSide && h <= kMaxImageSide && w * h > gImagePixelBudget && w * h <= kMaxImagePixels) {
         throw Error("image " + path + " is " + std::to_string(w) + "x" + std::to_string(h) +
                     ": over the decode budget of " + std::to_string(gImagePixelBudget) + " pixels set for fuzzing");
     }
