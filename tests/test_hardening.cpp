@@ -327,10 +327,11 @@ TEST(Hardening, ExrAttributeLargerThanTheFile) {
     const std::string wideMsg = errorOf([&] { loadImage((dir / "wide.exr").string()); });
     EXPECT_CONTAINS(wideMsg, "20000x3");
     EXPECT_CONTAINS(wideMsg, "larger than");
-    // The fuzzer's out-of-memory input, rebuilt: a channel list that claims 40 bytes more than it
-    // has (OpenEXR reads it by structure and ignores the size) before a data window 16,777,216
-    // wide, for which OpenEXR would size a 2 GB line buffer. Under a 1.5 GB address-space limit
-    // the command must still end in the size error, not in an allocation failure.
+    // The fuzzer's out-of-memory inputs, rebuilt: OpenEXR reads the types it knows by structure and
+    // ignores their declared sizes, so a lying size made it read a different header from the one
+    // any check saw, here a data window 16,777,216 wide (a 2 GB line buffer). Every declared size
+    // must now be true. First a channel list that claims 40 bytes more than it holds; under a
+    // 1.5 GB address-space limit the command must end in that error, not in an allocation failure.
     std::string lying = wide;
     const size_t channelsSize = lying.find(std::string("chlist") + '\0') + 7;
     int32_t claimed = 0;
@@ -340,7 +341,7 @@ TEST(Hardening, ExrAttributeLargerThanTheFile) {
     const unsigned char xMin[4] = {0x00, 0x00, 0x00, 0xff};  // -16,777,216
     lying.replace(box + key.size() + 4, 4, reinterpret_cast<const char*>(xMin), 4);
     std::ofstream(dir / "lying.exr", std::ios::binary) << lying;
-    EXPECT_CONTAINS(errorOf([&] { loadImage((dir / "lying.exr").string()); }), "larger than");
+    EXPECT_CONTAINS(errorOf([&] { loadImage((dir / "lying.exr").string()); }), "declares");
     // A data window of 2^32 x 2^32: the size check must not multiply the sides before checking
     // them (signed overflow; UBSan in the sanitizer suite, found by fuzz/fuzz_image).
     std::string giant = wide;
@@ -352,8 +353,14 @@ TEST(Hardening, ExrAttributeLargerThanTheFile) {
 #if !defined(__SANITIZE_ADDRESS__)
     expectOneLineError(run("compare --reference " + (dir / "lying.exr").string() + " --test " + good.string(),
                            "ulimit -v 1500000; "),
-                       {"lying.exr", "larger than"}, "lying channel list");
+                       {"lying.exr", "'channels'", "declares"}, "lying channel list");
 #endif
+    // Then a data window whose box2i declares 0 bytes (OpenEXR reads 16 regardless).
+    std::string emptyBox = wide;
+    const int32_t zero = 0;
+    emptyBox.replace(box + key.size(), 4, reinterpret_cast<const char*>(&zero), 4);
+    std::ofstream(dir / "emptybox.exr", std::ios::binary) << emptyBox;
+    EXPECT_CONTAINS(errorOf([&] { loadImage((dir / "emptybox.exr").string()); }), "box2i has 0 bytes instead of 16");
     fs::remove_all(dir);
 }
 

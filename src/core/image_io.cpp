@@ -23,6 +23,7 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <map>
 #include <sstream>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -110,14 +111,18 @@ Image loadPng(const std::string& path) {
     return img;
 }
 
-// Walks the attribute list of an OpenEXR header (magic, version, then per attribute: name NUL,
-// type NUL, int32 size, value; an empty name ends a header; multi-part files have one header per
-// part and an empty one after the last) and rejects an attribute whose size is negative or larger
-// than what is left of the file. OpenEXR allocates an attribute's declared size before reading it:
-// a 400-byte file could make it allocate a gigabyte (the fuzzer found such files by the thousand).
-// The data window gets the size check of checkImageDimensions here too: OpenEXR sizes buffers by it
-// while opening the file. A header this walk cannot follow is left to OpenEXR, which reports it.
-void checkExrAttributeSizes(const std::string& path) {
+// Validates the attribute list of an OpenEXR header before OpenEXR opens the file (magic,
+// version, then per attribute: name NUL, type NUL, int32 size, value; an empty name ends a header;
+// multi-part files have one header per part and an empty one after the last).
+// Why: OpenEXR allocates by what a header declares (an unknown type's size; a preview's width x
+// height; line buffers by the data window) and reads the types it knows by their structure, not by
+// the declared size, carrying on from wherever that ends. A header whose sizes lie is therefore
+// read differently by OpenEXR and by any check: fuzz/fuzz_image found 300-byte files that made it
+// allocate 2 GB that way. So every declared size must be true: fixed-size types must have their
+// size, a channel list must end exactly at its declared size, a preview must hold width x height
+// pixels, and nothing may run past the end of the file. The data window must pass
+// checkImageDimensions. A header that ends early is left to OpenEXR, which reports it.
+void checkExrHeader(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error("cannot open image " + path + ": " + std::strerror(errno));
     in.seekg(0, std::ios::end);
@@ -129,9 +134,24 @@ void checkExrAttributeSizes(const std::string& path) {
         return;  // too short or not an EXR signature: OpenEXR names the problem
     }
     const bool multipart = (head[5] & 0x10) != 0;  // version field bit 12
+    // The sizes of the fixed-size attribute types OpenEXR 3 knows.
+    static const std::map<std::string, int32_t> kFixedSizes = {
+        {"box2i", 16}, {"box2f", 16}, {"chromaticities", 32}, {"compression", 1}, {"double", 8}, {"envmap", 1},
+        {"float", 4}, {"int", 4}, {"keycode", 28}, {"lineOrder", 1}, {"m33f", 36}, {"m33d", 72}, {"m44f", 64},
+        {"m44d", 128}, {"rational", 8}, {"tiledesc", 9}, {"timecode", 8}, {"v2i", 8}, {"v2f", 8}, {"v2d", 16},
+        {"v3i", 12}, {"v3f", 12}, {"v3d", 24}, {"deepImageState", 1}};
+    auto fail = [&](const std::string& name, const std::string& what) {
+        throw Error("cannot read EXR " + path + ": header attribute '" + name + "' " + what);
+    };
     auto readName = [&](std::string& out) {
         out.clear();
         return bool(std::getline(in, out, '\0'));
+    };
+    auto readInt32 = [&](int32_t& v) {
+        unsigned char b[4] = {};
+        if (!in.read(reinterpret_cast<char*>(b), 4)) return false;
+        v = int32_t(uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 | uint32_t(b[3]) << 24);
+        return true;
     };
     for (int part = 0;; ++part) {
         for (bool firstAttribute = true;; firstAttribute = false) {
@@ -141,35 +161,42 @@ void checkExrAttributeSizes(const std::string& path) {
                 if (firstAttribute && multipart && part > 0) return;  // the empty header after the last part
                 break;
             }
-            unsigned char sizeBytes[4] = {};
-            if (!readName(type) || !in.read(reinterpret_cast<char*>(sizeBytes), 4)) return;
-            const int32_t size = int32_t(uint32_t(sizeBytes[0]) | uint32_t(sizeBytes[1]) << 8 |
-                                         uint32_t(sizeBytes[2]) << 16 | uint32_t(sizeBytes[3]) << 24);
-            const std::streamoff left = fileSize - in.tellg();
+            int32_t size = 0;
+            if (!readName(type) || !readInt32(size)) return;
+            const std::streamoff start = in.tellg(), left = fileSize - start;
             if (size < 0 || std::streamoff(size) > left) {
-                throw Error("cannot read EXR " + path + ": header attribute '" + name + "' claims " +
-                            std::to_string(size) + " bytes, but the file has " + std::to_string(left) + " left");
+                fail(name, "claims " + std::to_string(size) + " bytes, but the file has " + std::to_string(left) + " left");
+            }
+            if (auto fixed = kFixedSizes.find(type); fixed != kFixedSizes.end() && size != fixed->second) {
+                fail(name, "of type " + type + " has " + std::to_string(size) + " bytes instead of " +
+                               std::to_string(fixed->second));
             }
             if (type == "chlist") {
-                // OpenEXR reads a channel list by its structure (name NUL, then 16 bytes, until an
-                // empty name), not by the declared size, and goes on from where the list ended:
-                // follow it the same way, or a list that lies about its size would put this walk
-                // out of step with what OpenEXR reads next (found by fuzz/fuzz_image).
-                std::string channel;
+                std::string channel;  // per channel: name NUL, then 16 bytes; an empty name ends the list
                 while (readName(channel) && !channel.empty()) in.seekg(16, std::ios::cur);
                 if (!in) return;
+                if (in.tellg() - start != std::streamoff(size)) {
+                    fail(name, "(a channel list) declares " + std::to_string(size) + " bytes but holds " +
+                                   std::to_string(in.tellg() - start));
+                }
                 continue;
             }
-            if (name == "dataWindow" && type == "box2i" && size == 16) {
-                // The size check of checkImageDimensions, before OpenEXR sizes its line buffers by it.
-                unsigned char box[16] = {};
-                if (!in.read(reinterpret_cast<char*>(box), 16)) return;
-                auto int32At = [&](int i) {
-                    return int32_t(uint32_t(box[i]) | uint32_t(box[i + 1]) << 8 | uint32_t(box[i + 2]) << 16 |
-                                   uint32_t(box[i + 3]) << 24);
-                };
-                const long long w = (long long)int32At(8) - int32At(0) + 1, h = (long long)int32At(12) - int32At(4) + 1;
-                if (w > 0 && h > 0) checkImageDimensions(w, h, path);
+            if (type == "preview") {
+                int32_t w = 0, h = 0;
+                if (size < 8 || !readInt32(w) || !readInt32(h)) return;
+                if (w < 0 || h < 0 || 8 + 4 * (long long)w * h != size) {
+                    fail(name, "(a preview of " + std::to_string(w) + "x" + std::to_string(h) + ") has " +
+                                   std::to_string(size) + " bytes");
+                }
+                in.seekg(start + size);
+                continue;
+            }
+            if (name == "dataWindow" && type == "box2i") {
+                int32_t box[4] = {};
+                for (int32_t& v : box)
+                    if (!readInt32(v)) return;
+                const long long w = (long long)box[2] - box[0] + 1, h = (long long)box[3] - box[1] + 1;
+                if (w > 0 && h > 0) checkImageDimensions(w, h, path);  // before OpenEXR sizes buffers by it
                 continue;
             }
             in.seekg(size, std::ios::cur);
@@ -179,7 +206,7 @@ void checkExrAttributeSizes(const std::string& path) {
 }
 
 Image loadExr(const std::string& path) {
-    checkExrAttributeSizes(path);
+    checkExrHeader(path);
     try {
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dw = file.header().dataWindow();
