@@ -221,15 +221,15 @@ Image loadExr(const std::string& path) {
                           channels.findChannel("Y");
         const size_t xStride = 4 * sizeof(float);
         const size_t yStride = size_t(w) * xStride;
-        // Slice base pointers are addressed with data-window coordinates.
-        char* base = reinterpret_cast<char*>(img.rgba.data()) -
-                     (ptrdiff_t(dw.min.x) * ptrdiff_t(xStride) + ptrdiff_t(dw.min.y) * ptrdiff_t(yStride));
+        // Slices are addressed with data-window coordinates. Slice::Make offsets the pointer by the
+        // window's origin itself: computing that base here overflowed the pointer for windows far
+        // from the origin (undefined behaviour; UBSan, found by fuzz/fuzz_image).
         Imf::FrameBuffer fb;
         const char* names[4] = {"R", "G", "B", "A"};
         for (int c = 0; c < 4; ++c) {
             const char* name = (grey && c < 3) ? "Y" : names[c];
-            fb.insert(name, Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride, 1, 1,
-                                       c == 3 ? 1.0 : 0.0));
+            fb.insert(name, Imf::Slice::Make(Imf::FLOAT, img.rgba.data() + c, dw, xStride, yStride, 1, 1,
+                                             c == 3 ? 1.0 : 0.0));
         }
         file.setFrameBuffer(fb);
         file.readPixels(dw.min.y, dw.max.y);
