@@ -46,7 +46,7 @@ void resolveTails(const TailResolveInputs& in, GLuint pass3Framebuffer, const gl
                   TailResolveCopies& esCopies) {
     GLuint sums[3] = {in.alphaColor, in.colorCount, in.transmittance};
     if (gl::isEs()) {
-        // No glTextureBarrier on ES: read copies of the pass-3 rectangle (36 bytes per reduced
+        // No glTextureBarrier on ES: read copies of the pass-3 rectangle (24 or 36 bytes per reduced
         // pass-3 texel) instead of the targets this draw writes.
         gl::Texture2D* copies[3] = {&esCopies.alphaColor, &esCopies.colorCount, &esCopies.transmittance};
         for (int i = 0; i < 3; ++i) {
