@@ -355,6 +355,24 @@ TEST(Hardening, ExrAttributeLargerThanTheFile) {
                            "ulimit -v 1500000; "),
                        {"lying.exr", "'channels'", "declares"}, "lying channel list");
 #endif
+    // A preview attribute of 2^31-1 x 2^31-1 pixels declaring 8 bytes of pixels, inserted before
+    // the end of the header: refused by its size (4 x w x h once overflowed the check: UBSan).
+    const std::string plain((std::istreambuf_iterator<char>(std::ifstream(good, std::ios::binary).rdbuf())), {});
+    size_t headerEnd = 8;
+    while (plain[headerEnd] != '\0') {  // name NUL type NUL int32 size value, until an empty name
+        const size_t typeStart = plain.find('\0', headerEnd) + 1, sizeAt = plain.find('\0', typeStart) + 1;
+        int32_t bytes = 0;
+        std::memcpy(&bytes, plain.data() + sizeAt, 4);
+        headerEnd = sizeAt + 4 + size_t(bytes);
+    }
+    std::string preview = std::string("preview") + '\0' + "preview" + '\0';
+    const int32_t previewFields[3] = {16, 0x7fffffff, 0x7fffffff};  // size, width, height
+    preview.append(reinterpret_cast<const char*>(previewFields), 12).append(8, '\0');
+    std::string withPreview = plain;
+    withPreview.insert(headerEnd, preview);
+    std::ofstream(dir / "preview.exr", std::ios::binary) << withPreview;
+    EXPECT_CONTAINS(errorOf([&] { loadImage((dir / "preview.exr").string()); }),
+                    "'preview' (a preview of 2147483647x2147483647) has 16 bytes");
     // Then a data window whose box2i declares 0 bytes (OpenEXR reads 16 regardless).
     std::string emptyBox = wide;
     const int32_t zero = 0;

@@ -184,7 +184,9 @@ void checkExrHeader(const std::string& path) {
             if (type == "preview") {
                 int32_t w = 0, h = 0;
                 if (size < 8 || !readInt32(w) || !readInt32(h)) return;
-                if (w < 0 || h < 0 || 8 + 4 * (long long)w * h != size) {
+                // w x h fits in long long; 4 x that may not, so compare against the size first.
+                const long long pixels = (long long)w * h;
+                if (w < 0 || h < 0 || pixels > (size - 8) / 4 || 8 + 4 * pixels != size) {
                     fail(name, "(a preview of " + std::to_string(w) + "x" + std::to_string(h) + ") has " +
                                    std::to_string(size) + " bytes");
                 }
