@@ -415,7 +415,8 @@ void main() {
 // Sampling at the reduced texel centres (the viewport not moved) fails this on most edge texels.
 TEST(GlTiles, ReducedPassesSampleFullPixelCentres) {
     test::TestScene c(makeBuiltinScene("tubes", 3), 96, 64, 30.0f, 20.0f, kBackground);
-    NeuralPasses passes(SceneGpu::surfaceShader());
+    // 32-bit targets: the algorithm against its CPU reference (the compact rounding is tested apart).
+    NeuralPasses passes(SceneGpu::surfaceShader(), true, NeuralOptions::Targets::Float32);
     const FrameDesc frame = c.frame();
     const DrawCallback draw = c.gpu->callback(frame.view, frame.projection, {});
     const Size2 full{c.width, c.height};
@@ -455,7 +456,9 @@ TEST(GlTiles, ReducedPassesSampleFullPixelCentres) {
     }
 }
 
-TEST(GlTiles, DepthDownsampleMatchesCpuMax) {
+// Pass 2's peel depth at a reduced size (reduced_peel_depth.glsl, computed per fragment) against
+// the CPU reference, on odd sizes whose reduced pixels cover 2x2 to 3x3 full pixels.
+TEST(GlTiles, ReducedPeelDepthMatchesCpuMax) {
     test::glContext();
     const int fullW = 41, fullH = 29, w = 11, h = 8;
     std::mt19937 rng(9);
@@ -464,7 +467,19 @@ TEST(GlTiles, DepthDownsampleMatchesCpuMax) {
     for (float& d : depth) d = u(rng);
     gl::Texture2D src(GL_R32F, fullW, fullH), dst(GL_R32F, fullW, fullH);
     starnt::gl::uploadTexture(src.id(), fullW, fullH, GL_RED, GL_FLOAT, depth.data());
-    gl::Program program = gl::buildComputeProgram("downsample_test", "#include \"methods/neural/depth_downsample.comp.glsl\"\n");
+    gl::Program program = gl::buildComputeProgram("peel_depth_test", R"(
+#include "methods/neural/reduced_peel_depth.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0) uniform sampler2D u_nearestDepth;
+layout(binding = 0, r32f) writeonly uniform highp image2D u_reducedDepth;
+uniform ivec2 u_fullSize;
+uniform ivec2 u_reducedSize;
+void main() {
+    ivec2 i = ivec2(gl_GlobalInvocationID.xy);
+    if (i.x >= u_reducedSize.x || i.y >= u_reducedSize.y) return;
+    imageStore(u_reducedDepth, i, vec4(reducedPeelDepth(u_nearestDepth, i, u_fullSize, u_reducedSize), 0.0, 0.0, 0.0));
+}
+)");
     glUseProgram(program.id());
     glUniform2i(program.uniform("u_fullSize"), fullW, fullH);
     glUniform2i(program.uniform("u_reducedSize"), w, h);
@@ -523,8 +538,9 @@ TEST(GlTiles, NoTransparentPixelGivesWBarZeroAndMinimumScales) {
     EXPECT_EQ(stats["scale_pass2"], 0.25);
     EXPECT_EQ(stats["scale_pass3"], 0.25);
     const Image image = run.image();
+    // Exactly the background as the output holds it (16-bit floats with the default compact targets).
     for (size_t i = 0; i < image.pixelCount(); ++i)
-        for (int ch = 0; ch < 3; ++ch) ASSERT_FLOAT_EQ(image.rgba[i * 4 + size_t(ch)], kBackground[ch]);
+        for (int ch = 0; ch < 3; ++ch) ASSERT_EQ(image.rgba[i * 4 + size_t(ch)], nn::roundToHalf(kBackground[ch]));
 }
 
 TEST(GlTiles, OddSizesAndOnePixelRender) {
@@ -552,6 +568,9 @@ TEST(GlTiles, CornerInferenceMatchesCpuReference) {
     MethodOptions o;
     o.neural.inference = NeuralOptions::Inference::Corners;
     o.neural.fixedScale2 = o.neural.fixedScale3 = 1.0f;  // full-resolution passes: the CPU sums are exact
+    // 32-bit targets: this checks the corner interpolation against its CPU reference; the compact
+    // targets' rounding has its own tests (GlNeural.*MatchesCpuReferencePerPixel).
+    o.neural.targets = NeuralOptions::Targets::Float32;
     MethodRunner run(c, "starnt", o);
     EXPECT_FALSE(run.frame()["corner_inference_used"].get<bool>()) << "first frame: no masks yet";
     const std::vector<glm::vec4> first = glOrder(run.image());

@@ -173,7 +173,10 @@ TEST(TemporalRefresh, SingleLayerPixelsMatchARealRenderAfterAMove) {
                 for (int dx = -2; dx <= 2; ++dx) oneAround = oneAround && before[size_t((y + dy) * w + x + dx)] <= 1;
             if (!oneAround) continue;
             ++checked;
-            for (int ch = 0; ch < 3; ++ch) ASSERT_NEAR(seq[1][i][ch], truth[0][i][ch], 1e-5f) << x << "," << y;
+            // Exact up to the output's last bit: with the compact targets (16-bit float output) the
+            // refresh composite and the real frame's round the same value computed two ways (one 16-bit
+            // step is 2^-11 to 2^-10 of the value).
+            for (int ch = 0; ch < 3; ++ch) ASSERT_NEAR(seq[1][i][ch], truth[0][i][ch], 1e-5f + std::abs(truth[0][i][ch]) / 1024.0f) << x << "," << y;
             warpOff += glm::length(glm::vec3(warped[1][i] - truth[0][i])) > 1e-3f;
         }
     EXPECT_GT(checked, 50u);  // 89 on llvmpipe: the large triangles overlap almost everywhere

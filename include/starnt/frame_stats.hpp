@@ -61,6 +61,11 @@ struct NeuralFrameStats {
     double interpolatedFrameMsAverage = 0;       // "interpolated_frame_ms_average"
     float scalePass2 = 1, scalePass3 = 1;        // "scale_pass2", "scale_pass3": per axis
     Size pass2Size, pass3Size;                   // "pass2_size", "pass3_size": [width, height]
+    NeuralOptions::Targets targets{};            // "targets": "compact" or "fp32"
+    // "output_target": where this frame's output lives: "pass3_alpha_color", "pass2_color" or
+    // "pass1_color" (written in place over a target the inference reads only at its own pixel and
+    // nothing reads afterwards) or "output" (a texture of its own).
+    std::string outputTarget;
     std::optional<Tiles> tiles;
 };
 

@@ -78,6 +78,12 @@ struct NeuralOptions {
     enum class TemporalMode { Warp, Refresh };
     TemporalMode temporalMode = TemporalMode::Refresh;
     double targetFps = 60.0;
+    // Precision of the pass targets and the output (issue 17): Compact (default) = 16-bit float
+    // colours, sums, count and transmittance, 32-bit depths, and the output written in place into
+    // a pass target the inference no longer needs (36 bytes a pixel at full resolution);
+    // Float32 = every colour target 32-bit float (the earlier layout, for comparison).
+    enum class Targets { Compact, Float32 };
+    Targets targets = Targets::Compact;
 };
 
 struct MethodOptions {

@@ -6,8 +6,10 @@
 //     wraps it in each of its geometry passes' fragment `main`;
 //   - a DrawCallback, called once per geometry pass with the pass's program already bound and the
 //     pass's GL state set; the engine sets its own uniforms on that program and issues its draws.
-// After render() the result is in outputTexture(): linear RGBA32F, composited over the background,
-// alpha 1, at the frame size.
+// After render() the result is in outputTexture(): linear RGBA float, composited over the background,
+// alpha 1, at the frame size; RGBA32F for most methods, RGBA16F for starnt, dfaoit and hybrid with
+// their default compact targets (NeuralOptions::Targets), which may hand out one of their pass
+// targets, written over in place. Read it before the next render().
 //
 //   auto method = starnt::createMethod("wboit", engineSurface, {});
 //   method->render(frame, [&](const starnt::GeometryPass& pass) { engine.drawTransparent(pass.program); });
@@ -78,6 +80,7 @@ public:
     virtual ~OitMethod() = default;
     virtual std::string name() const = 0;
     virtual void render(const FrameDesc& frame, const DrawCallback& draw) = 0;
+    // Valid until the next render(); the name may change from frame to frame.
     virtual GLname outputTexture() const = 0;
     // Bytes of every GPU buffer and texture the method holds now.
     virtual size_t gpuMemoryBytes() const = 0;

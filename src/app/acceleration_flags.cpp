@@ -23,6 +23,9 @@ void addAccelerationOptions(CLI::App* command, AccelerationFlags& flags) {
     command->add_option("--temporal-mode", flags.temporalMode,
                         "starnt/dfaoit: interpolated frames: warp (the paper) | refresh (fresh pass 1)")
         ->capture_default_str();
+    command->add_option("--targets", flags.targets,
+                        "starnt/dfaoit/hybrid: pass-target precision: compact (16-bit colours and sums, 36 B/pixel) | fp32")
+        ->capture_default_str();
 }
 
 void applyAccelerationFlags(const AccelerationFlags& flags, MethodOptions& options) {
@@ -36,6 +39,7 @@ void applyAccelerationFlags(const AccelerationFlags& flags, MethodOptions& optio
     parseScaleGuardOption(flags.scaleGuard, options);
     parseTemporalModeOption(flags.temporalMode, options);
     parseUpsampleOption(flags.upsample, options);
+    parseTargetsOption(flags.targets, options);
 }
 
 }  // namespace starnt::app

@@ -27,6 +27,7 @@ struct AccelerationFlags {
     std::string scaleGuard = "on";          // on | off
     std::string temporalMode = "refresh";   // warp | refresh
     std::string upsample = "bilinear";      // bilinear | joint
+    std::string targets = "compact";        // compact | fp32
 };
 void addAccelerationOptions(CLI::App* command, AccelerationFlags& flags);
 // Checks the flags (throws starnt::Error) and sets them on `options`.

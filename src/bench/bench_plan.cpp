@@ -73,6 +73,13 @@ const std::vector<Variant>& allVariants() {
                         o.neural.spatial = true;
                         o.neural.inference = NeuralOptions::Inference::Corners;
                     }),
+        makeVariant("starnt-fp32", "starnt", "STAR-NT, tiles on, every pass target 32-bit float (the layout before issue 17)",
+                    [](MethodOptions& o) {
+                        o.neural.spatial = true;
+                        o.neural.targets = NeuralOptions::Targets::Float32;
+                    }),
+        makeVariant("dfaoit-fp32", "dfaoit", "DFAOIT with every pass target 32-bit float (the layout before issue 17)",
+                    [](MethodOptions& o) { o.neural.targets = NeuralOptions::Targets::Float32; }),
         makeVariant("abuffer", "abuffer", "A-buffer (exact; the ground truth method)"),
         makeVariant("peel", "peel", "depth peeling until empty (exact)"),
     };

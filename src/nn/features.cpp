@@ -1,3 +1,6 @@
+#include <bit>
+#include <cmath>
+#include <cstdint>
 // CPU reference of the per-pixel sums (passes 1-3), the network features, the training targets
 // and the final composites. The guards are documented in include/starnt/nn.hpp.
 #include <algorithm>
@@ -38,6 +41,36 @@ PixelSums sumsFromFragments(FragmentList fragments, float alphaCutoff) {
     s.sumAlphaColor = glm::vec3(sumAlphaColor);
     s.sumColor = glm::vec3(sumColor);
     s.transmittance = static_cast<float>(transmittance);
+    return s;
+}
+
+float roundToHalf(float v, bool towardZero) {
+    _Float16 h = static_cast<_Float16>(v);  // to nearest, ties to even
+    if (towardZero && std::abs(float(h)) > std::abs(v)) h = std::bit_cast<_Float16>(uint16_t(std::bit_cast<uint16_t>(h) - 1u));
+    return float(h);
+}
+glm::vec3 roundToHalf(glm::vec3 v, bool towardZero) {
+    return {roundToHalf(v.x, towardZero), roundToHalf(v.y, towardZero), roundToHalf(v.z, towardZero)};
+}
+
+PixelSums sumsInHalfTargets(FragmentList fragments, bool blendTruncates, float alphaCutoff) {
+    fragments = preparedFragments(std::move(fragments), alphaCutoff);
+    PixelSums s;
+    if (!fragments.empty()) {
+        s.c1 = roundToHalf(fragments[0].color);
+        s.a1 = roundToHalf(fragments[0].alpha);
+    }
+    if (fragments.size() > 1) {
+        s.c2 = roundToHalf(fragments[1].color);
+        s.a2 = roundToHalf(fragments[1].alpha);
+    }
+    for (const Fragment& f : fragments) {
+        s.sumAlpha = roundToHalf(s.sumAlpha + f.alpha, blendTruncates);
+        s.sumAlphaColor = roundToHalf(s.sumAlphaColor + f.alpha * f.color, blendTruncates);
+        s.sumColor = roundToHalf(s.sumColor + f.color, blendTruncates);
+        s.transmittance = roundToHalf(s.transmittance * (1.0f - f.alpha), blendTruncates);
+    }
+    s.count = static_cast<float>(fragments.size());
     return s;
 }
 

@@ -33,6 +33,8 @@ nlohmann::json frameStatsJson(const FrameStats& stats) {
         out["scale_pass3"] = n.scalePass3;
         out["pass2_size"] = {n.pass2Size.width, n.pass2Size.height};
         out["pass3_size"] = {n.pass3Size.width, n.pass3Size.height};
+        out["targets"] = targetsText(n.targets);
+        out["output_target"] = n.outputTarget;
         if (n.tiles) {
             const NeuralFrameStats::Tiles& t = *n.tiles;
             out["w_bar"] = t.wBar ? nlohmann::json(*t.wBar) : nlohmann::json(nullptr);

@@ -85,6 +85,12 @@ void parseTemporalModeOption(const std::string& text, MethodOptions& options) {
     else throw Error("--temporal-mode '" + text + "': expected warp or refresh");
 }
 
+void parseTargetsOption(const std::string& text, MethodOptions& options) {
+    if (text == "compact") options.neural.targets = NeuralOptions::Targets::Compact;
+    else if (text == "fp32") options.neural.targets = NeuralOptions::Targets::Float32;
+    else throw Error("--targets '" + text + "': expected compact or fp32");
+}
+
 void parseTargetFpsOption(double fps, MethodOptions& options) {
     if (!std::isfinite(fps) || !(fps > 0.0) || fps > 1000.0) throw Error("--target-fps must be in (0, 1000]");
     options.neural.targetFps = fps;
@@ -129,6 +135,10 @@ std::string upsampleText(NeuralOptions::Upsample upsample) {
 
 std::string tileSignalText(NeuralOptions::TileSignal signal) {
     return signal == NeuralOptions::TileSignal::Back ? "back" : "composite";
+}
+
+std::string targetsText(NeuralOptions::Targets targets) {
+    return targets == NeuralOptions::Targets::Float32 ? "fp32" : "compact";
 }
 
 std::string temporalModeText(NeuralOptions::TemporalMode mode) {

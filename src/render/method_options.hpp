@@ -26,6 +26,8 @@ void parseScaleGuardOption(const std::string& text, MethodOptions& options);
 void parseUpsampleOption(const std::string& text, MethodOptions& options);
 // "warp" | "refresh" (SPEC 6).
 void parseTemporalModeOption(const std::string& text, MethodOptions& options);
+// "compact" | "fp32" (issue 17: pass-target precision).
+void parseTargetsOption(const std::string& text, MethodOptions& options);
 // Target frame rate for --temporal auto: finite and in (0, 1000].
 void parseTargetFpsOption(double fps, MethodOptions& options);
 
@@ -42,5 +44,6 @@ std::string scaleRuleText(NeuralOptions::ScaleRule rule);
 std::string tileSignalText(NeuralOptions::TileSignal signal);
 std::string temporalModeText(NeuralOptions::TemporalMode mode);
 std::string upsampleText(NeuralOptions::Upsample upsample);
+std::string targetsText(NeuralOptions::Targets targets);
 
 }  // namespace starnt

@@ -30,12 +30,24 @@ gl::Program MethodBase::buildFullscreenProgram(const std::string& label, const s
 }
 
 bool MethodBase::resizeOutput(int width, int height) {
-    if (width == width_ && height == height_ && output_) return false;
+    const bool changed = setFrameSize(width, height) || !output_;
+    allocateOutput(GL_RGBA32F);
+    return changed;
+}
+
+bool MethodBase::setFrameSize(int width, int height) {
+    if (width == width_ && height == height_) return false;
     width_ = width;
     height_ = height;
-    output_ = gl::Texture2D(GL_RGBA32F, width, height);
-    outputFb_ = gl::makeFramebuffer({&output_});
+    output_ = gl::Texture2D();
+    outputFb_ = gl::FramebufferHandle();
     return true;
+}
+
+void MethodBase::allocateOutput(GLenum format) {
+    if (output_) return;
+    output_ = gl::Texture2D(format, width_, height_);
+    outputFb_ = gl::makeFramebuffer({&output_});
 }
 
 void MethodBase::runGeometryPass(const char* name, const gl::Program& program, const FrameDesc& frame,

@@ -35,9 +35,14 @@ protected:
     gl::Program buildFullscreenProgram(const std::string& label, const std::vector<std::string>& fragmentFiles,
                                        const std::string& defines = {}) const;
 
-    // (Re)allocates the output target when the size changed; returns true when it did, so the
-    // method reallocates its own targets too.
+    // (Re)allocates the output target (RGBA32F) when the size changed; returns true when it did, so
+    // the method reallocates its own targets too.
     bool resizeOutput(int width, int height);
+    // The same in two steps, for methods that may write their output elsewhere (the neural methods
+    // write it in place over a pass target when they can): setFrameSize records the size (true when
+    // it changed, dropping output_), allocateOutput allocates output_ at it when it is missing.
+    bool setFrameSize(int width, int height);
+    void allocateOutput(GLenum format);
     void drawFullscreen() const { gl::drawFullscreenTriangle(fullscreenVao_); }
     void bindOutputFramebuffer() const;
     size_t outputBytes() const { return output_.bytes(); }

@@ -7,6 +7,7 @@
 layout(std430, binding = STARNT_SSBO_TILE_MASKS_IN) readonly buffer Masks { uint masks[]; };
 layout(binding = STARNT_UNIT_CORNER_NETWORK) uniform sampler2D u_cornerNetwork;
 uniform ivec2 u_tiles;
+#include "methods/neural/half_targets.glsl"
 layout(location = 0) out vec4 outColor;
 
 void main() {
@@ -30,5 +31,5 @@ void main() {
             network = nnEvaluate(x);
         }
     }
-    outColor = vec4(compositePixel(s, network), 1.0);
+    outColor = targetValue(vec4(compositePixel(s, network), 1.0));
 }

@@ -1,6 +1,7 @@
 // Stage "infer" (SPEC 2, step 5), full: the network at every pixel where the method uses it, then
 // the method's composite. The method's features and composite (networkApplies, networkInputs,
 // compositePixel) are included before this file.
+#include "methods/neural/half_targets.glsl"
 layout(location = 0) out vec4 outColor;
 
 void main() {
@@ -11,5 +12,5 @@ void main() {
         networkInputs(s, x);
         network = nnEvaluate(x);
     }
-    outColor = vec4(compositePixel(s, network), 1.0);
+    outColor = targetValue(vec4(compositePixel(s, network), 1.0));
 }

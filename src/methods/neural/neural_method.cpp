@@ -29,7 +29,7 @@ public:
           corners_(options.neural.inference == NeuralOptions::Inference::Corners),
           network_(loadMethodNetwork(config, options)),
           // Only DFAOIT's inputs read the unweighted colour sum of pass 3 (SPEC 3).
-          passes_(surface, config.kind == nn::NetworkKind::DFAOIT),
+          passes_(surface, config.kind == nn::NetworkKind::DFAOIT, options_.neural.targets),
           temporal_(options_) {
         if (spatial_ || corners_) tiles_ = std::make_unique<tiles::GpuTiles>();
         // Compile up front what the frames will need, so no frame pays for a shader compile: the
@@ -45,6 +45,9 @@ public:
     }
 
     std::string name() const override { return config_.name; }
+    // The output of the last frame: a texture of its own or, mostly, a pass target it was written
+    // over in place (NeuralPasses::outputSlot). Valid until the next render().
+    GLuint outputTexture() const override { return out_.texture; }
     size_t gpuMemoryBytes() const override {
         return outputBytes() + passes_.gpuMemoryBytes() + cornerNetwork_.bytes() + overlay_.bytes() +
                (tiles_ ? tiles_->gpuMemoryBytes() : 0) + temporal_.gpuMemoryBytes();
@@ -78,6 +81,8 @@ public:
         n.scalePass3 = scale3_;
         n.pass2Size = {passes_.pass2Size().width, passes_.pass2Size().height};
         n.pass3Size = {passes_.pass3Size().width, passes_.pass3Size().height};
+        n.targets = options_.neural.targets;
+        n.outputTarget = out_.name;
         if (tiles_) {
             tiles_->pollHistogram();
             NeuralFrameStats::Tiles t;
@@ -102,9 +107,9 @@ public:
     }
 
     GLuint tileOverlayTexture() override {
-        if (!tiles_ || !output_) return 0;
+        if (!tiles_ || !out_.texture) return 0;
         if (overlay_.width() != width_ || overlay_.height() != height_) overlay_ = gl::Texture2D(GL_RGBA32F, width_, height_);
-        tiles_->renderOverlay(output_.id(), overlay_.id());
+        tiles_->renderOverlay(out_.texture, overlay_.id());
         return overlay_.id();
     }
 
@@ -118,23 +123,26 @@ public:
     // reprojection, interpolated from the last real frame (no geometry, no inference; the tiles
     // and scales keep the last real frame's state).
     void render(const FrameDesc& frame, const DrawCallback& draw) override {
-        if (resizeOutput(frame.width, frame.height) && tiles_) tiles_->resize(frame.width, frame.height);
+        if (setFrameSize(frame.width, frame.height)) {
+            out_ = {};
+            if (tiles_) tiles_->resize(frame.width, frame.height);
+        }
         const glm::mat4 viewProjection = frame.projection * frame.view;
         if (!temporal_.beginFrame(frame.width, frame.height)) {
             if (temporal_.refreshes()) {
                 // Refresh: the nearest layer fresh at this camera, what lay behind it reprojected.
                 passes_.runNearest(frame, draw);
-                temporal_.interpolateRefresh(viewProjection, passes_.nearest().id(), frame.background, output_.id(),
+                temporal_.interpolateRefresh(viewProjection, passes_.nearest().id(), frame.background, out_.texture,
                                              frame.timing);
             } else {
-                temporal_.interpolate(viewProjection, output_.id(), frame.timing);
+                temporal_.interpolate(viewProjection, out_.texture, frame.timing);
             }
             return;
         }
         renderReal(frame, draw);
         if (temporal_.interpolates()) {
             gl::ScopedPass timing(frame.timing, "temporal_capture");
-            temporal_.endRealFrame(output_.id(), passes_.nearestDepth().id(), viewProjection, frame.width, frame.height,
+            temporal_.endRealFrame(out_.texture, passes_.nearestDepth().id(), viewProjection, frame.width, frame.height,
                                    passes_.nearest().id());
         }
     }
@@ -146,15 +154,36 @@ private:
         passes_.run(frame, draw, NeuralPasses::kDefaultPeelEpsilon,
                     {tiles::scaledSize(full.width, scale2_), tiles::scaledSize(full.height, scale2_)},
                     {tiles::scaledSize(full.width, scale3_), tiles::scaledSize(full.height, scale3_)});
-        infer(frame);
         // With the guard, the tiles only look at probe frames: on a reduced frame the image behind
         // the nearest layer is an interpolation, smoother than the scene, so measuring it would
         // lower the levels and the scales further with every frame.
-        if (tiles_ && (!guarded() || probe_)) {
+        const bool tilesUpdate = tiles_ && (!guarded() || probe_);
+        chooseOutput(!tilesUpdate && !temporal_.interpolates());
+        infer(frame);
+        if (tilesUpdate) {
             gl::ScopedPass timing(frame.timing, "tiles");
-            tiles_->update(output_.id(), passes_.nearest().id(), options_.neural.tileSignal,
+            tiles_->update(out_.texture, passes_.nearest().id(), options_.neural.tileSignal,
                            guarded() ? passes_.second().id() : 0);
         }
+    }
+
+    // Where this real frame's output goes (NeuralPasses::outputSlot): in place over a pass target
+    // when one is free, else a texture of its own, allocated on first need and kept (so the memory
+    // reported is the peak).
+    void chooseOutput(bool nearestFree) {
+        out_ = passes_.outputSlot(nearestFree);
+        if (!out_.texture) {
+            allocateOutput(passes_.outputFormat());
+            out_ = {output_.id(), outputFb_.id(), "output"};
+        }
+    }
+
+    void bindOutput() const {
+        glBindFramebuffer(GL_FRAMEBUFFER, out_.framebuffer);
+        glViewport(0, 0, width_, height_);
+        // In place: each fragment reads its own texel of the target it writes, once; the barrier
+        // makes the earlier passes' writes visible to those reads (GL 4.5 texture barrier rules).
+        if (out_.texture != output_.id()) glTextureBarrier();
     }
 
     // The scale guard applies to the adaptive scales only (not to fixed --scales).
@@ -178,7 +207,7 @@ private:
 
     gl::Program buildInference(const std::string& stage, bool fullResolutionInputs) const {
         const std::string defines = std::string(fullResolutionInputs ? "#define STARNT_INPUTS_FULL_RESOLUTION\n" : "") +
-                                    (joint() ? "#define STARNT_UPSAMPLE_JOINT\n" : "") + passes_.countLayoutDefine() +
+                                    (joint() ? "#define STARNT_UPSAMPLE_JOINT\n" : "") + passes_.countLayoutDefine() + passes_.targetsDefine() +
                                     neuralEpsilonDefines() + nn::generateInferenceGlsl(network_);
         return buildFullscreenProgram(config_.name + "_" + stage + (fullResolutionInputs ? "" : "_upsampled"),
                                       {config_.compositeShader, "methods/neural/" + stage + ".frag.glsl"}, defines);
@@ -237,7 +266,7 @@ private:
         const Size2 full{width_, height_};
         const bool fullResolution = passes_.pass2Size() == full && passes_.pass3Size() == full;
         if (!cornersUsed_) {
-            bindOutputFramebuffer();
+            bindOutput();
             setCommonUniforms(inference("infer_full", fullResolution), frame);
             drawFullscreen();
             return;
@@ -252,7 +281,7 @@ private:
         setCommonUniforms(inference("infer_corners", fullResolution), frame);
         drawFullscreen();
 
-        bindOutputFramebuffer();
+        bindOutput();
         setCommonUniforms(inference("infer_fill", fullResolution), frame);
         gl::bindTexture(kUnitCornerNetwork, cornerNetwork_.id());
         drawFullscreen();
@@ -270,6 +299,7 @@ private:
     gl::FramebufferHandle cornerFb_;
     float scale2_ = 1.0f, scale3_ = 1.0f;
     bool cornersUsed_ = false;
+    NeuralPasses::OutputSlot out_;  // this frame's output
     bool probe_ = false;            // this real frame is a guard probe (passes 2/3 at full resolution)
     int realFramesSinceProbe_ = 0;
 };

@@ -75,37 +75,53 @@ void resolveTails(const TailResolveInputs& in, GLuint pass3Framebuffer, const gl
     resetPassState();
 }
 
-NeuralPasses::NeuralPasses(const SurfaceShader& surface, bool colorSums)
-    : pass1_(buildSurfaceProgram(surface, "neural_pass1", "methods/neural/pass1_nearest.frag.glsl")),
-      pass2_(buildSurfaceProgram(surface, "neural_pass2", "methods/neural/pass2_second.frag.glsl")),
+NeuralPasses::NeuralPasses(const SurfaceShader& surface, bool colorSums, NeuralOptions::Targets targets)
+    : pass1_(buildSurfaceProgram(surface, "neural_pass1", "methods/neural/pass1_nearest.frag.glsl", targetsDefine(targets))),
+      pass2_(buildSurfaceProgram(surface, "neural_pass2", "methods/neural/pass2_second.frag.glsl", targetsDefine(targets))),
       pass3_(buildSurfaceProgram(surface, "neural_pass3", "methods/neural/pass3_accumulate.frag.glsl",
                                  colorSums ? "" : "#define STARNT_COUNT_ONLY\n")),
-      depthDownsample_(gl::buildComputeProgram("depth_downsample", "#include \"methods/neural/depth_downsample.comp.glsl\"\n")),
-      tailResolve_(buildTailResolveProgram(colorSums ? "" : "#define STARNT_COUNT_ONLY\n")),
+      tailResolve_(buildTailResolveProgram(std::string(colorSums ? "" : "#define STARNT_COUNT_ONLY\n") + targetsDefine(targets))),
       emptyVao_(gl::makeEmptyVertexArray()),
-      colorSums_(colorSums) {}
+      colorSums_(colorSums),
+      targets_(targets) {}
+
+GLenum NeuralPasses::outputFormat() const {
+    return targets_ == NeuralOptions::Targets::Compact ? GL_RGBA16F : GL_RGBA32F;
+}
+
+NeuralPasses::OutputSlot NeuralPasses::outputSlot(bool nearestFree) const {
+    const Size2 full{width_, height_};
+    if (gl::isEs()) return {};
+    if (pass3Size_ == full) return {alphaColor_.id(), alphaColorOnlyFb_.id(), "pass3_alpha_color"};
+    if (pass2Size_ == full) return {second_.id(), secondOnlyFb_.id(), "pass2_color"};
+    if (nearestFree) return {nearest_.id(), nearestOnlyFb_.id(), "pass1_color"};
+    return {};
+}
 
 void NeuralPasses::resize(int width, int height) {
     if (width == width_ && height == height_) return;
     width_ = width;
     height_ = height;
-    nearest_ = gl::Texture2D(GL_RGBA32F, width, height);
+    const bool compact = targets_ == NeuralOptions::Targets::Compact;
+    const GLenum color = compact ? GL_RGBA16F : GL_RGBA32F, single = compact ? GL_R16F : GL_R32F;
+    nearest_ = gl::Texture2D(color, width, height);
     nearestDepth_ = gl::Texture2D(GL_DEPTH_COMPONENT32F, width, height);
-    reducedDepth_ = gl::Texture2D();  // allocated when pass 2 first runs reduced, at that size
-    second_ = gl::Texture2D(GL_RGBA32F, width, height);
+    second_ = gl::Texture2D(color, width, height);
     secondDepth_ = gl::Texture2D(GL_DEPTH_COMPONENT32F, width, height);
-    alphaColor_ = gl::Texture2D(GL_RGBA32F, width, height, GL_LINEAR);
-    colorCount_ = gl::Texture2D(colorSums_ ? GL_RGBA32F : GL_R32F, width, height, GL_LINEAR);
-    transmittance_ = gl::Texture2D(GL_R32F, width, height, GL_LINEAR);
+    alphaColor_ = gl::Texture2D(color, width, height, GL_LINEAR);
+    colorCount_ = gl::Texture2D(colorSums_ ? color : single, width, height, GL_LINEAR);
+    transmittance_ = gl::Texture2D(single, width, height, GL_LINEAR);
     pass1Fb_ = gl::makeFramebuffer({&nearest_}, &nearestDepth_);
     pass2Fb_ = gl::makeFramebuffer({&second_}, &secondDepth_);
     pass3Fb_ = gl::makeFramebuffer({&alphaColor_, &colorCount_, &transmittance_});
+    nearestOnlyFb_ = gl::makeFramebuffer({&nearest_});
+    secondOnlyFb_ = gl::makeFramebuffer({&second_});
+    alphaColorOnlyFb_ = gl::makeFramebuffer({&alphaColor_});
 }
 
 void NeuralPasses::addMemoryTargets(OitMethod::MemoryTargets& out) const {
     out.insert(out.end(), {{"pass1_color", nearest_.bytes()},
                            {"pass1_depth", nearestDepth_.bytes()},
-                           {"pass2_peel_depth_reduced", reducedDepth_.bytes()},
                            {"pass2_color", second_.bytes()},
                            {"pass2_depth", secondDepth_.bytes()},
                            {"pass3_alpha_color", alphaColor_.bytes()},
@@ -115,7 +131,7 @@ void NeuralPasses::addMemoryTargets(OitMethod::MemoryTargets& out) const {
 }
 
 size_t NeuralPasses::gpuMemoryBytes() const {
-    return nearest_.bytes() + nearestDepth_.bytes() + reducedDepth_.bytes() + second_.bytes() + secondDepth_.bytes() +
+    return nearest_.bytes() + nearestDepth_.bytes() + second_.bytes() + secondDepth_.bytes() +
            alphaColor_.bytes() + colorCount_.bytes() + transmittance_.bytes() + esResolveCopies_.bytes();
 }
 
@@ -142,21 +158,6 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
     pass3Size_ = pass3Size;
     const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1}, farDepth = 1.0f;
     const bool reduced2 = !(pass2Size == full);
-    if (reduced2) {
-        // The peel depth of a reduced pass 2 exists only at the reduced size (at most a quarter of
-        // the full one; 8.3 MB saved at 1080p when pass 2 stays at full resolution, as it mostly does).
-        if (reducedDepth_.width() != pass2Size.width || reducedDepth_.height() != pass2Size.height) {
-            reducedDepth_ = gl::Texture2D(GL_R32F, pass2Size.width, pass2Size.height);
-        }
-        gl::ScopedPass timing(frame.timing, "depth_downsample");
-        glUseProgram(depthDownsample_.id());
-        gl::bindTexture(0, nearestDepth_.id());
-        glBindImageTexture(0, reducedDepth_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-        glUniform2i(depthDownsample_.uniform("u_fullSize"), full.width, full.height);
-        glUniform2i(depthDownsample_.uniform("u_reducedSize"), pass2Size.width, pass2Size.height);
-        glDispatchCompute(GLuint((pass2Size.width + 7) / 8), GLuint((pass2Size.height + 7) / 8), 1);
-        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    }
     {
         gl::ScopedPass timing(frame.timing, "pass2");
         useReducedRectangle(pass2Size, full);
@@ -167,7 +168,9 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
         glDepthFunc(GL_LESS);
         glUseProgram(pass2_.id());
         glUniform1f(pass2_.uniform("u_peelEpsilon"), peelEpsilon);
-        gl::bindTexture(0, reduced2 ? reducedDepth_.id() : nearestDepth_.id());
+        glUniform2i(pass2_.uniform("u_fullSize"), full.width, full.height);
+        glUniform2i(pass2_.uniform("u_reducedSize"), pass2Size.width, pass2Size.height);
+        gl::bindTexture(0, nearestDepth_.id());
         MethodBase::runGeometryPass("pass2", pass2_, frame, draw);
         resetPassState();
     }

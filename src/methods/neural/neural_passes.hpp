@@ -7,14 +7,22 @@
 // Passes 2 and 3 render into the lower-left ceil(W s) x ceil(H s) rectangle of full-size targets,
 // so a change of scale from frame to frame never reallocates; the inference reads them back at
 // full resolution through upsample.glsl.
-// Target formats (chosen for precision; memory is reported per method):
-//   nearest / second colour RGBA32F, their depths DEPTH_COMPONENT32F, reduced depth R32F,
-//   sum aC + sum a RGBA32F, sum C + N RGBA32F, transmittance R32F; these three with GL_LINEAR
-//   filtering, as the inference reads their reduced tails through the bilinear filter.
+// Target formats (issue 17; NeuralOptions::Targets). Compact, the default, 36 bytes a pixel at full
+// resolution for STAR-NT:
+//   nearest / second colour RGBA16F (8 + 8), their depths DEPTH_COMPONENT32F (4 + 4: peeling
+//   compares depths bit for bit), sum aC + sum a RGBA16F (8), N alone R16F (2; integers exact to
+//   2048; DFAOIT: sum C + N RGBA16F, 8), transmittance R16F (2); the three pass-3 targets with
+//   GL_LINEAR filtering, as the inference reads their reduced tails through the bilinear filter.
+//   The output is written in place over one of them (outputSlot), so it costs nothing.
+// Float32: every colour target 32-bit float (the earlier layout).
+// Passes 2 and 3 keep full-size targets even when they run reduced: the scale guard's probe frames
+// run them at full resolution every 8th real frame, so the full size is the peak anyway, and
+// reallocating at every probe would only churn.
 #pragma once
 #include <string>
 
 #include "methods/common/method_base.hpp"
+#include "starnt/method_options.hpp"
 #include "methods/neural/reduced_grid.hpp"
 #include "starnt/bindings.h"
 
@@ -65,9 +73,15 @@ public:
     // Builds the three geometry-pass programs around the engine's surface shader. Without
     // `colorSums` pass 3 keeps the fragment count alone in an R32F target instead of sum C and N in
     // an RGBA32F one (STARNT_COUNT_ONLY): the STAR-NT inputs never read sum C, only DFAOIT's do.
-    explicit NeuralPasses(const SurfaceShader& surface, bool colorSums = true);
+    explicit NeuralPasses(const SurfaceShader& surface, bool colorSums = true,
+                          NeuralOptions::Targets targets = NeuralOptions::Targets::Compact);
     // The define the programs that read pass 3 (neural_inputs.glsl, the tail resolve) need.
     const char* countLayoutDefine() const { return colorSums_ ? "" : "#define STARNT_COUNT_ONLY\n"; }
+    // The define of the programs that write into the targets or the output (half_targets.glsl).
+    static const char* targetsDefine(NeuralOptions::Targets targets) {
+        return targets == NeuralOptions::Targets::Compact ? "#define STARNT_HALF_TARGETS\n" : "";
+    }
+    const char* targetsDefine() const { return targetsDefine(targets_); }
 
     void resize(int width, int height);
     // Renders the three passes; pass2Size / pass3Size are the reduced sizes (the full size for s = 1).
@@ -78,6 +92,21 @@ public:
     // `program` (which includes neural_inputs.glsl).
     void bindInputs(const gl::Program& program) const;
     size_t gpuMemoryBytes() const;
+    // Format of an output texture of the method's own (RGBA16F or RGBA32F, as the targets).
+    GLenum outputFormat() const;
+
+    // Where the inference may write the output in place, after run(): a target that it reads at
+    // the output pixel only, and that nothing reads after it. Pass 3's sums when pass 3 ran at full
+    // resolution (nothing reads them after the inference), else pass 2's colour when pass 2 did
+    // (the scale guard reads it, but only on probe frames, which run both at full resolution),
+    // else pass 1's colour if the caller says nothing reads it later (`nearestFree`: no temporal
+    // capture, no tiles update). None on OpenGL ES, which has no texture barrier to make the loop
+    // defined. The texture keeps the output until the next run().
+    struct OutputSlot {
+        GLuint texture = 0, framebuffer = 0;
+        const char* name = "output";  // the memory target it lives in
+    };
+    OutputSlot outputSlot(bool nearestFree) const;
     // Appends (name, bytes) of every target.
     void addMemoryTargets(OitMethod::MemoryTargets& out) const;
     const gl::Texture2D& nearest() const { return nearest_; }
@@ -93,14 +122,16 @@ private:
     gl::Program pass1_;
     gl::Program pass2_;
     gl::Program pass3_;
-    gl::Program depthDownsample_, tailResolve_;
+    gl::Program tailResolve_;
     gl::VertexArrayHandle emptyVao_;
     int width_ = 0, height_ = 0;
     Size2 pass2Size_, pass3Size_;
-    gl::Texture2D nearest_, nearestDepth_, reducedDepth_, second_, secondDepth_, alphaColor_, colorCount_, transmittance_;
+    gl::Texture2D nearest_, nearestDepth_, second_, secondDepth_, alphaColor_, colorCount_, transmittance_;
     TailResolveCopies esResolveCopies_;  // OpenGL ES only: what the tail resolve reads
     bool colorSums_ = true;
+    NeuralOptions::Targets targets_;
     gl::FramebufferHandle pass1Fb_, pass2Fb_, pass3Fb_;
+    gl::FramebufferHandle nearestOnlyFb_, secondOnlyFb_, alphaColorOnlyFb_;  // output slots
 };
 
 }  // namespace starnt

@@ -1,12 +1,19 @@
 // Pass 2: the second-nearest fragment, by peeling against pass 1's depth. A fragment survives
 // when its depth exceeds the nearest depth by more than u_peelEpsilon (window-depth units);
-// the depth test (LESS, own depth target) then keeps the nearest survivor.
+// the depth test (LESS, own depth target) then keeps the nearest survivor. At a reduced size the
+// nearest depth is the maximum over the full pixels the reduced pixel covers.
+#include "methods/neural/reduced_peel_depth.glsl"
+#include "methods/neural/half_targets.glsl"
 layout(location = 0) out vec4 outSecond;
-layout(binding = 0) uniform sampler2D u_nearestDepth;
+layout(binding = 0) uniform sampler2D u_nearestDepth;  // full resolution
 uniform float u_peelEpsilon;
+uniform ivec2 u_fullSize;
+uniform ivec2 u_reducedSize;
 
 void main() {
-    float nearest = texelFetch(u_nearestDepth, ivec2(gl_FragCoord.xy), 0).r;
+    ivec2 i = ivec2(gl_FragCoord.xy);
+    float nearest = u_reducedSize == u_fullSize ? texelFetch(u_nearestDepth, i, 0).r
+                                                : reducedPeelDepth(u_nearestDepth, i, u_fullSize, u_reducedSize);
     if (gl_FragCoord.z <= nearest + u_peelEpsilon) discard;
-    outSecond = fetchSurfaceOrDiscard();
+    outSecond = targetValue(fetchSurfaceOrDiscard());
 }

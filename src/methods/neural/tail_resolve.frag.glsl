@@ -12,6 +12,7 @@
 // compute pass with image load/store took 8.4-10.6 ms against 6.1-6.6 ms for this on llvmpipe,
 // chess 1280x720 at scales 50/50.)
 #include "starnt/bindings.h"
+#include "methods/neural/half_targets.glsl"
 layout(binding = STARNT_UNIT_NEAREST) uniform sampler2D u_nearest;        // C1, a1 (full resolution)
 layout(binding = STARNT_UNIT_SECOND) uniform sampler2D u_second;         // C2, a2 (u_pass2Size)
 layout(binding = STARNT_UNIT_ALPHA_COLOR) uniform sampler2D u_alphaColor;     // sum a C, sum a
@@ -38,12 +39,12 @@ void main() {
     float has1 = f1.a > 0.0 ? 1.0 : 0.0, has2 = f2.a > 0.0 ? 1.0 : 0.0;
     vec4 ac = texelFetch(u_alphaColor, t, 0), cn = texelFetch(u_colorCount, t, 0);
     float transmittance = texelFetch(u_transmittance, t, 0).r;
-    o_alphaColor = max(ac - vec4(f1.rgb * f1.a, f1.a) - vec4(f2.rgb * f2.a, f2.a), vec4(0.0));
+    o_alphaColor = targetValue(max(ac - vec4(f1.rgb * f1.a, f1.a) - vec4(f2.rgb * f2.a, f2.a), vec4(0.0)));
 #ifdef STARNT_COUNT_ONLY
-    o_colorCount = vec4(max(cn.r - has1 - has2, 0.0));  // the count alone, in .r (pass3_accumulate)
+    o_colorCount = targetValue(vec4(max(cn.r - has1 - has2, 0.0)));  // the count alone, in .r (pass3_accumulate)
 #else
-    o_colorCount = max(cn - vec4(f1.rgb, 1.0) * has1 - vec4(f2.rgb, 1.0) * has2, vec4(0.0));
+    o_colorCount = targetValue(max(cn - vec4(f1.rgb, 1.0) * has1 - vec4(f2.rgb, 1.0) * has2, vec4(0.0)));
 #endif
     float t2 = (1.0 - f1.a) * (1.0 - f2.a);
-    o_transmittance = vec4(t2 > STARNT_EPS_TRANSMITTANCE ? clamp(transmittance / t2, 0.0, 1.0) : 1.0);
+    o_transmittance = targetValue(vec4(t2 > STARNT_EPS_TRANSMITTANCE ? clamp(transmittance / t2, 0.0, 1.0) : 1.0));
 }

@@ -6,6 +6,12 @@
 // and a hole fill, four passes through storage buffers; on llvmpipe they cost ~90 ms at 1280x720.
 // Here every output pixel solves for its own source with a few depth fetches (~31-40 ms there).
 #include "methods/neural/temporal/reprojection_constants.h"
+#include "methods/neural/half_targets.glsl"
+// A 16-bit float output (compact targets): values rounded to the nearest one here, as the real
+// frames' inference does (half_targets.glsl), so a refresh frame equals a real one bit for bit
+// where it should.
+uniform bool u_halfOutput;
+vec4 outputValue(vec4 v) { return u_halfOutput ? vec4(nearestHalf(v.x), nearestHalf(v.y), nearestHalf(v.z), nearestHalf(v.w)) : v; }
 
 layout(binding = 0) uniform highp sampler2D u_color;  // last real frame's composite, linear RGBA
 layout(binding = 1) uniform highp sampler2D u_depth;  // its pass-1 window depth, 1 = nothing drawn
@@ -129,12 +135,12 @@ void main() {
             if (t == bestTexel) own += wk;
         }
         if (weight > 0.0 && own < 0.999 * weight) {
-            o_color = vec4(fresh.a * fresh.rgb + (1.0 - fresh.a) * max(sum / weight, vec3(0.0)), 1.0);
+            o_color = outputValue(vec4(fresh.a * fresh.rgb + (1.0 - fresh.a) * max(sum / weight, vec3(0.0)), 1.0));
             return;
         }
     }
-    o_color = vec4(refreshComposite(texelFetch(u_color, source, 0).rgb, texelFetch(u_keptNearest, source, 0),
-                                    texelFetch(u_nearest, p, 0), u_background), 1.0);
+    o_color = outputValue(vec4(refreshComposite(texelFetch(u_color, source, 0).rgb, texelFetch(u_keptNearest, source, 0),
+                                                texelFetch(u_nearest, p, 0), u_background), 1.0));
 #else
     o_color = texelFetch(u_color, source, 0);
 #endif

@@ -43,12 +43,15 @@ void Reprojector::capture(GLuint colorTexture, GLuint depthTexture, int width, i
                           GLuint nearestTexture) {
     if (width < 1 || height < 1) throw Error("temporal capture: empty frame size");
     const GLenum colorFormat = gl::textureInternalFormat(colorTexture), depthFormat = gl::textureInternalFormat(depthTexture);
-    if (colorFormat != GL_RGBA32F) throw Error("temporal capture: the composite must be an RGBA32F texture");
+    // The history keeps the composite's own precision (RGBA16F with the compact targets).
+    if (colorFormat != GL_RGBA32F && colorFormat != GL_RGBA16F) {
+        throw Error("temporal capture: the composite must be an RGBA32F or RGBA16F texture");
+    }
     if (depthFormat != GL_DEPTH_COMPONENT32F && depthFormat != GL_R32F) {
         throw Error("temporal capture: the depth must be a DEPTH_COMPONENT32F or R32F texture");
     }
-    if (width != width_ || height != height_ || !color_ || depth_.format() != depthFormat) {
-        color_ = gl::Texture2D(GL_RGBA32F, width, height);
+    if (width != width_ || height != height_ || !color_ || color_.format() != colorFormat || depth_.format() != depthFormat) {
+        color_ = gl::Texture2D(colorFormat, width, height);
         depth_ = gl::Texture2D(depthFormat, width, height);
         const int blocksX = (width + STARNT_TEMPORAL_SEED_BLOCK - 1) / STARNT_TEMPORAL_SEED_BLOCK;
         const int blocksY = (height + STARNT_TEMPORAL_SEED_BLOCK - 1) / STARNT_TEMPORAL_SEED_BLOCK;
@@ -57,11 +60,12 @@ void Reprojector::capture(GLuint colorTexture, GLuint depthTexture, int width, i
         width_ = width;
         height_ = height;
     }
-    if (nearestTexture && gl::textureInternalFormat(nearestTexture) != GL_RGBA32F) {
-        throw Error("temporal capture: the nearest layer must be an RGBA32F texture");
+    const GLenum nearestFormat = nearestTexture ? gl::textureInternalFormat(nearestTexture) : GLenum(GL_RGBA32F);
+    if (nearestFormat != GL_RGBA32F && nearestFormat != GL_RGBA16F) {
+        throw Error("temporal capture: the nearest layer must be an RGBA32F or RGBA16F texture");
     }
-    if (nearestTexture && (keptNearest_.width() != width || keptNearest_.height() != height)) {
-        keptNearest_ = gl::Texture2D(GL_RGBA32F, width, height);
+    if (nearestTexture && (keptNearest_.width() != width || keptNearest_.height() != height || keptNearest_.format() != nearestFormat)) {
+        keptNearest_ = gl::Texture2D(nearestFormat, width, height);
     }
     hasNearest_ = nearestTexture != 0;
     if (hasNearest_) {
@@ -84,7 +88,9 @@ void Reprojector::capture(GLuint colorTexture, GLuint depthTexture, int width, i
     gl::bindTexture(0, blockMinMax_.id());
     gl::drawFullscreenTriangle(emptyVao_);
     if (hasNearest_) {
-        if (behind_.width() != width || behind_.height() != height) behind_ = gl::Texture2D(GL_RGBA32F, width, height);
+        if (behind_.width() != width || behind_.height() != height || behind_.format() != colorFormat) {
+            behind_ = gl::Texture2D(colorFormat, width, height);
+        }
         drawInto(behind_.id(), width, height);
         glUseProgram(behindProgram_.id());
         glUniform2i(behindProgram_.uniform("u_size"), width, height);
@@ -115,8 +121,11 @@ void Reprojector::setSearchUniforms(const gl::Program& program, const glm::mat4&
 
 void Reprojector::reproject(const glm::mat4& newViewProj, GLuint outputTexture) {
     if (!hasFrame_) throw Error("internal: temporal reprojection before any real frame was captured");
+    // Queried before any binding: on OpenGL ES the query binds the texture to the active unit.
+    const bool halfOutput = gl::textureInternalFormat(outputTexture) == GL_RGBA16F;
     drawInto(outputTexture, width_, height_);
     setSearchUniforms(search_, newViewProj);
+    glUniform1i(search_.uniform("u_halfOutput"), halfOutput);
     gl::drawFullscreenTriangle(emptyVao_);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
@@ -125,12 +134,14 @@ void Reprojector::reprojectRefresh(const glm::mat4& newViewProj, GLuint nearestT
                                    GLuint outputTexture) {
     if (!hasFrame_) throw Error("internal: temporal reprojection before any real frame was captured");
     if (!hasNearest_) throw Error("internal: a refresh frame needs the kept frame's nearest layer");
+    const bool halfOutput = gl::textureInternalFormat(outputTexture) == GL_RGBA16F;  // before any binding (ES)
     drawInto(outputTexture, width_, height_);
     setSearchUniforms(searchRefresh_, newViewProj);
     gl::bindTexture(3, keptNearest_.id());
     gl::bindTexture(4, nearestTexture);
     gl::bindTexture(5, behind_.id());
     glUniform3fv(searchRefresh_.uniform("u_background"), 1, glm::value_ptr(background));
+    glUniform1i(searchRefresh_.uniform("u_halfOutput"), halfOutput);
     gl::drawFullscreenTriangle(emptyVao_);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }

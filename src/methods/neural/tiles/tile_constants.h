@@ -59,7 +59,7 @@
 #define STARNT_GUARD_ENERGY_PASS3 4
 #define STARNT_GUARD_LOSS_PASS3_HALF 5
 #define STARNT_GUARD_LOSS_PASS3_QUARTER 6
-#define STARNT_GUARD_VALUES 8
+#define STARNT_GUARD_VALUES 7  /* indices 0..6 above */
 // Below this transmittance in front of a pass's share, the share is not divided out (invisible).
 #define STARNT_GUARD_MIN_TRANSMITTANCE 1e-4
 

@@ -1,0 +1,23 @@
+// Writes into the compact 16-bit float targets (NeuralOptions::Targets::Compact; the programs get
+// STARNT_HALF_TARGETS): each value is rounded here to the nearest 16-bit float, ties to even, so the
+// conversion the target's write does is exact whatever rounding the driver uses. llvmpipe truncates
+// toward zero (measured: pass-1 colours and outputs 1-3 steps of 2^-11 low against a
+// round-to-nearest CPU reference), a bias every pixel would carry; GPUs round to nearest, where
+// this changes nothing. Blended writes (pass 3's sums) cannot be rounded this way.
+// CPU reference: nn::roundToHalf.
+float nearestHalf(float v) {
+    float a = min(abs(v), 65504.0);  // the largest finite 16-bit float
+    if (a == 0.0) return 0.0;
+    int e;
+    frexp(a, e);  // a = m 2^e, m in [0.5, 1): 16-bit floats there are 2^(e - 11) apart (2^-24 below 2^-14)
+    float step = ldexp(1.0, max(e - 11, -24));
+    return sign(v) * roundEven(a / step) * step;
+}
+
+vec4 targetValue(vec4 v) {
+#ifdef STARNT_HALF_TARGETS
+    return vec4(nearestHalf(v.x), nearestHalf(v.y), nearestHalf(v.z), nearestHalf(v.w));
+#else
+    return v;
+#endif
+}
