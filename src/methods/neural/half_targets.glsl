@@ -14,9 +14,11 @@ float nearestHalf(float v) {
     return sign(v) * roundEven(a / step) * step;
 }
 
+vec4 nearestHalf(vec4 v) { return vec4(nearestHalf(v.x), nearestHalf(v.y), nearestHalf(v.z), nearestHalf(v.w)); }
+
 vec4 targetValue(vec4 v) {
 #ifdef STARNT_HALF_TARGETS
-    return vec4(nearestHalf(v.x), nearestHalf(v.y), nearestHalf(v.z), nearestHalf(v.w));
+    return nearestHalf(v);
 #else
     return v;
 #endif

@@ -40,18 +40,23 @@ PixelSums readPixelSums(ivec2 p) {
 #else
     // Pass 2 at full resolution (pass 3 reduced): its own pixel only. The inference may write the
     // output in place over pass 2's target then (NeuralPasses::outputSlot), so no neighbour may be
-    // read, not even with weight 0.
-    // (A texel without a fragment reads as zero, as the alpha-weighted upsampling gives.)
-    vec4 f2;
+    // read, not even with weight 0. (A texel without a fragment reads as zero, as the alpha-weighted
+    // upsampling gives.)
 #ifdef STARNT_UPSAMPLE_JOINT
     // The tap weights depend on the image size only: pass 2 reuses pass 3's when they match.
     JointTaps taps3 = jointTaps(p, u_pass3Size);
-    if (u_pass2Size == u_fullSize) f2 = texelFetch(u_second, p, 0), f2 = f2.a > 0.0 ? f2 : vec4(0.0);
-    else f2 = upsampleJointAlphaWeighted(u_second, u_pass2Size == u_pass3Size ? taps3 : jointTaps(p, u_pass2Size));
-#else
-    if (u_pass2Size == u_fullSize) f2 = texelFetch(u_second, p, 0), f2 = f2.a > 0.0 ? f2 : vec4(0.0);
-    else f2 = upsampleAlphaWeighted(u_second, p, u_pass2Size);
 #endif
+    vec4 f2;
+    if (u_pass2Size == u_fullSize) {
+        f2 = texelFetch(u_second, p, 0);
+        f2 = f2.a > 0.0 ? f2 : vec4(0.0);
+    } else {
+#ifdef STARNT_UPSAMPLE_JOINT
+        f2 = upsampleJointAlphaWeighted(u_second, u_pass2Size == u_pass3Size ? taps3 : jointTaps(p, u_pass2Size));
+#else
+        f2 = upsampleAlphaWeighted(u_second, p, u_pass2Size);
+#endif
+    }
 #endif
     s.c1 = f1.rgb;
     s.a1 = f1.a;

@@ -11,7 +11,7 @@
 // frames' inference does (half_targets.glsl), so a refresh frame equals a real one bit for bit
 // where it should.
 uniform bool u_halfOutput;
-vec4 outputValue(vec4 v) { return u_halfOutput ? vec4(nearestHalf(v.x), nearestHalf(v.y), nearestHalf(v.z), nearestHalf(v.w)) : v; }
+vec4 outputValue(vec4 v) { return u_halfOutput ? nearestHalf(v) : v; }
 
 layout(binding = 0) uniform highp sampler2D u_color;  // last real frame's composite, linear RGBA
 layout(binding = 1) uniform highp sampler2D u_depth;  // its pass-1 window depth, 1 = nothing drawn
