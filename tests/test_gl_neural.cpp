@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "core/gl_util.hpp"
 #include "core/shader.hpp"
@@ -125,6 +126,43 @@ TEST(GlNeural, DfaoitMatchesCpuReferencePerPixel) {
     for (auto layout : kLayouts) {
         expectGpuMatchesCpu(c, renderWith(c, "dfaoit", withTargets(layout)),
                             [&](const nn::PixelSums& s) { return nn::compositeDfaoit(net, s, kBackground); }, 1e-3f, layout);
+    }
+}
+
+// The composites shade only the pixels pass 1 covered and fill the rest with the background
+// (methods/neural/empty_pixels.hpp): bit for bit the image of shading every pixel, for every neural
+// method, both target layouts, reduced passes (in-place and own outputs) and corner inference.
+TEST(GlNeural, SkippingEmptyPixelsChangesNoBit) {
+    const Case c = makeCase("tubes", 30.0f);
+    struct Variant {
+        const char* method;
+        float scale2, scale3;
+        bool corners;
+    };
+    const Variant variants[] = {{"starnt", 1.0f, 1.0f, false}, {"starnt", 0.5f, 0.5f, false}, {"starnt", 1.0f, 0.5f, true},
+                                {"dfaoit", 1.0f, 1.0f, false}, {"hybrid", 0.5f, 0.25f, false}};
+    for (const Variant& v : variants) {
+        for (NeuralOptions::Targets targets : kLayouts) {
+            MethodOptions options = withTargets(targets);
+            options.neural.fixedScale2 = v.scale2;
+            options.neural.fixedScale3 = v.scale3;
+            if (v.corners) options.neural.inference = NeuralOptions::Inference::Corners;
+            MethodOptions shadeAll = options;
+            shadeAll.neural.skipEmptyPixels = false;
+            const Image skipped = renderWith(c, v.method, options), all = renderWith(c, v.method, shadeAll);
+            size_t empty = 0, differ = 0;
+            for (int y = 0; y < kH; ++y) {
+                for (int x = 0; x < kW; ++x) {
+                    differ += std::memcmp(skipped.pixel(x, y), all.pixel(x, y), 3 * sizeof(float)) != 0;
+                    const float* p = all.pixel(x, y);
+                    empty += glm::vec3(p[0], p[1], p[2]) ==
+                             (targets == NeuralOptions::Targets::Compact ? nn::roundToHalf(kBackground) : kBackground);
+                }
+            }
+            EXPECT_EQ(differ, 0u) << v.method << " at " << v.scale2 << "/" << v.scale3 << (v.corners ? " corners" : "");
+            EXPECT_GT(empty, size_t(kW * kH / 10)) << "the view must leave empty pixels";
+            EXPECT_LT(empty, size_t(kW * kH * 9 / 10)) << "and covered ones";
+        }
     }
 }
 

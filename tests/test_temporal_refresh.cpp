@@ -76,6 +76,7 @@ TEST(TemporalRefresh, GpuMatchesCpuReference) {
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     ReprojectionFrame kept{w, h, {}, {}};
     std::vector<glm::vec4> keptNearest, nearest;
+    std::vector<float> freshDepth;  // pass 1's depth at the new camera: 1 (far plane) where it drew nothing
     for (int i = 0; i < w * h; ++i) {
         const float a1 = u(rng) < 0.2f ? 0.0f : 0.1f + 0.8f * u(rng);
         keptNearest.push_back(glm::vec4(u(rng), u(rng), u(rng), a1));
@@ -83,10 +84,13 @@ TEST(TemporalRefresh, GpuMatchesCpuReference) {
         kept.depth.push_back(a1 == 0.0f ? 1.0f : 0.6f + 0.3f * u(rng));
         const float n1 = u(rng) < 0.2f ? 0.0f : 0.1f + 0.8f * u(rng);
         nearest.push_back(glm::vec4(u(rng), u(rng), u(rng), n1));
+        freshDepth.push_back(n1 == 0.0f ? 1.0f : 0.5f + 0.4f * u(rng));
     }
     gl::Texture2D color = uploadRgba(kept.color, w, h), kn = uploadRgba(keptNearest, w, h), fresh = uploadRgba(nearest, w, h);
     gl::Texture2D depth(GL_R32F, w, h), output(GL_RGBA32F, w, h);
     starnt::gl::uploadTexture(depth.id(), w, h, GL_RED, GL_FLOAT, kept.depth.data());
+    gl::Texture2D freshDepthTexture(GL_DEPTH_COMPONENT32F, w, h);
+    starnt::gl::uploadTexture(freshDepthTexture.id(), w, h, GL_DEPTH_COMPONENT, GL_FLOAT, freshDepth.data());
     MethodOptions options;
     options.neural.temporalInterval = 2;
     options.neural.temporalMode = NeuralOptions::TemporalMode::Refresh;
@@ -96,7 +100,7 @@ TEST(TemporalRefresh, GpuMatchesCpuReference) {
     EXPECT_THROW(temporal.endRealFrame(color.id(), depth.id(), oldVP, w, h), Error) << "refresh needs the nearest layer";
     temporal.endRealFrame(color.id(), depth.id(), oldVP, w, h, kn.id());
     ASSERT_FALSE(temporal.beginFrame(w, h));
-    temporal.interpolateRefresh(newVP, fresh.id(), kBackground, output.id());
+    temporal.interpolateRefresh(newVP, fresh.id(), freshDepthTexture.id(), kBackground, output.id());
     const std::vector<glm::vec4> gpu = readRgba(output.id(), w, h);
     const Reprojection r = makeReprojection(oldVP, newVP);
     const std::vector<ReprojectionSource> sources = reprojectionSearchOnCpu(kept, r);
@@ -181,4 +185,28 @@ TEST(TemporalRefresh, SingleLayerPixelsMatchARealRenderAfterAMove) {
         }
     EXPECT_GT(checked, 50u);  // 89 on llvmpipe: the large triangles overlap almost everywhere
     EXPECT_GT(warpOff, 0u) << "warp frames do not re-render the layer: some of these pixels differ there";
+}
+
+// Refresh frames search only where the fresh pass 1 drew (empty_pixels.hpp): the same frames, bit
+// for bit, as searching every pixel, and the empty pixels hold the background.
+TEST(TemporalRefresh, SkippingEmptyPixelsChangesNoBit) {
+    test::TestScene c(makeBuiltinScene("tubes", 3), 96, 64, 30.0f, 15.0f, kBackground);
+    for (auto targets : {NeuralOptions::Targets::Compact, NeuralOptions::Targets::Float32}) {
+        MethodOptions options;
+        options.neural.temporalInterval = 2;
+        options.neural.temporalMode = NeuralOptions::TemporalMode::Refresh;
+        options.neural.targets = targets;
+        MethodOptions shadeAll = options;
+        shadeAll.neural.skipEmptyPixels = false;
+        const std::vector<float> yaws = {0.0f, 4.0f, 8.0f, 12.0f};
+        const auto skipped = renderSequence(c, options, yaws), all = renderSequence(c, shadeAll, yaws);
+        ASSERT_EQ(skipped.size(), all.size());
+        size_t backgroundPixels = 0;
+        for (size_t f = 0; f < skipped.size(); ++f) {
+            ASSERT_EQ(0, std::memcmp(skipped[f].data(), all[f].data(), skipped[f].size() * sizeof(glm::vec4)))
+                << "frame " << f << (f % 2 ? " (refresh)" : " (real)");
+            for (const glm::vec4& p : skipped[f]) backgroundPixels += glm::vec3(p) == nn::roundToHalf(kBackground) || glm::vec3(p) == kBackground;
+        }
+        EXPECT_GT(backgroundPixels, size_t(4 * 96 * 64 / 10)) << "the scene must leave empty pixels";
+    }
 }

@@ -84,6 +84,10 @@ struct NeuralOptions {
     // Float32 = every colour target 32-bit float (the earlier layout, for comparison).
     enum class Targets { Compact, Float32 };
     Targets targets = Targets::Compact;
+    // The composite passes shade only the pixels where pass 1 saw a fragment and write the
+    // background into the others (bit for bit the same image; methods/neural/empty_pixels.hpp).
+    // Off only to compare against shading every pixel. Joint upsampling always shades every pixel.
+    bool skipEmptyPixels = true;
 };
 
 struct MethodOptions {

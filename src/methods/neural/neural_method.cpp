@@ -5,6 +5,7 @@
 
 #include "core/shader.hpp"
 #include "methods/common/method_base.hpp"
+#include "methods/neural/empty_pixels.hpp"
 #include "methods/neural/neural_passes.hpp"
 #include "methods/neural/temporal/temporal_frames.hpp"
 #include "methods/neural/tiles/tile_constants.h"
@@ -132,8 +133,8 @@ public:
             if (temporal_.refreshes()) {
                 // Refresh: the nearest layer fresh at this camera, what lay behind it reprojected.
                 passes_.runNearest(frame, draw);
-                temporal_.interpolateRefresh(viewProjection, passes_.nearest().id(), frame.background, out_.texture,
-                                             frame.timing);
+                temporal_.interpolateRefresh(viewProjection, passes_.nearest().id(), passes_.nearestDepth().id(),
+                                             frame.background, out_.texture, frame.timing);
             } else {
                 temporal_.interpolate(viewProjection, out_.texture, frame.timing);
             }
@@ -178,12 +179,28 @@ private:
         }
     }
 
-    void bindOutput() const {
-        glBindFramebuffer(GL_FRAMEBUFFER, out_.framebuffer);
-        glViewport(0, 0, width_, height_);
+    // The composite draws shade only the pixels pass 1 covered (empty_pixels.hpp), except with
+    // joint upsampling, whose shaders sample pass 1's depth.
+    bool skipEmpty() const { return options_.neural.skipEmptyPixels && !joint(); }
+
+    void bindOutput() {
+        if (skipEmpty()) {
+            emptyPixels_.bindCovered(out_.texture, passes_.nearestDepth().id(), width_, height_);
+        } else {
+            glBindFramebuffer(GL_FRAMEBUFFER, out_.framebuffer);
+            glViewport(0, 0, width_, height_);
+        }
         // In place: each fragment reads its own texel of the target it writes, once; the barrier
         // makes the earlier passes' writes visible to those reads (GL 4.5 texture barrier rules).
         if (out_.texture != output_.id()) glTextureBarrier();
+    }
+
+    // After the composite: the background into the pixels it skipped.
+    void finishOutput(const FrameDesc& frame) const {
+        if (skipEmpty()) {
+            emptyPixels_.fillEmpty(frame.background, options_.neural.targets == NeuralOptions::Targets::Compact,
+                                   fullscreenVao_);
+        }
     }
 
     // The scale guard applies to the adaptive scales only (not to fixed --scales).
@@ -269,6 +286,7 @@ private:
             bindOutput();
             setCommonUniforms(inference("infer_full", fullResolution), frame);
             drawFullscreen();
+            finishOutput(frame);
             return;
         }
         if (cornerNetwork_.width() != width_ || cornerNetwork_.height() != height_) {
@@ -285,6 +303,7 @@ private:
         setCommonUniforms(inference("infer_fill", fullResolution), frame);
         gl::bindTexture(kUnitCornerNetwork, cornerNetwork_.id());
         drawFullscreen();
+        finishOutput(frame);
     }
 
     NeuralMethodConfig config_;
@@ -295,6 +314,7 @@ private:
     NeuralPasses passes_;
     TemporalFrames temporal_;
     std::unique_ptr<tiles::GpuTiles> tiles_;
+    EmptyPixelSkip emptyPixels_;
     gl::Texture2D cornerNetwork_, overlay_;
     gl::FramebufferHandle cornerFb_;
     float scale2_ = 1.0f, scale3_ = 1.0f;

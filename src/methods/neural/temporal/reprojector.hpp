@@ -8,6 +8,7 @@
 #include "core/gl_util.hpp"
 #include "starnt/oit_method.hpp"
 #include "core/shader.hpp"
+#include "methods/neural/empty_pixels.hpp"
 
 namespace starnt::temporal {
 
@@ -30,9 +31,11 @@ public:
     // RGBA texture of the captured size. Throws starnt::Error when nothing was captured.
     void reproject(const glm::mat4& newViewProj, GLuint outputTexture);
     // A refresh frame (temporal::refreshComposite): `nearestTexture` is pass 1 rendered at the new
-    // camera (RGBA32F, captured size). Throws when the capture kept no nearest layer.
-    void reprojectRefresh(const glm::mat4& newViewProj, GLuint nearestTexture, const glm::vec3& background,
-                          GLuint outputTexture);
+    // camera (RGBA32F or RGBA16F, captured size) and `nearestDepth` its depth
+    // (DEPTH_COMPONENT32F): the search runs only where pass 1 drew, the background goes elsewhere
+    // (empty_pixels.hpp). Throws when the capture kept no nearest layer.
+    void reprojectRefresh(const glm::mat4& newViewProj, GLuint nearestTexture, GLuint nearestDepth,
+                          const glm::vec3& background, GLuint outputTexture);
 
     void reset() { hasFrame_ = false; }  // forgets the frame, keeps the allocations
     void addMemoryTargets(starnt::OitMethod::MemoryTargets& out) const {
@@ -57,6 +60,7 @@ private:
     bool hasNearest_ = false;
     gl::Texture2D blockMinMax_, seeds_;  // RG32F (min, max) depth per block, then dilated
     gl::FramebufferHandle framebuffer_;
+    EmptyPixelSkip emptyPixels_;
     int width_ = 0, height_ = 0;
     glm::mat4 viewProj_{1.0f};
     bool hasFrame_ = false;

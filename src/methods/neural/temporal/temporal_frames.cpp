@@ -46,12 +46,12 @@ void TemporalFrames::interpolate(const glm::mat4& viewProj, GLuint outputTexture
     clock_.stop();
 }
 
-void TemporalFrames::interpolateRefresh(const glm::mat4& viewProj, GLuint nearestTexture, const glm::vec3& background,
-                                        GLuint outputTexture, PassTimingHook* timer) {
+void TemporalFrames::interpolateRefresh(const glm::mat4& viewProj, GLuint nearestTexture, GLuint nearestDepth,
+                                        const glm::vec3& background, GLuint outputTexture, PassTimingHook* timer) {
     if (!lastInterpolated_) throw Error("internal: TemporalFrames::interpolateRefresh on a real frame");
     {
         gl::ScopedPass timing(timer, "reproject");
-        reprojector_.reprojectRefresh(viewProj, nearestTexture, background, outputTexture);
+        reprojector_.reprojectRefresh(viewProj, nearestTexture, nearestDepth, background, outputTexture);
     }
     clock_.stop();
 }

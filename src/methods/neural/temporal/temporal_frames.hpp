@@ -38,10 +38,11 @@ public:
     // `outputTexture` (a colour-renderable RGBA texture of the frame size; the framebuffer binding is
     // 0 afterwards). Timed as pass "reproject" when a timer is given.
     void interpolate(const glm::mat4& viewProj, GLuint outputTexture, PassTimingHook* timer = nullptr);
-    // A refresh frame: `nearestTexture` is pass 1 rendered at `viewProj` (the caller renders it);
+    // A refresh frame: `nearestTexture` is pass 1 rendered at `viewProj` (the caller renders it) and
+    // `nearestDepth` its depth;
     // what lay behind the kept frame's nearest layer is reprojected under it. Timed as "reproject".
-    void interpolateRefresh(const glm::mat4& viewProj, GLuint nearestTexture, const glm::vec3& background,
-                            GLuint outputTexture, PassTimingHook* timer = nullptr);
+    void interpolateRefresh(const glm::mat4& viewProj, GLuint nearestTexture, GLuint nearestDepth,
+                            const glm::vec3& background, GLuint outputTexture, PassTimingHook* timer = nullptr);
     // Interpolated frames render pass 1 fresh (NeuralOptions::TemporalMode::Refresh).
     bool refreshes() const { return refresh_; }
 
