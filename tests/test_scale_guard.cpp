@@ -215,6 +215,7 @@ TEST(ScaleGuard, EmptyViewGoesToQuarterScalesAndShowsTheBackground) {
     EXPECT_EQ(stats["w_bar"].get<double>(), 0.0);
     EXPECT_EQ(stats["scale_pass2"].get<float>(), 0.25f);
     EXPECT_EQ(stats["scale_pass3"].get<float>(), 0.25f);
+    EXPECT_EQ(stats["probe_interval"].get<int>(), STARNT_SCALE_PROBE_INTERVAL) << "probes that reduce keep the base interval";
     // Exactly the background as the output holds it (16-bit floats with the default compact targets).
     for (const glm::vec4& p : readGl(method->outputTexture(), w, h)) ASSERT_EQ(glm::vec3(p), nn::roundToHalf(kBackground));
 }
@@ -278,4 +279,41 @@ TEST(WorkCounters, EqualWorkForEqualPassesAndFewerFragmentsAtHalfScale) {
     EXPECT_LT(ratio, 0.5);
     EXPECT_EQ(a.at("pass2").fragmentInvocations, b.at("pass2").fragmentInvocations);
     EXPECT_EQ(a.at("pass1").fragmentInvocations, a.at("pass3").fragmentInvocations) << "no depth test in pass 3";
+}
+
+// Probes back off while they keep finding nothing to reduce: after the settling probes the interval
+// doubles with each probe that kept full resolution (8, 16, 32, then 32), so a scene that never
+// reduces pays for one probe in 32 real frames. Tubes at this size: the guard keeps 100/100.
+TEST(ScaleGuard, ProbesBackOffWhileTheyKeepFullResolution) {
+    test::TestScene c(makeBuiltinScene("tubes", 3), 96, 64, 30.0f, 15.0f, kBackground);
+    auto method = createMethod("starnt", SceneGpu::surfaceShader(), {});
+    std::vector<int> probes;
+    int lastInterval = 0;
+    for (int frame = 0; frame < 100; ++frame) {
+        const FrameDesc f = c.frame();
+        method->render(f, c.gpu->callback(f.view, f.projection, {}));
+        glFinish();
+        const nlohmann::json stats = frameStatsJson(method->lastFrameStats());
+        ASSERT_EQ(stats["scale_pass3"].get<float>(), 1.0f) << "frame " << frame << ": the premise is a scene kept at full resolution";
+        if (stats["probe_frame"].get<bool>()) probes.push_back(frame);
+        lastInterval = stats["probe_interval"].get<int>();
+    }
+    ASSERT_GE(probes.size(), size_t(STARNT_SCALE_SETTLE_FRAMES + 3));
+    std::vector<int> gaps;
+    for (size_t i = STARNT_SCALE_SETTLE_FRAMES; i < probes.size(); ++i) gaps.push_back(probes[i] - probes[i - 1]);
+    // The readback of a probe's verdict may arrive a frame or two later, so a gap may repeat once.
+    for (size_t i = 1; i < gaps.size(); ++i) EXPECT_GE(gaps[i], gaps[i - 1]) << "gaps must not shrink";
+    EXPECT_EQ(gaps.back(), STARNT_SCALE_PROBE_INTERVAL << STARNT_SCALE_PROBE_BACKOFF);
+    EXPECT_EQ(lastInterval, STARNT_SCALE_PROBE_INTERVAL << STARNT_SCALE_PROBE_BACKOFF);
+    // A reset starts again from the settling probes and the base interval (the settling probes'
+    // verdicts then count towards the back-off like any other).
+    method->resetHistory();
+    for (int frame = 0; frame < STARNT_SCALE_SETTLE_FRAMES; ++frame) {
+        const FrameDesc f = c.frame();
+        method->render(f, c.gpu->callback(f.view, f.projection, {}));
+        glFinish();
+        const nlohmann::json stats = frameStatsJson(method->lastFrameStats());
+        EXPECT_TRUE(stats["probe_frame"].get<bool>()) << "settling frame " << frame << " after the reset";
+        if (frame == 0) EXPECT_EQ(stats["probe_interval"].get<int>(), STARNT_SCALE_PROBE_INTERVAL);
+    }
 }

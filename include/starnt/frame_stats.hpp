@@ -45,6 +45,7 @@ struct NeuralFrameStats {
         NeuralOptions::Upsample upsample{};       // "upsample"
         bool scaleGuard = false;                  // "scale_guard"
         std::optional<bool> probeFrame;           // "probe_frame" (with the guard): full-resolution probe
+        std::optional<int> probeInterval;         // "probe_interval" (with the guard): real frames between probes
         std::optional<Guard> guard;               // "guard" (with the guard, once measured)
     };
 

@@ -1,5 +1,6 @@
 #include "bench/bench_report.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <optional>
@@ -277,6 +278,29 @@ void memoryTable(std::ostringstream& md, const Results& r) {
     md << "## GPU memory per method (MiB)\n\nEvery buffer and texture the method holds (scene geometry excluded).\n\n";
     auto mib = [](const CaseResult& c) { return c.stats.value("memory_bytes", 0.0) / (1024.0 * 1024.0); };
     sceneByVariantTable(md, r, [&](const CaseResult& c) { return fixed(mib(c), 1); });
+    // What the memory is made of, from the first scene each variant ran on (the targets depend on
+    // the resolution only; the A-buffer's pool also on the scene's fragments).
+    md << "Per target, MiB (`memory_targets` of `--stats`; the first scene each variant ran on; targets of 0 bytes "
+          "left out):\n\n| variant | scene | targets |\n|---|---|---|\n";
+    for (const auto& v : r.plan.variants) {
+        for (const auto& s : r.scenes) {
+            const CaseResult* c = s.loaded ? s.find(v.name) : nullptr;
+            if (!c || !c->ok || !c->stats.contains("memory_targets")) continue;
+            std::vector<std::pair<double, std::string>> targets;
+            for (const auto& [name, bytes] : c->stats["memory_targets"].items()) {
+                const double b = bytes.get<double>();
+                if (b > 0.0) targets.emplace_back(b, name);
+            }
+            std::sort(targets.begin(), targets.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+            md << "| " << v.name << " | " << sceneLabel(s) << " |";
+            for (size_t i = 0; i < targets.size(); ++i) {
+                md << (i ? ", " : " ") << targets[i].second << " " << fixed(targets[i].first / (1024.0 * 1024.0), 1);
+            }
+            md << " |\n";
+            break;
+        }
+    }
+    md << "\n";
 }
 
 void qTable(std::ostringstream& md, const Results& r) {

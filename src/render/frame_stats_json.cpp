@@ -44,6 +44,7 @@ nlohmann::json frameStatsJson(const FrameStats& stats) {
             out["upsample"] = upsampleText(t.upsample);
             out["scale_guard"] = t.scaleGuard;
             if (t.probeFrame) out["probe_frame"] = *t.probeFrame;
+            if (t.probeInterval) out["probe_interval"] = *t.probeInterval;
             if (t.guard) {
                 const NeuralFrameStats::Guard& g = *t.guard;
                 out["guard"] = {{"occupied_pixels", g.occupiedPixels},

@@ -394,6 +394,7 @@ private:
         m.meanFlip = errorView_.meanFlip();
         m.mse = errorView_.mse();
         m.methodMemoryBytes = methods_.gpuMemoryBytes();
+        m.methodMemoryTargets = methods_.primary().gpuMemoryTargets();
         m.sceneMemoryBytes = sceneGpu_->gpuMemoryBytes();
         m.renderer = renderer_;
         m.timingMode = methods_.timingMode();

@@ -230,8 +230,9 @@ void timingPanel(const UiModel& m) {
         // quartering it would lose, per occupied pixel, and the budget a pair's loss must stay under.
         if (const auto& g = neural->tiles->guard; g && g->occupiedPixels > 0) {
             const double n = double(g->occupiedPixels);
-            ImGui::Text("guard (%s): %.0f occupied pixels, budget %.1e per pixel",
-                        neural->tiles->probeFrame.value_or(false) ? "probe" : "last probe", n, STARNT_SCALE_GUARD_BUDGET);
+            ImGui::Text("guard (%s, every %d real frames): %.0f occupied pixels, budget %.1e per pixel",
+                        neural->tiles->probeFrame.value_or(false) ? "probe" : "last probe",
+                        neural->tiles->probeInterval.value_or(STARNT_SCALE_PROBE_INTERVAL), n, STARNT_SCALE_GUARD_BUDGET);
             ImGui::Text("  pass 2 adds %.2e, loses %.2e at 1/2, %.2e at 1/4", g->energyPass2 / n, g->lossPass2[0] / n,
                         g->lossPass2[1] / n);
             ImGui::Text("  pass 3 adds %.2e, loses %.2e at 1/2, %.2e at 1/4", g->energyPass3 / n, g->lossPass3[0] / n,
@@ -243,6 +244,13 @@ void timingPanel(const UiModel& m) {
     ImGui::Text("frames: %d real, %d interpolated", s.realFrames(), s.interpolatedFrames());
     ImGui::Text("GPU memory: methods %.1f MiB, scene %.1f MiB", double(m.methodMemoryBytes) / (1 << 20),
                 double(m.sceneMemoryBytes) / (1 << 20));
+    // What the primary method's memory is made of (`memory_targets` of --stats); empty targets left out.
+    if (!m.methodMemoryTargets.empty() && ImGui::TreeNode("memory per target")) {
+        for (const auto& [name, bytes] : m.methodMemoryTargets) {
+            if (bytes > 0) ImGui::Text("%-28s %8.2f MiB", name.c_str(), double(bytes) / (1 << 20));
+        }
+        ImGui::TreePop();
+    }
     ImGui::End();
 }
 

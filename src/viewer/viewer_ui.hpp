@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "starnt/oit_method.hpp"
 #include "viewer/camera_controller.hpp"
 #include "viewer/frame_statistics.hpp"
 #include "viewer/scene_catalog.hpp"
@@ -34,6 +35,7 @@ struct UiModel {
     bool errorMapCurrent = false;
     double meanFlip = 0.0, mse = 0.0;
     size_t methodMemoryBytes = 0, sceneMemoryBytes = 0;
+    OitMethod::MemoryTargets methodMemoryTargets;  // the primary method's, name -> bytes
     std::string renderer, timingMode;
     int width = 0, height = 0;
 };

@@ -95,6 +95,7 @@ public:
             t.scaleGuard = guarded();
             if (guarded()) {
                 t.probeFrame = probe_ && !temporal_.lastWasInterpolated();
+                t.probeInterval = probeInterval();
                 if (tiles_->hasGuard()) {
                     const tiles::ScaleGuard& g = tiles_->guard();
                     t.guard = NeuralFrameStats::Guard{g.occupied, g.energy2, g.energy3, g.loss2, g.loss3};
@@ -117,6 +118,7 @@ public:
     void resetHistory() override {
         if (tiles_) tiles_->reset();
         realFramesSinceProbe_ = 0;
+        fullProbes_ = 0;
         temporal_.reset();
     }
 
@@ -203,6 +205,12 @@ private:
         }
     }
 
+    // Real frames from one probe to the next (tile_constants.h: doubled after each probe in a row
+    // that kept full resolution, up to 32).
+    int probeInterval() const {
+        return STARNT_SCALE_PROBE_INTERVAL << std::min(fullProbes_, STARNT_SCALE_PROBE_BACKOFF);
+    }
+
     // The scale guard applies to the adaptive scales only (not to fixed --scales).
     bool guarded() const { return spatial_ && options_.neural.scaleGuard && options_.neural.fixedScale2 == 0.0f; }
 
@@ -242,8 +250,7 @@ private:
             scale2_ = tiles::ruleScale(options_.neural.scaleRule, wBar, STARNT_SCALE_DELTA_PASS2);
             scale3_ = tiles::ruleScale(options_.neural.scaleRule, wBar, STARNT_SCALE_DELTA_PASS3);
             if (guarded()) {
-                probe_ = tiles_->updates() < STARNT_SCALE_SETTLE_FRAMES ||
-                         realFramesSinceProbe_ + 1 >= STARNT_SCALE_PROBE_INTERVAL;
+                probe_ = tiles_->updates() < STARNT_SCALE_SETTLE_FRAMES || realFramesSinceProbe_ + 1 >= probeInterval();
                 realFramesSinceProbe_ = probe_ ? 0 : realFramesSinceProbe_ + 1;
                 if (probe_ || !tiles_->hasGuard()) {
                     scale2_ = scale3_ = 1.0f;
@@ -253,6 +260,10 @@ private:
                     const tiles::PassScales s = tiles::guardScales(tiles_->guard(), STARNT_SCALE_GUARD_BUDGET);
                     scale2_ = s.pass2;
                     scale3_ = s.pass3;
+                    if (tiles_->guardReadings() != guardReadingsSeen_) {  // a new probe's verdict
+                        guardReadingsSeen_ = tiles_->guardReadings();
+                        fullProbes_ = s.pass2 == 1.0f && s.pass3 == 1.0f ? fullProbes_ + 1 : 0;
+                    }
                 }
             }
         } else {
@@ -322,6 +333,8 @@ private:
     NeuralPasses::OutputSlot out_;  // this frame's output
     bool probe_ = false;            // this real frame is a guard probe (passes 2/3 at full resolution)
     int realFramesSinceProbe_ = 0;
+    int fullProbes_ = 0;         // probes in a row whose guard kept both passes at full resolution
+    int guardReadingsSeen_ = 0;  // tiles_->guardReadings() when fullProbes_ last changed
 };
 
 }  // namespace

@@ -16,7 +16,7 @@
 //   The output is written in place over one of them (outputSlot), so it costs nothing.
 // Float32: every colour target 32-bit float (the earlier layout).
 // Passes 2 and 3 keep full-size targets even when they run reduced: the scale guard's probe frames
-// run them at full resolution every 8th real frame, so the full size is the peak anyway, and
+// run them at full resolution every 8th to 32nd real frame, so the full size is the peak anyway, and
 // reallocating at every probe would only churn.
 #pragma once
 #include <string>

@@ -152,6 +152,7 @@ bool GpuTiles::pollHistogram() {
         guard_.loss2 = {guard[STARNT_GUARD_LOSS_PASS2_HALF], guard[STARNT_GUARD_LOSS_PASS2_QUARTER]};
         guard_.loss3 = {guard[STARNT_GUARD_LOSS_PASS3_HALF], guard[STARNT_GUARD_LOSS_PASS3_QUARTER]};
         hasGuard_ = true;
+        ++guardReadings_;
     }
     // Older finished slots are superseded by this one.
     for (int i = 0; i < int(readbacks_.size()); ++i) {

@@ -40,6 +40,8 @@ public:
     // The guard sums of the newest histogram readback whose update computed them.
     bool hasGuard() const { return hasGuard_; }
     const ScaleGuard& guard() const { return guard_; }
+    // Guard measurements picked up so far (grows by one with each probe's readback; never reset).
+    int guardReadings() const { return guardReadings_; }
     // Number of updates run since the last reset (0: the masks are all level 0 from the start).
     int updates() const { return updates_; }
 
@@ -80,6 +82,7 @@ private:
     bool hasGuard_ = false;
     ScaleGuard guard_;
     int updates_ = 0;
+    int guardReadings_ = 0;
 };
 
 }  // namespace starnt::tiles
