@@ -23,7 +23,6 @@ void EmptyPixelSkip::bindCovered(GLuint colorTexture, GLuint pass1Depth, int wid
     glDisable(GL_SCISSOR_TEST);
     glEnable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
-    glDepthRangef(1.0f, 1.0f);
     glDepthFunc(GL_GREATER);
 }
 
@@ -34,7 +33,6 @@ void EmptyPixelSkip::fillEmpty(const glm::vec3& background, bool halfOutput, con
     glUniform1i(background_.uniform("u_halfOutput"), halfOutput ? 1 : 0);
     gl::drawFullscreenTriangle(emptyVao);
     glDepthFunc(GL_LESS);
-    glDepthRangef(0.0f, 1.0f);
     glDepthMask(GL_TRUE);
     glDisable(GL_DEPTH_TEST);
 }

@@ -2,9 +2,9 @@
 // refresh frame's composite is the background, exactly (no fragment means no pass-2/3 fragment
 // either: readPixelSums). The full-screen passes that produce the image therefore shade only the
 // pixels pass 1 covered, and one trivial pass writes the background into the rest:
-//   - the covered pixels: an early depth test of the full-screen triangle, placed at window depth 1
-//     (glDepthRange(1, 1)), GREATER against pass 1's depth (1, the far plane, where nothing was
-//     drawn; pass 1 tests LESS against that clear value, so it never keeps a fragment at 1);
+//   - the covered pixels: an early depth test of the full-screen triangle, which lies on the far
+//     plane (window depth 1; fullscreen.vert.glsl), GREATER against pass 1's depth (1 where nothing
+//     was drawn; pass 1 tests LESS against that clear value, so it never keeps a fragment at 1);
 //   - the empty pixels: the same test with LEQUAL, writing the background (rounded to the nearest
 //     16-bit float for a 16-bit output, as the composites' own writes are: half_targets.glsl).
 // The images are bit for bit those of shading every pixel. Why it pays: the early test rejects
@@ -32,7 +32,7 @@ public:
     // Throws starnt::Error if the framebuffer is incomplete.
     void bindCovered(GLuint colorTexture, GLuint pass1Depth, int width, int height);
     // After the covered pixels were drawn: writes the background into the empty ones and restores
-    // the default depth state (test off, range 0..1, writes on).
+    // the default depth state (test off, function LESS, writes on). The depth range is not touched.
     void fillEmpty(const glm::vec3& background, bool halfOutput, const gl::VertexArrayHandle& emptyVao) const;
 
 private:
