@@ -1,9 +1,9 @@
-#include <bit>
-#include <cmath>
-#include <cstdint>
 // CPU reference of the per-pixel sums (passes 1-3), the network features, the training targets
 // and the final composites. The guards are documented in include/starnt/nn.hpp.
 #include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
 
 #include "starnt/nn.hpp"
 

@@ -16,6 +16,9 @@ float nearestHalf(float v) {
 
 vec4 nearestHalf(vec4 v) { return vec4(nearestHalf(v.x), nearestHalf(v.y), nearestHalf(v.z), nearestHalf(v.w)); }
 
+// The same for an output whose format is known only when the frame runs (`halfOutput`: RGBA16F).
+vec4 outputValue(vec4 v, bool halfOutput) { return halfOutput ? nearestHalf(v) : v; }
+
 vec4 targetValue(vec4 v) {
 #ifdef STARNT_HALF_TARGETS
     return nearestHalf(v);

@@ -5,7 +5,4 @@ uniform vec3 u_background;
 uniform bool u_halfOutput;
 layout(location = 0) out vec4 outColor;
 
-void main() {
-    vec4 background = vec4(u_background, 1.0);
-    outColor = u_halfOutput ? nearestHalf(background) : background;
-}
+void main() { outColor = outputValue(vec4(u_background, 1.0), u_halfOutput); }

@@ -11,7 +11,6 @@
 // frames' inference does (half_targets.glsl), so a refresh frame equals a real one bit for bit
 // where it should.
 uniform bool u_halfOutput;
-vec4 outputValue(vec4 v) { return u_halfOutput ? nearestHalf(v) : v; }
 
 layout(binding = 0) uniform highp sampler2D u_color;  // last real frame's composite, linear RGBA
 layout(binding = 1) uniform highp sampler2D u_depth;  // its pass-1 window depth, 1 = nothing drawn
@@ -135,12 +134,12 @@ void main() {
             if (t == bestTexel) own += wk;
         }
         if (weight > 0.0 && own < 0.999 * weight) {
-            o_color = outputValue(vec4(fresh.a * fresh.rgb + (1.0 - fresh.a) * max(sum / weight, vec3(0.0)), 1.0));
+            o_color = outputValue(vec4(fresh.a * fresh.rgb + (1.0 - fresh.a) * max(sum / weight, vec3(0.0)), 1.0), u_halfOutput);
             return;
         }
     }
     o_color = outputValue(vec4(refreshComposite(texelFetch(u_color, source, 0).rgb, texelFetch(u_keptNearest, source, 0),
-                                                texelFetch(u_nearest, p, 0), u_background), 1.0));
+                                                texelFetch(u_nearest, p, 0), u_background), 1.0), u_halfOutput);
 #else
     o_color = texelFetch(u_color, source, 0);
 #endif

@@ -135,7 +135,8 @@ void Reprojector::reprojectRefresh(const glm::mat4& newViewProj, GLuint nearestT
     if (!hasFrame_) throw Error("internal: temporal reprojection before any real frame was captured");
     if (!hasNearest_) throw Error("internal: a refresh frame needs the kept frame's nearest layer");
     const bool halfOutput = gl::textureInternalFormat(outputTexture) == GL_RGBA16F;  // before any binding (ES)
-    emptyPixels_.bindCovered(outputTexture, nearestDepth, width_, height_);
+    if (nearestDepth) emptyPixels_.bindCovered(outputTexture, nearestDepth, width_, height_);
+    else drawInto(outputTexture, width_, height_);
     setSearchUniforms(searchRefresh_, newViewProj);
     gl::bindTexture(3, keptNearest_.id());
     gl::bindTexture(4, nearestTexture);
@@ -143,7 +144,7 @@ void Reprojector::reprojectRefresh(const glm::mat4& newViewProj, GLuint nearestT
     glUniform3fv(searchRefresh_.uniform("u_background"), 1, glm::value_ptr(background));
     glUniform1i(searchRefresh_.uniform("u_halfOutput"), halfOutput);
     gl::drawFullscreenTriangle(emptyVao_);
-    emptyPixels_.fillEmpty(background, halfOutput, emptyVao_);
+    if (nearestDepth) emptyPixels_.fillEmpty(background, halfOutput, emptyVao_);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 

@@ -33,7 +33,8 @@ public:
     // A refresh frame (temporal::refreshComposite): `nearestTexture` is pass 1 rendered at the new
     // camera (RGBA32F or RGBA16F, captured size) and `nearestDepth` its depth
     // (DEPTH_COMPONENT32F): the search runs only where pass 1 drew, the background goes elsewhere
-    // (empty_pixels.hpp). Throws when the capture kept no nearest layer.
+    // (empty_pixels.hpp); 0 searches every pixel (the same image). Throws when the capture kept no
+    // nearest layer.
     void reprojectRefresh(const glm::mat4& newViewProj, GLuint nearestTexture, GLuint nearestDepth,
                           const glm::vec3& background, GLuint outputTexture);
 

@@ -7,7 +7,8 @@ namespace starnt {
 TemporalFrames::TemporalFrames(const MethodOptions& options)
     : schedule_(options),
       clock_(gl::wallClockTimingNeeded()),
-      refresh_(options.neural.temporalMode == NeuralOptions::TemporalMode::Refresh) {}
+      refresh_(options.neural.temporalMode == NeuralOptions::TemporalMode::Refresh),
+      skipEmptyPixels_(options.neural.skipEmptyPixels) {}
 
 bool TemporalFrames::beginFrame(int width, int height) {
     if (auto m = clock_.take()) {
@@ -51,7 +52,8 @@ void TemporalFrames::interpolateRefresh(const glm::mat4& viewProj, GLuint neares
     if (!lastInterpolated_) throw Error("internal: TemporalFrames::interpolateRefresh on a real frame");
     {
         gl::ScopedPass timing(timer, "reproject");
-        reprojector_.reprojectRefresh(viewProj, nearestTexture, nearestDepth, background, outputTexture);
+        reprojector_.reprojectRefresh(viewProj, nearestTexture, skipEmptyPixels_ ? nearestDepth : 0, background,
+                                      outputTexture);
     }
     clock_.stop();
 }

@@ -67,6 +67,7 @@ private:
     temporal::FrameClock clock_;
     bool lastInterpolated_ = false;
     bool refresh_ = false;
+    bool skipEmptyPixels_ = true;  // NeuralOptions::skipEmptyPixels
 };
 
 }  // namespace starnt
