@@ -27,7 +27,8 @@ for t in "${targets[@]}"; do
   if ! build-fuzz/fuzz/fuzz_$t "$corpus" fuzz/corpus/$t -max_total_time="$seconds" -runs="${runs/#0/-1}" \
        -max_len=65536 -rss_limit_mb=2048 -timeout=20 -print_final_stats=1 -artifact_prefix="$findings/" \
        >"$log" 2>&1; then
-    echo "fuzz_$t: FAILED, see $log and $findings/" >&2
+    echo "fuzz_$t: FAILED, see $log and $findings/; the report:" >&2
+    grep -v -E "^#[0-9]+|^INFO:|^MS:|^base unit" "$log" | tail -n 40 | sed "s/^/fuzz_$t: | /" >&2 || true
     status=1
   fi
   grep -E "stat::number_of_executed_units|stat::peak_rss_mb|Done [0-9]+ runs" "$log" | sed "s/^/fuzz_$t: /" >&2 || true

@@ -1,6 +1,7 @@
 #include "core/gl_util.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <vector>
 
@@ -19,12 +20,16 @@ size_t bytesPerTexel(GLenum f) {
     switch (f) {
         case GL_RGBA32F: return 16;
         case GL_RGBA16F: return 8;
-        case GL_RGBA8: return 4;
+        case GL_RGBA8: case GL_SRGB8_ALPHA8: return 4;
         case GL_RG32F: return 8;
         case GL_R32F: case GL_R32UI: case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8: return 4;
         case GL_R16F: return 2;
         case GL_R8: return 1;
-        default: throw Error("internal: unknown texture format 0x" + std::to_string(f));
+        default: {
+            char hex[16];
+            std::snprintf(hex, sizeof hex, "0x%04X", unsigned(f));
+            throw Error(std::string("internal: unknown texture format ") + hex);
+        }
     }
 }
 
