@@ -60,43 +60,6 @@ bool halfBlendTruncates() {
     return v == 1.0f;
 }
 
-// What an SRGB8_ALPHA8 target keeps of each linear colour, read back as a sampler decodes it. Both
-// conversions are the driver's own, which GL lets approximate: llvmpipe's encoding puts 261 of 4096
-// evenly spaced values one step away from the nearest, and its decoding differs from the exact
-// formula by up to 1.2e-3 (measured). So the model of DFAOIT's compact layer colours takes them from
-// the GPU here; nn::roundToSrgb8 is the exact conversion.
-std::vector<glm::vec3> storedInSrgb8Target(const std::vector<glm::vec3>& colors) {
-    const int width = 128, height = std::max(1, int((colors.size() + width - 1) / width));
-    std::vector<glm::vec4> values(size_t(width) * size_t(height), glm::vec4(0.0f));
-    for (size_t i = 0; i < colors.size(); ++i) values[i] = glm::vec4(colors[i], 1.0f);
-    gl::Texture2D source(GL_RGBA32F, width, height), target(GL_SRGB8_ALPHA8, width, height);
-    gl::uploadTexture(source.id(), width, height, GL_RGBA, GL_FLOAT, values.data());
-    const gl::FramebufferHandle fb = gl::makeFramebuffer({&target});
-    const gl::Program program = gl::buildProgram(
-        "srgb8_store_probe", gl::embeddedSource("methods/common/fullscreen.vert.glsl"),
-        "layout(binding = 0) uniform sampler2D u_values; layout(location = 0) out vec4 o;\n"
-        "void main() { o = texelFetch(u_values, ivec2(gl_FragCoord.xy), 0); }");
-    const gl::VertexArrayHandle vao = gl::makeEmptyVertexArray();
-    glBindFramebuffer(GL_FRAMEBUFFER, fb.id());
-    glViewport(0, 0, width, height);
-    glEnable(GL_FRAMEBUFFER_SRGB);
-    glUseProgram(program.id());
-    gl::bindTexture(0, source.id());
-    gl::drawFullscreenTriangle(vao);
-    glDisable(GL_FRAMEBUFFER_SRGB);
-    // Read back through a sampler, which decodes as the composite's fetches do.
-    gl::Texture2D decoded(GL_RGBA32F, width, height);
-    const gl::FramebufferHandle decodedFb = gl::makeFramebuffer({&decoded});
-    glBindFramebuffer(GL_FRAMEBUFFER, decodedFb.id());
-    gl::bindTexture(0, target.id());
-    gl::drawFullscreenTriangle(vao);
-    std::vector<glm::vec4> read(values.size());
-    glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, read.data());
-    std::vector<glm::vec3> stored(colors.size());
-    for (size_t i = 0; i < colors.size(); ++i) stored[i] = glm::vec3(read[i]);
-    return stored;
-}
-
 MethodOptions withTargets(NeuralOptions::Targets targets) {
     MethodOptions o;
     o.neural.targets = targets;
@@ -105,34 +68,17 @@ MethodOptions withTargets(NeuralOptions::Targets targets) {
 constexpr NeuralOptions::Targets kLayouts[] = {NeuralOptions::Targets::Compact, NeuralOptions::Targets::Float32};
 
 // GPU image vs CPU composite of the captured fragments, per pixel. With the compact targets the CPU
-// reference holds what that layout holds for `kind` (nn::sumsInCompactTargets: 16-bit targets, and
-// DFAOIT's 8-bit sRGB layer colours) and rounds its output to 16 bits as the GPU does.
+// reference holds what 16-bit targets hold (nn::sumsInHalfTargets) and rounds its output the same.
 template <typename Composite>
 void expectGpuMatchesCpu(const Case& c, const Image& gpu, Composite composite, float tolerance,
-                         NeuralOptions::Targets targets = NeuralOptions::Targets::Compact,
-                         nn::NetworkKind kind = nn::NetworkKind::StarNT) {
+                         NeuralOptions::Targets targets = NeuralOptions::Targets::Compact) {
     CapturedFrame frags = c.capture();
     const bool compact = targets == NeuralOptions::Targets::Compact;
     const bool truncates = compact && halfBlendTruncates();
-    // DFAOIT's compact layer colours: as the GPU's sRGB encoding stores them (storedInSrgb8Target).
-    std::vector<glm::vec3> layerColors;
-    const bool srgbLayers = compact && kind == nn::NetworkKind::DFAOIT;
-    for (int y = 0; y < kH && srgbLayers; ++y) {
-        for (int x = 0; x < kW; ++x) {
-            const FragmentList sorted = nn::preparedFragments(frags.at(x, y));
-            for (size_t layer = 0; layer < 2; ++layer) layerColors.push_back(layer < sorted.size() ? sorted[layer].color : glm::vec3(0.0f));
-        }
-    }
-    if (srgbLayers) layerColors = storedInSrgb8Target(layerColors);
     size_t deep = 0, bad = 0;
     for (int y = 0; y < kH; ++y) {
         for (int x = 0; x < kW; ++x) {
-            nn::PixelSums sums = compact ? nn::sumsInCompactTargets(frags.at(x, y), kind, truncates) : nn::sumsFromFragments(frags.at(x, y));
-            if (srgbLayers) {
-                const size_t pixel = size_t(y) * kW + size_t(x);
-                sums.c1 = sums.count > 0.5f ? layerColors[2 * pixel] : glm::vec3(0.0f);
-                sums.c2 = sums.count > 1.5f ? layerColors[2 * pixel + 1] : glm::vec3(0.0f);
-            }
+            const nn::PixelSums sums = compact ? nn::sumsInHalfTargets(frags.at(x, y), truncates) : nn::sumsFromFragments(frags.at(x, y));
             if (sums.count > 3.5f) ++deep;
             const glm::vec3 want = compact ? nn::roundToHalf(composite(sums)) : composite(sums);
             for (int ch = 0; ch < 3; ++ch) {
@@ -180,26 +126,8 @@ TEST(GlNeural, DfaoitMatchesCpuReferencePerPixel) {
     const nn::Network net = loadMethodNetwork(dfaoitConfig(), {});
     for (auto layout : kLayouts) {
         expectGpuMatchesCpu(c, renderWith(c, "dfaoit", withTargets(layout)),
-                            [&](const nn::PixelSums& s) { return nn::compositeDfaoit(net, s, kBackground); }, 1e-3f, layout,
-                            nn::NetworkKind::DFAOIT);
+                            [&](const nn::PixelSums& s) { return nn::compositeDfaoit(net, s, kBackground); }, 1e-3f, layout);
     }
-}
-
-// DFAOIT's compact layer targets are sRGB, which desktop GL encodes only with GL_FRAMEBUFFER_SRGB on:
-// the method turns it on for passes 1 and 2 and puts back the engine's setting, whichever it was;
-// the image does not depend on it.
-TEST(GlNeural, DfaoitLeavesTheSrgbWriteSettingAsItFoundIt) {
-    if (gl::isEs()) GTEST_SKIP() << "OpenGL ES always encodes sRGB writes; it has no switch";
-    Case c = makeCase("tubes", 200.0f);
-    std::vector<Image> images;
-    for (bool enabled : {false, true}) {
-        if (enabled) glEnable(GL_FRAMEBUFFER_SRGB);
-        else glDisable(GL_FRAMEBUFFER_SRGB);
-        images.push_back(renderWith(c, "dfaoit"));
-        EXPECT_EQ(glIsEnabled(GL_FRAMEBUFFER_SRGB) == GL_TRUE, enabled);
-    }
-    glDisable(GL_FRAMEBUFFER_SRGB);
-    EXPECT_EQ(images[0].rgba, images[1].rgba);
 }
 
 // The composites shade only the pixels pass 1 covered and fill the rest with the background

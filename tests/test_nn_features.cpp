@@ -3,7 +3,6 @@
 
 #include <cmath>
 
-#include "starnt/image.hpp"
 #include "starnt/nn.hpp"
 #include "starnt/train.hpp"
 
@@ -211,40 +210,4 @@ TEST(NnComposite, DfaoitAddsBackgroundThroughAllLayers) {
     expectVec(compositeDfaoit(net, sumsFromFragments(list), glm::vec3(1.0f)), glm::vec3(0.75f), 1e-6f, "dfaoit");
     // No fragment: the background alone.
     expectVec(compositeDfaoit(net, sumsFromFragments({}), glm::vec3(0.3f)), glm::vec3(0.3f), 0.0f, "empty");
-}
-
-// DFAOIT's compact layout keeps the two layer colours in SRGB8_ALPHA8: 8-bit sRGB colour, 8-bit
-// linear alpha. The model rounds to the nearest step in each encoding; the pass-3 sums are those of
-// the 16-bit targets, as for STAR-NT.
-TEST(NnFeatures, DfaoitCompactLayersAreEightBitSrgb) {
-    EXPECT_EQ(nn::roundToSrgb8(0.0f), 0.0f);
-    EXPECT_EQ(nn::roundToSrgb8(1.0f), 1.0f);
-    EXPECT_EQ(nn::roundToSrgb8(-0.5f), 0.0f);
-    EXPECT_EQ(nn::roundToSrgb8(3.0f), 1.0f);
-    EXPECT_EQ(nn::roundToUnorm8(0.3f), 77.0f / 255.0f);
-    // sRGB steps are finest in the darks (1 / (255 x 12.92) there): 0.001 keeps 91 % of its value,
-    // where 8-bit linear steps (1 / 255) give 0.
-    EXPECT_NEAR(nn::roundToSrgb8(0.001f), 3.0f / 255.0f / 12.92f, 1e-7f);
-    EXPECT_EQ(nn::roundToUnorm8(0.001f), 0.0f);
-    for (float v = 0.0f; v <= 1.0f; v += 1.0f / 997.0f) {
-        const float encoded = linearToSrgb(v), stored = linearToSrgb(nn::roundToSrgb8(v));
-        EXPECT_NEAR(stored, encoded, 0.5f / 255.0f + 1e-6f) << v;
-        EXPECT_NEAR(stored * 255.0f, std::round(stored * 255.0f), 1e-3f) << v;
-    }
-    const FragmentList list = {{glm::vec3(0.8f, 0.2f, 0.05f), 0.3f, 0.2f},
-                               {glm::vec3(0.1f, 0.6f, 0.9f), 0.5f, 0.4f},
-                               {glm::vec3(0.5f, 0.5f, 0.5f), 0.25f, 0.6f}};
-    const nn::PixelSums half = nn::sumsInHalfTargets(list), starnt = nn::sumsInCompactTargets(list, nn::NetworkKind::StarNT),
-                        dfaoit = nn::sumsInCompactTargets(list, nn::NetworkKind::DFAOIT);
-    EXPECT_EQ(starnt.c1, half.c1);
-    EXPECT_EQ(starnt.a2, half.a2);
-    EXPECT_EQ(dfaoit.c1, nn::roundToSrgb8(glm::vec3(0.8f, 0.2f, 0.05f)));
-    EXPECT_EQ(dfaoit.c2, nn::roundToSrgb8(glm::vec3(0.1f, 0.6f, 0.9f)));
-    EXPECT_EQ(dfaoit.a1, nn::roundToUnorm8(0.3f));
-    EXPECT_EQ(dfaoit.a2, nn::roundToUnorm8(0.5f));
-    EXPECT_NE(dfaoit.c1, half.c1);
-    EXPECT_EQ(dfaoit.sumColor, half.sumColor);
-    EXPECT_EQ(dfaoit.sumAlpha, half.sumAlpha);
-    EXPECT_EQ(dfaoit.transmittance, half.transmittance);
-    EXPECT_EQ(dfaoit.count, 3.0f);
 }

@@ -55,16 +55,6 @@ PixelSums sumsFromFragments(FragmentList fragments, float alphaCutoff = kDefault
 // round what they write to the nearest 16-bit float; what blending writes is rounded by the driver:
 // to nearest on GPUs, toward zero on llvmpipe (`blendTruncates`).
 PixelSums sumsInHalfTargets(FragmentList fragments, bool blendTruncates = false, float alphaCutoff = kDefaultAlphaCutoff);
-// What the compact layout of `kind` holds: sumsInHalfTargets for STAR-NT (and hybrid); for DFAOIT
-// the same pass-3 sums, but the two nearest colours as an SRGB8_ALPHA8 target keeps them
-// (roundToSrgb8, alpha roundToUnorm8), which is how its compact layout fits 34 bytes a pixel.
-PixelSums sumsInCompactTargets(FragmentList fragments, NetworkKind kind, bool blendTruncates = false,
-                               float alphaCutoff = kDefaultAlphaCutoff);
-// A linear value stored in an 8-bit sRGB channel and read back: encoded (IEC 61966-2-1), rounded to
-// the nearest of 255 steps, decoded. roundToUnorm8: the nearest of 255 linear steps. Both clamp to [0, 1].
-float roundToSrgb8(float v);
-glm::vec3 roundToSrgb8(glm::vec3 v);
-float roundToUnorm8(float v);
 // Round to the nearest 16-bit float (ties to even), as half_targets.glsl does before a write, or
 // toward zero.
 float roundToHalf(float v, bool towardZero = false);

@@ -20,7 +20,7 @@ size_t bytesPerTexel(GLenum f) {
     switch (f) {
         case GL_RGBA32F: return 16;
         case GL_RGBA16F: return 8;
-        case GL_RGBA8: case GL_SRGB8_ALPHA8: return 4;
+        case GL_RGBA8: return 4;
         case GL_RG32F: return 8;
         case GL_R32F: case GL_R32UI: case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8: return 4;
         case GL_R16F: return 2;

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdint>
 
-#include "starnt/image.hpp"
 #include "starnt/nn.hpp"
 
 namespace starnt::nn {
@@ -52,28 +51,6 @@ float roundToHalf(float v, bool towardZero) {
 }
 glm::vec3 roundToHalf(glm::vec3 v, bool towardZero) {
     return {roundToHalf(v.x, towardZero), roundToHalf(v.y, towardZero), roundToHalf(v.z, towardZero)};
-}
-
-float roundToSrgb8(float v) {
-    const float encoded = linearToSrgb(std::clamp(v, 0.0f, 1.0f));
-    return srgbToLinear(std::round(encoded * 255.0f) / 255.0f);
-}
-glm::vec3 roundToSrgb8(glm::vec3 v) { return {roundToSrgb8(v.x), roundToSrgb8(v.y), roundToSrgb8(v.z)}; }
-float roundToUnorm8(float v) { return std::round(std::clamp(v, 0.0f, 1.0f) * 255.0f) / 255.0f; }
-
-PixelSums sumsInCompactTargets(FragmentList fragments, NetworkKind kind, bool blendTruncates, float alphaCutoff) {
-    if (kind != NetworkKind::DFAOIT) return sumsInHalfTargets(std::move(fragments), blendTruncates, alphaCutoff);
-    const FragmentList sorted = preparedFragments(fragments, alphaCutoff);
-    PixelSums s = sumsInHalfTargets(std::move(fragments), blendTruncates, alphaCutoff);
-    if (!sorted.empty()) {
-        s.c1 = roundToSrgb8(sorted[0].color);
-        s.a1 = roundToUnorm8(sorted[0].alpha);
-    }
-    if (sorted.size() > 1) {
-        s.c2 = roundToSrgb8(sorted[1].color);
-        s.a2 = roundToUnorm8(sorted[1].alpha);
-    }
-    return s;
 }
 
 PixelSums sumsInHalfTargets(FragmentList fragments, bool blendTruncates, float alphaCutoff) {

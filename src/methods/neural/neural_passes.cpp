@@ -30,32 +30,6 @@ void useReducedRectangle(Size2 size, Size2 full) {
                      float(size.width), float(size.height));
 }
 
-// Desktop GL encodes writes into an sRGB target only while GL_FRAMEBUFFER_SRGB is enabled (ES always
-// does). The engine's setting is put back afterwards: INTEGRATION.md lists the state render()
-// changes, and this is not in the list.
-class SrgbWrites {
-public:
-    explicit SrgbWrites(bool srgbTarget) : active_(srgbTarget && !gl::isEs()) {
-        if (!active_) return;
-        wasEnabled_ = glIsEnabled(GL_FRAMEBUFFER_SRGB);
-        glEnable(GL_FRAMEBUFFER_SRGB);
-    }
-    ~SrgbWrites() {
-        if (active_ && !wasEnabled_) glDisable(GL_FRAMEBUFFER_SRGB);
-    }
-    SrgbWrites(const SrgbWrites&) = delete;
-    SrgbWrites& operator=(const SrgbWrites&) = delete;
-
-private:
-    bool active_, wasEnabled_ = false;
-};
-
-// Pass 1 and 2 round what they write to 16 bits only into 16-bit targets (half_targets.glsl); an
-// sRGB target's own conversion is the only rounding there.
-const char* layerTargetsDefine(NeuralOptions::Targets targets, bool colorSums) {
-    return colorSums && targets == NeuralOptions::Targets::Compact ? "" : NeuralPasses::targetsDefine(targets);
-}
-
 }  // namespace
 
 std::string neuralEpsilonDefines() {
@@ -102,10 +76,8 @@ void resolveTails(const TailResolveInputs& in, GLuint pass3Framebuffer, const gl
 }
 
 NeuralPasses::NeuralPasses(const SurfaceShader& surface, bool colorSums, NeuralOptions::Targets targets)
-    : pass1_(buildSurfaceProgram(surface, "neural_pass1", "methods/neural/pass1_nearest.frag.glsl",
-                                 layerTargetsDefine(targets, colorSums))),
-      pass2_(buildSurfaceProgram(surface, "neural_pass2", "methods/neural/pass2_second.frag.glsl",
-                                 layerTargetsDefine(targets, colorSums))),
+    : pass1_(buildSurfaceProgram(surface, "neural_pass1", "methods/neural/pass1_nearest.frag.glsl", targetsDefine(targets))),
+      pass2_(buildSurfaceProgram(surface, "neural_pass2", "methods/neural/pass2_second.frag.glsl", targetsDefine(targets))),
       pass3_(buildSurfaceProgram(surface, "neural_pass3", "methods/neural/pass3_accumulate.frag.glsl",
                                  colorSums ? "" : "#define STARNT_COUNT_ONLY\n")),
       tailResolve_(buildTailResolveProgram(std::string(colorSums ? "" : "#define STARNT_COUNT_ONLY\n") + targetsDefine(targets))),
@@ -117,15 +89,10 @@ GLenum NeuralPasses::outputFormat() const {
     return targets_ == NeuralOptions::Targets::Compact ? GL_RGBA16F : GL_RGBA32F;
 }
 
-GLenum NeuralPasses::layerColorFormat() const {
-    return colorSums_ && targets_ == NeuralOptions::Targets::Compact ? GLenum(GL_SRGB8_ALPHA8) : outputFormat();
-}
-
 NeuralPasses::OutputSlot NeuralPasses::outputSlot(bool nearestFree) const {
     const Size2 full{width_, height_};
     if (gl::isEs()) return {};
     if (pass3Size_ == full) return {alphaColor_.id(), alphaColorOnlyFb_.id(), "pass3_alpha_color"};
-    if (layerColorFormat() != outputFormat()) return {};
     if (pass2Size_ == full) return {second_.id(), secondOnlyFb_.id(), "pass2_color"};
     if (nearestFree) return {nearest_.id(), nearestOnlyFb_.id(), "pass1_color"};
     return {};
@@ -137,9 +104,9 @@ void NeuralPasses::resize(int width, int height) {
     height_ = height;
     const bool compact = targets_ == NeuralOptions::Targets::Compact;
     const GLenum color = compact ? GL_RGBA16F : GL_RGBA32F, single = compact ? GL_R16F : GL_R32F;
-    nearest_ = gl::Texture2D(layerColorFormat(), width, height);
+    nearest_ = gl::Texture2D(color, width, height);
     nearestDepth_ = gl::Texture2D(GL_DEPTH_COMPONENT32F, width, height);
-    second_ = gl::Texture2D(layerColorFormat(), width, height);
+    second_ = gl::Texture2D(color, width, height);
     secondDepth_ = gl::Texture2D(GL_DEPTH_COMPONENT32F, width, height);
     alphaColor_ = gl::Texture2D(color, width, height, GL_LINEAR);
     colorCount_ = gl::Texture2D(colorSums_ ? color : single, width, height, GL_LINEAR);
@@ -179,7 +146,6 @@ void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) 
     glClearBufferfv(GL_DEPTH, 0, &farDepth);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
-    const SrgbWrites srgb(layerColorFormat() == GL_SRGB8_ALPHA8);
     MethodBase::runGeometryPass("pass1", pass1_, frame, draw);
     resetPassState();
 }
@@ -205,7 +171,6 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
         glUniform2i(pass2_.uniform("u_fullSize"), full.width, full.height);
         glUniform2i(pass2_.uniform("u_reducedSize"), pass2Size.width, pass2Size.height);
         gl::bindTexture(0, nearestDepth_.id());
-        const SrgbWrites srgb(layerColorFormat() == GL_SRGB8_ALPHA8);
         MethodBase::runGeometryPass("pass2", pass2_, frame, draw);
         resetPassState();
     }

@@ -14,12 +14,6 @@
 //   2048; DFAOIT: sum C + N RGBA16F, 8), transmittance R16F (2); the three pass-3 targets with
 //   GL_LINEAR filtering, as the inference reads their reduced tails through the bilinear filter.
 //   The output is written in place over one of them (outputSlot), so it costs nothing.
-//   DFAOIT's compact layout keeps its two layer colours in SRGB8_ALPHA8 instead (4 + 4: colour
-//   8-bit sRGB, alpha 8-bit linear), 34 bytes a pixel: its pass 3 holds 18 bytes (sum C and N
-//   besides STAR-NT's sums), which with 16-bit layers made 42 (87 MB at 1080p, over the paper's
-//   75). Measured at 1280x720 on the 13 suite scenes against its fp32 layout, its MSE moved by at
-//   most 1.7 % on 12 (8-bit linear: up to 2.9 %); smoke's +13 % comes from pass 3's 16-bit sums and
-//   is the same with 16-bit layers (docs/results/memory_compact_targets.md).
 // Float32: every colour target 32-bit float (the earlier layout).
 // Passes 2 and 3 keep full-size targets even when they run reduced: the scale guard's probe frames
 // run them at full resolution every 8th to 32nd real frame, so the full size is the peak anyway, and
@@ -100,16 +94,13 @@ public:
     size_t gpuMemoryBytes() const;
     // Format of an output texture of the method's own (RGBA16F or RGBA32F, as the targets).
     GLenum outputFormat() const;
-    // Format of pass 1's and pass 2's colour targets: outputFormat(), or SRGB8_ALPHA8 for DFAOIT's
-    // compact layout.
-    GLenum layerColorFormat() const;
 
     // Where the inference may write the output in place, after run(): a target that it reads at
     // the output pixel only, and that nothing reads after it. Pass 3's sums when pass 3 ran at full
     // resolution (nothing reads them after the inference), else pass 2's colour when pass 2 did
     // (the scale guard reads it, but only on probe frames, which run both at full resolution),
     // else pass 1's colour if the caller says nothing reads it later (`nearestFree`: no temporal
-    // capture, no tiles update); the layers' colours only where they have the output's format. None on OpenGL ES, which has no texture barrier to make the loop
+    // capture, no tiles update). None on OpenGL ES, which has no texture barrier to make the loop
     // defined. The texture keeps the output until the next run().
     struct OutputSlot {
         GLuint texture = 0, framebuffer = 0;
