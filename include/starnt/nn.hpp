@@ -48,11 +48,10 @@ struct PixelSums {
 PixelSums sumsFromFragments(FragmentList fragments, float alphaCutoff = kDefaultAlphaCutoff);
 
 // What the compact pass targets (NeuralOptions::Targets::Compact, 16-bit floats) hold: the two
-// nearest colours and alphas rounded to half precision, the pass-3 sums of the tail (fragments
-// 3..N) accumulated with a rounding after every addition and the transmittance after every
-// multiplication, as the GPU's blending into 16-bit targets does (in depth order here; the GPU's
-// order is the draw order, so sums may differ in their last bits); then the two layers added back
-// in 32-bit float, as the inference does. The count stays exact (16-bit floats hold integers to 2048). The shaders
+// nearest colours and alphas rounded to half precision, the pass-3 sums accumulated with a rounding
+// after every addition and the transmittance after every multiplication, as the GPU's blending into
+// 16-bit targets does (in depth order here; the GPU's order is the draw order, so sums may differ
+// in their last bits). The count stays exact (16-bit floats hold integers to 2048). The shaders
 // round what they write to the nearest 16-bit float; what blending writes is rounded by the driver:
 // to nearest on GPUs, toward zero on llvmpipe (`blendTruncates`).
 PixelSums sumsInHalfTargets(FragmentList fragments, bool blendTruncates = false, float alphaCutoff = kDefaultAlphaCutoff);

@@ -64,22 +64,12 @@ PixelSums sumsInHalfTargets(FragmentList fragments, bool blendTruncates, float a
         s.c2 = roundToHalf(fragments[1].color);
         s.a2 = roundToHalf(fragments[1].alpha);
     }
-    // Pass 3 sums the tail alone (fragments 3..N, pass3_accumulate.frag.glsl) in 16 bits; the
-    // inference adds the two layers back in 32-bit float (neural_inputs.glsl), in this order.
-    glm::vec3 tailAlphaColor(0.0f), tailColor(0.0f);
-    float tailAlpha = 0.0f, tailTransmittance = 1.0f;
-    for (size_t i = 2; i < fragments.size(); ++i) {
-        const Fragment& f = fragments[i];
-        tailAlpha = roundToHalf(tailAlpha + f.alpha, blendTruncates);
-        tailAlphaColor = roundToHalf(tailAlphaColor + f.alpha * f.color, blendTruncates);
-        tailColor = roundToHalf(tailColor + f.color, blendTruncates);
-        tailTransmittance = roundToHalf(tailTransmittance * (1.0f - f.alpha), blendTruncates);
+    for (const Fragment& f : fragments) {
+        s.sumAlpha = roundToHalf(s.sumAlpha + f.alpha, blendTruncates);
+        s.sumAlphaColor = roundToHalf(s.sumAlphaColor + f.alpha * f.color, blendTruncates);
+        s.sumColor = roundToHalf(s.sumColor + f.color, blendTruncates);
+        s.transmittance = roundToHalf(s.transmittance * (1.0f - f.alpha), blendTruncates);
     }
-    const float has1 = s.a1 > 0.0f ? 1.0f : 0.0f, has2 = s.a2 > 0.0f ? 1.0f : 0.0f;
-    s.sumAlphaColor = tailAlphaColor + s.a1 * s.c1 + s.a2 * s.c2;
-    s.sumAlpha = tailAlpha + s.a1 + s.a2;
-    s.sumColor = tailColor + has1 * s.c1 + has2 * s.c2;
-    s.transmittance = tailTransmittance * (1.0f - s.a1) * (1.0f - s.a2);
     s.count = static_cast<float>(fragments.size());
     return s;
 }

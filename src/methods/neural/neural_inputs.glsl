@@ -62,14 +62,10 @@ PixelSums readPixelSums(ivec2 p) {
     s.a1 = f1.a;
     s.c2 = f2.rgb;
     s.a2 = f2.a;
-    // The pass-3 targets hold tails (fragments 3..N): straight from pass 3 at full resolution
-    // (pass3_accumulate.frag.glsl leaves the layers out), from the tail resolve after reduced passes,
-    // where they are interpolated. The pixel adds back its own two layers.
-#if defined(STARNT_INPUTS_FULL_RESOLUTION)
-    vec4 tailAc = upsampleLinear(u_alphaColor, p, u_pass3Size);
-    vec4 tailCn = upsampleLinear(u_colorCount, p, u_pass3Size);
-    float tailT = upsampleLinear(u_transmittance, p, u_pass3Size).r;
-#elif defined(STARNT_UPSAMPLE_JOINT)
+#ifndef STARNT_INPUTS_FULL_RESOLUTION
+    // Reduced passes: the pass-3 targets hold each texel's tail (tail_resolve.frag.glsl). The tails
+    // are interpolated, and the pixel adds back its own two layers.
+#ifdef STARNT_UPSAMPLE_JOINT
     vec4 tailAc = upsampleJoint(u_alphaColor, p, u_pass3Size, taps3);
     vec4 tailCn = upsampleJoint(u_colorCount, p, u_pass3Size, taps3);
     float tailT = upsampleJoint(u_transmittance, p, u_pass3Size, taps3).r;
@@ -89,6 +85,20 @@ PixelSums readPixelSums(ivec2 p) {
     s.count = tailCn.a + has1 + has2;
 #endif
     s.transmittance = tailT * (1.0 - s.a1) * (1.0 - s.a2);
+#else
+    vec4 ac = upsampleLinear(u_alphaColor, p, u_pass3Size);
+    vec4 cn = upsampleLinear(u_colorCount, p, u_pass3Size);
+    s.sumAlphaColor = ac.rgb;
+    s.sumAlpha = ac.a;
+#ifdef STARNT_COUNT_ONLY
+    s.sumColor = vec3(0.0);
+    s.count = cn.r;
+#else
+    s.sumColor = cn.rgb;
+    s.count = cn.a;
+#endif
+    s.transmittance = upsampleLinear(u_transmittance, p, u_pass3Size).r;
+#endif
     return s;
 }
 

@@ -186,11 +186,6 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
         glBlendFunci(0, GL_ONE, GL_ONE);
         glBlendFunci(1, GL_ONE, GL_ONE);
         glBlendFunci(2, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
-        // Full-resolution passes 2 and 3: pass 3 leaves the two layers out (pass3_accumulate.frag.glsl).
-        glUseProgram(pass3_.id());
-        glUniform1i(pass3_.uniform("u_tailOnly"), tailOnlySums());
-        gl::bindTexture(0, nearestDepth_.id());
-        gl::bindTexture(1, secondDepth_.id());
         MethodBase::runGeometryPass("pass3", pass3_, frame, draw);
         resetPassState();
     }

@@ -115,10 +115,6 @@ public:
     const gl::Texture2D& alphaColor() const { return alphaColor_; }
     const gl::Texture2D& colorCount() const { return colorCount_; }
     const gl::Texture2D& transmittance() const { return transmittance_; }
-    // Whether pass 3's targets hold the tail alone (fragments 3..N) straight from pass 3: when passes
-    // 2 and 3 both ran at full resolution. Otherwise they hold every fragment's sums until the tail
-    // resolve turns them into tails. Either way the inference reads tails.
-    bool tailOnlySums() const { return pass2Size_ == Size2{width_, height_} && pass3Size_ == Size2{width_, height_}; }
     Size2 pass2Size() const { return pass2Size_; }
     Size2 pass3Size() const { return pass3Size_; }
 

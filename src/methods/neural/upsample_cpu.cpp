@@ -156,40 +156,39 @@ std::vector<UpsampledSums> upsamplePassSums(const PassTargets& t, float transmit
                 s = UpsampledSums{};
                 continue;
             }
+            if (fullResolution) {
+                s.second = t.second[i];
+                s.alphaColor = t.alphaColor[i];
+                s.colorCount = t.colorCount[i];
+                s.transmittance = t.transmittance[i];
+                continue;
+            }
+            s.second = second[i];
+            const Taps taps = bilinearTaps(x, y, t.pass3, t.full);
+            auto tail = [&](int tx, int ty) -> const Tail& { return tails[size_t(ty) * size_t(t.pass3.width) + size_t(tx)]; };
+            auto tailAlphaColor = [&](int tx, int ty) { return tail(tx, ty).alphaColor; };
+            auto tailColorCount = [&](int tx, int ty) { return tail(tx, ty).colorCount; };
+            auto tailTransmittance = [&](int tx, int ty) { return tail(tx, ty).transmittance; };
             glm::vec4 tailAc, tailCn;
             float tailT;
-            if (fullResolution) {
-                // Pass 3 left the two layers out itself (pass3_accumulate.frag.glsl).
-                s.second = t.second[i];
-                tailAc = t.alphaColor[i];
-                tailCn = t.colorCount[i];
-                tailT = t.transmittance[i];
+            const JointTapWeights joint3 =
+                filter == UpsampleFilter::Joint ? jointTapWeights(t, x, y, t.pass3) : JointTapWeights{glm::vec4(0.0f), true};
+            if (joint3.plain) {
+                tailAc = interpolate<glm::vec4>(taps, tailAlphaColor);
+                tailCn = interpolate<glm::vec4>(taps, tailColorCount);
+                tailT = interpolate<float>(taps, tailTransmittance);
             } else {
-                s.second = second[i];
-                const Taps taps = bilinearTaps(x, y, t.pass3, t.full);
-                auto tail = [&](int tx, int ty) -> const Tail& { return tails[size_t(ty) * size_t(t.pass3.width) + size_t(tx)]; };
-                auto tailAlphaColor = [&](int tx, int ty) { return tail(tx, ty).alphaColor; };
-                auto tailColorCount = [&](int tx, int ty) { return tail(tx, ty).colorCount; };
-                auto tailTransmittance = [&](int tx, int ty) { return tail(tx, ty).transmittance; };
-                const JointTapWeights joint3 =
-                    filter == UpsampleFilter::Joint ? jointTapWeights(t, x, y, t.pass3) : JointTapWeights{glm::vec4(0.0f), true};
-                if (joint3.plain) {
-                    tailAc = interpolate<glm::vec4>(taps, tailAlphaColor);
-                    tailCn = interpolate<glm::vec4>(taps, tailColorCount);
-                    tailT = interpolate<float>(taps, tailTransmittance);
-                } else {
-                    tailAc = weightedSum<glm::vec4>(taps, joint3.weights, tailAlphaColor);
-                    tailCn = weightedSum<glm::vec4>(taps, joint3.weights, tailColorCount);
-                    tailT = weightedSum<float>(taps, joint3.weights, tailTransmittance);
-                }
-                if (filter == UpsampleFilter::Joint && !(t.pass2 == t.full)) {
-                    const JointTapWeights joint2 = t.pass2 == t.pass3 ? joint3 : jointTapWeights(t, x, y, t.pass2);
-                    const glm::vec4 p = weightedSum<glm::vec4>(bilinearTaps(x, y, t.pass2, t.full), joint2.weights, [&](int tx, int ty) {
-                        const glm::vec4 v = t.second[size_t(ty) * size_t(t.pass2.width) + size_t(tx)];
-                        return glm::vec4(glm::vec3(v) * v.a, v.a);
-                    });
-                    s.second = p.a > 0.0f ? glm::vec4(glm::vec3(p) / p.a, p.a) : glm::vec4(0.0f);
-                }
+                tailAc = weightedSum<glm::vec4>(taps, joint3.weights, tailAlphaColor);
+                tailCn = weightedSum<glm::vec4>(taps, joint3.weights, tailColorCount);
+                tailT = weightedSum<float>(taps, joint3.weights, tailTransmittance);
+            }
+            if (filter == UpsampleFilter::Joint && !(t.pass2 == t.full)) {
+                const JointTapWeights joint2 = t.pass2 == t.pass3 ? joint3 : jointTapWeights(t, x, y, t.pass2);
+                const glm::vec4 p = weightedSum<glm::vec4>(bilinearTaps(x, y, t.pass2, t.full), joint2.weights, [&](int tx, int ty) {
+                    const glm::vec4 v = t.second[size_t(ty) * size_t(t.pass2.width) + size_t(tx)];
+                    return glm::vec4(glm::vec3(v) * v.a, v.a);
+                });
+                s.second = p.a > 0.0f ? glm::vec4(glm::vec3(p) / p.a, p.a) : glm::vec4(0.0f);
             }
             const glm::vec3 c1(s.nearest), c2(s.second);
             const float a1 = s.nearest.a, a2 = s.second.a;

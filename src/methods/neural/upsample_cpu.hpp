@@ -37,8 +37,6 @@ struct PassTargets {
     Size2 full, pass2, pass3;
     std::vector<glm::vec4> nearest;       // full: C1, a1 (a1 = 0: no fragment)
     std::vector<glm::vec4> second;        // pass2: C2, a2
-    // Pass 3's sums over every fragment of the texel; when passes 2 and 3 are both at full size,
-    // over the tail alone (fragments 3..N: pass 3 leaves the two layers out).
     std::vector<glm::vec4> alphaColor;    // pass3: sum a C, sum a
     std::vector<glm::vec4> colorCount;    // pass3: sum C, N
     std::vector<float> transmittance;     // pass3: prod (1 - a)
