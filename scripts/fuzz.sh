@@ -4,7 +4,9 @@
 # A target stops at SECONDS or after RUNS inputs, whichever comes first (0 = that limit is off).
 # Each run starts from the seeds in fuzz/corpus/<target> plus what earlier runs found
 # (build-fuzz/corpus/<target>). A crash, a sanitizer report or any exception other than
-# starnt::Error fails the script and leaves the input in build-fuzz/findings/<target>/.
+# starnt::Error fails the script and leaves the input in build-fuzz/findings/<target>/; the
+# script then prints the end of the fuzzer's report (CI keeps no build folder). Every run prints
+# its seed: `build-fuzz/fuzz/fuzz_<target> -seed=N <same corpora>` replays the same inputs.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -31,6 +33,7 @@ for t in "${targets[@]}"; do
     grep -v -E "^#[0-9]+|^INFO:|^MS:|^base unit" "$log" | tail -n 40 | sed "s/^/fuzz_$t: | /" >&2 || true
     status=1
   fi
-  grep -E "stat::number_of_executed_units|stat::peak_rss_mb|Done [0-9]+ runs" "$log" | sed "s/^/fuzz_$t: /" >&2 || true
+  # The seed makes a run repeatable: build-fuzz/fuzz/fuzz_$t ... -seed=N replays the same inputs.
+  grep -E "INFO: Seed:|stat::number_of_executed_units|stat::peak_rss_mb|Done [0-9]+ runs" "$log" | sed "s/^/fuzz_$t: /" >&2 || true
 done
 exit $status
