@@ -65,6 +65,20 @@ glm::vec3 exactComposite(FragmentList list) {
 
 }  // namespace
 
+// Memory accounting knows every format the methods allocate; any other is an internal error that
+// names the format as GL headers spell it (it printed the decimal value after "0x" before).
+TEST(GlMethods, TextureBytesPerTexelAndUnknownFormats) {
+    EXPECT_EQ(gl::bytesPerTexel(GL_RGBA16F), 8u);
+    EXPECT_EQ(gl::bytesPerTexel(GL_R16F), 2u);
+    EXPECT_EQ(gl::bytesPerTexel(GL_DEPTH_COMPONENT32F), 4u);
+    try {
+        gl::bytesPerTexel(GL_RGB8);
+        ADD_FAILURE() << "GL_RGB8 is not a format the methods use";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("0x8051"), std::string::npos) << e.what();
+    }
+}
+
 TEST(GlMethods, AbufferMatchesCpuCompositorOnRandomTriangles) {
     SceneSetup s = makeSetup("random");
     CpuRaster ref = cpuReference(s);
