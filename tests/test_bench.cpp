@@ -49,6 +49,10 @@ const std::string kTinyArgs = "bench --preset quick --suite-dir /nonexistent/sui
                               "--width 128 --height 72 --frames 3";
 
 
+// The default methods of bench: unsorted, wboit, mboit, mboit-t3, dfaoit, starnt-full, hybrid,
+// starnt-residual-full, starnt, starnt-paper, starnt-total, starnt-total-warp, starnt-corners.
+constexpr size_t kDefaultVariants = 13;
+
 json readJson(const fs::path& p) {
     std::ifstream f(p);
     return json::parse(f);
@@ -57,7 +61,9 @@ json readJson(const fs::path& p) {
 }  // namespace
 
 TEST(BenchPlan, VariantsCarryTheirOptions) {
-    EXPECT_EQ(bench::defaultVariantNames().size(), 12u);
+    EXPECT_EQ(bench::defaultVariantNames().size(), kDefaultVariants);
+    EXPECT_EQ(bench::findVariant("starnt-residual-full").method, "starnt-residual");
+    EXPECT_EQ(bench::findVariant("starnt-residual-full").options.neural.spatial, std::optional<bool>(false));
     const auto& paper = bench::findVariant("starnt-paper");
     EXPECT_EQ(paper.options.neural.tileSignal, NeuralOptions::TileSignal::Composite);
     EXPECT_EQ(paper.options.neural.scaleRule, NeuralOptions::ScaleRule::Continuous);
@@ -152,7 +158,7 @@ void expectEveryFile(const fs::path& dir) {
     ASSERT_EQ(results["scenes"].size(), 2u);
     for (const auto& scene : results["scenes"]) {
         EXPECT_TRUE(fs::exists(dir / scene["ground_truth"]["image"].get<std::string>()));
-        ASSERT_EQ(scene["methods"].size(), 12u);
+        ASSERT_EQ(scene["methods"].size(), kDefaultVariants);
         for (const auto& c : scene["methods"]) {
             ASSERT_EQ(c["status"], "ok") << c["variant"] << ": " << c["error"];
             EXPECT_TRUE(fs::exists(dir / c["images"]["image"].get<std::string>())) << c["variant"];
@@ -166,13 +172,14 @@ void expectEveryFile(const fs::path& dir) {
     std::string line;
     std::vector<std::string> lines;
     while (std::getline(csv, line)) lines.push_back(line);
-    ASSERT_EQ(lines.size(), 1u + 2u * 12u);
+    ASSERT_EQ(lines.size(), 1u + 2u * kDefaultVariants);
     auto fields = [](const std::string& l) { return std::count(l.begin(), l.end(), ',') + 1; };
     for (const auto& l : lines) EXPECT_EQ(fields(l), fields(lines[0])) << l;
 
     const std::string report = slurp(dir / "report.md");
     for (const char* heading : {"## Frame time", "## Per-pass breakdown", "## Speed-up over DFAOIT", "### MSE x10^2", "### FLIP",
-                                "reduction against WBOIT", "## GPU memory", "## Q metric", "## Failures"}) {
+                                "reduction against WBOIT", "## GPU memory", "## Q metric", "## Failures",
+                                "## What the network adds", "| MSE x10^2 starnt-residual-full | ratio |"}) {
         EXPECT_NE(report.find(heading), std::string::npos) << heading;
     }
     for (const auto& name : bench::defaultVariantNames()) EXPECT_NE(report.find(name), std::string::npos) << name;

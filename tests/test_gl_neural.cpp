@@ -111,6 +111,20 @@ TEST(GlNeural, StarntMatchesCpuReferencePerPixel) {
     }
 }
 
+// The residual network's linear output goes negative (the closed form overshoots): the inference
+// and the composite must carry it as the CPU does.
+TEST(GlNeural, StarntResidualMatchesCpuReferencePerPixel) {
+    for (const char* scene : {"tubes", "smoke"}) {
+        Case c = makeCase(scene, 45.0f);
+        const nn::Network net = loadMethodNetwork(starntResidualConfig(), {});
+        for (auto layout : kLayouts) {
+            expectGpuMatchesCpu(c, renderWith(c, "starnt-residual", withTargets(layout)),
+                                [&](const nn::PixelSums& s) { return nn::compositeStarntResidual(net, s, kBackground); },
+                                1e-3f, layout);
+        }
+    }
+}
+
 TEST(GlNeural, HybridMatchesCpuReferencePerPixel) {
     for (const char* scene : {"tubes", "smoke"}) {
         Case c = makeCase(scene, 60.0f);
@@ -280,6 +294,11 @@ TEST(GlNeural, WrongWeightsKindIsAClearError) {
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("dfaoit"), std::string::npos) << e.what();
     }
+    // starnt's weights have starnt-residual's inputs and sizes, but not its kind.
+    options.neural.weightsPath = (dir / "s.json").string();
+    nn::saveWeights(nn::makeUntrained(nn::NetworkKind::StarNT, 1), options.neural.weightsPath);
+    const std::string message = test::errorOf([&] { createMethod("starnt-residual", SceneGpu::surfaceShader(), options); });
+    EXPECT_NE(message.find("needs a starnt-residual network"), std::string::npos) << message;
 }
 
 // Joint bilateral upsampling (NeuralOptions::Upsample::Joint) guided by the pass-1 depth: on the

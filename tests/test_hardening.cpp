@@ -193,6 +193,12 @@ TEST(Hardening, WeightsForAMethodWithoutNetworkAndNegativeAlpha) {
     const std::string base = "render --scene builtin:panes --width 16 --height 12 --out " + out + " ";
     expectOneLineError(run(base + "--method wboit --weights " + weights), {"--weights", "wboit", "no network"}, "wboit");
     EXPECT_FALSE(fs::exists(out));
+    expectOneLineError(run(base + "--method hybrid --weights " + weights), {"--weights", "hybrid", "no network"}, "hybrid");
+    EXPECT_FALSE(fs::exists(out));
+    // starnt's weights have starnt-residual's inputs and sizes: the kind tells them apart.
+    expectOneLineError(run(base + "--method starnt-residual --weights " + weights),
+                       {"starnt_weights.json", "needs a starnt-residual network"}, "starnt-residual");
+    EXPECT_FALSE(fs::exists(out));
     for (const char* alpha : {"-1", "-0.5", "1.5", "nan"}) {
         expectOneLineError(run(base + "--method wboit --alpha " + alpha), {"--alpha", alpha}, alpha);
         EXPECT_FALSE(fs::exists(out));

@@ -167,7 +167,7 @@ TEST(NnFamilies, FamilyErrorsCompareWithTheExactComposite) {
         {},
     };
     const Network untrained = makeUntrained(NetworkKind::StarNT, 1);
-    const FamilyErrors e = familyErrors(NetworkKind::StarNT, untrained, lists);
+    const FamilyErrors e = familyErrors(untrained, lists);
     EXPECT_EQ(e.pixels, 1u);
     EXPECT_EQ(e.tailPixels, 0u);
     EXPECT_NEAR(e.network, 0.0, 1e-12);
@@ -177,7 +177,7 @@ TEST(NnFamilies, FamilyErrorsCompareWithTheExactComposite) {
     EXPECT_GT(e.wboit, 1e-3);
     // A tail pixel: the untrained network is far off, the errors are per pixel means.
     const auto sheets = proceduralFamilyLists("sheets", 400, 5);
-    const FamilyErrors s = familyErrors(NetworkKind::StarNT, untrained, sheets);
+    const FamilyErrors s = familyErrors(untrained, sheets);
     EXPECT_GT(s.tailPixels, 50u);
     EXPECT_GT(s.network, s.hybrid);
     EXPECT_GT(s.wboit, 0.0);

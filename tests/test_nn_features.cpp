@@ -201,6 +201,45 @@ TEST(NnComposite, NetworkTailIsUsedBeyondThreeFragments) {
               "constant tail");
 }
 
+// The residual kind: with f = 0 it is hybrid's composite bit for bit; with f the exact residual
+// target it is the exact composite; its correction is scaled by the tail opacity, so a faint tail
+// cannot move the pixel much whatever the network says.
+TEST(NnComposite, ResidualIsHybridPlusACorrectionThatFadesWithTheTail) {
+    Network net = makeUntrained(NetworkKind::StarNTResidual, 5);
+    for (float& w : net.layers.back().weights) w = 0.0f;
+    std::fill(net.layers.back().bias.begin(), net.layers.back().bias.end(), 0.0f);
+    const glm::vec3 bg(0.3f, 0.6f, 0.9f);
+    int deep = 0;
+    for (const auto& list : syntheticFragmentLists(2000, 13)) {
+        const PixelSums s = sumsFromFragments(list);
+        const glm::vec3 residual = compositeStarntResidual(net, s, bg), hybrid = compositeHybrid(s, bg);
+        ASSERT_EQ(residual, hybrid);
+        const FragmentList sorted = preparedFragments(list);
+        if (sorted.size() <= 3) continue;
+        ++deep;
+        // The exact residual in place of f gives the exact composite.
+        const auto x = starntFeatures(s);
+        if (1.0f - x[0] < kResidualMinTailOpacity) continue;
+        const glm::vec3 target = starntResidualTarget(sorted, s);
+        const float t2 = (1.0f - s.a1) * (1.0f - s.a2);
+        const glm::vec3 rebuilt = s.a1 * s.c1 + (1.0f - s.a1) * s.a2 * s.c2 +
+                                  t2 * (1.0f - x[0]) * glm::max(glm::vec3(x[2], x[3], x[4]) + target, glm::vec3(0.0f)) +
+                                  s.transmittance * bg;
+        expectVec(rebuilt, compositeOver(sorted, bg), 1e-5f, "exact residual");
+    }
+    EXPECT_GT(deep, 1000);
+    // A large constant correction (+1 per channel) moves a deep pixel by at most T2 (1 - t_tail).
+    for (float& b : net.layers.back().bias) b = 1.0f;
+    FragmentList faint;
+    for (int i = 0; i < 8; ++i) faint.push_back(frag({0.5f, 0.5f, 0.5f}, i < 2 ? 0.5f : 0.031f, 0.1f * float(i)));
+    const PixelSums s = sumsFromFragments(faint);
+    const float opacity = 1.0f - starntFeatures(s)[0];
+    EXPECT_LT(opacity, 0.2f);
+    const glm::vec3 moved = compositeStarntResidual(net, s, bg) - compositeHybrid(s, bg);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(moved[k], 0.25f * opacity, 1e-6f);
+    EXPECT_EQ(compositeNetwork(net, s, bg), compositeStarntResidual(net, s, bg));
+}
+
 TEST(NnComposite, DfaoitAddsBackgroundThroughAllLayers) {
     Network net = makeUntrained(NetworkKind::DFAOIT, 4);
     for (auto& layer : net.layers) std::fill(layer.weights.begin(), layer.weights.end(), 0.0f);

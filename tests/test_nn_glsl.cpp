@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "test_support.hpp"
 #include "starnt/error.hpp"
 #include "starnt/nn.hpp"
 
@@ -62,6 +63,10 @@ TEST_P(NnGlsl, ContainsTheInterfaceAndEveryWeight) {
         EXPECT_NE(code.find("exp("), std::string::npos);  // sigmoid output
     else
         EXPECT_EQ(code.find("exp("), std::string::npos);
+    // ReLU on both hidden layers' 12 chunks, and on the output unless it is linear (residual).
+    size_t maxCalls = 0;
+    for (size_t at = code.find("max("); at != std::string::npos; at = code.find("max(", at + 1)) ++maxCalls;
+    EXPECT_EQ(maxCalls, GetParam() == NetworkKind::StarNT ? 13u : 12u);
     // Compact: well under 100 characters per parameter.
     size_t params = 0;
     for (const auto& layer : net.layers) params += layer.weights.size() + layer.bias.size();
@@ -127,8 +132,9 @@ TEST_P(NnGlsl, IsDeterministicAndPlausible) {
     EXPECT_EQ(statements, inChunks + 8 + 4 + 1 + 1);
 }
 
-INSTANTIATE_TEST_SUITE_P(BothKinds, NnGlsl, ::testing::Values(NetworkKind::StarNT, NetworkKind::DFAOIT),
-                         [](const auto& info) { return std::string(kindName(info.param)); });
+INSTANTIATE_TEST_SUITE_P(EveryKind, NnGlsl,
+                         ::testing::Values(NetworkKind::StarNT, NetworkKind::StarNTResidual, NetworkKind::DFAOIT),
+                         [](const auto& info) { return test::identifier(kindName(info.param)); });
 
 TEST(NnGlslInvalid, RejectsAnInvalidNetwork) {
     Network net = makeUntrained(NetworkKind::StarNT, 1);

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "test_support.hpp"
 #include "nn/mlp.hpp"
 #include "nn/random.hpp"
 #include "starnt/error.hpp"
@@ -71,16 +72,17 @@ TEST(NnNetwork, NormalisationIsApplied) {
 }
 
 TEST(NnNetwork, UntrainedNetworksHaveTheArchitectureAndAreSeeded) {
-    for (NetworkKind kind : {NetworkKind::StarNT, NetworkKind::DFAOIT}) {
+    for (NetworkKind kind : {NetworkKind::StarNT, NetworkKind::StarNTResidual, NetworkKind::DFAOIT}) {
         const Network a = makeUntrained(kind, 7), b = makeUntrained(kind, 7), c = makeUntrained(kind, 8);
         EXPECT_NO_THROW(validateNetwork(a, "untrained"));
         ASSERT_EQ(a.layers.size(), 3u);
-        EXPECT_EQ(a.layers[0].in, kind == NetworkKind::StarNT ? 5 : 10);
+        EXPECT_EQ(a.layers[0].in, kind == NetworkKind::DFAOIT ? 10 : 5);
         EXPECT_EQ(a.layers[0].out, 32);
         EXPECT_EQ(a.layers[1].out, 16);
         EXPECT_EQ(a.layers[2].out, 3);
-        EXPECT_EQ(a.layers[2].activation,
-                  kind == NetworkKind::StarNT ? Network::Layer::ReLU : Network::Layer::Sigmoid);
+        EXPECT_EQ(a.layers[2].activation, kind == NetworkKind::StarNT   ? Network::Layer::ReLU
+                                          : kind == NetworkKind::DFAOIT ? Network::Layer::Sigmoid
+                                                                        : Network::Layer::Linear);
         EXPECT_EQ(a.inputNames, canonicalInputNames(kind));
         EXPECT_EQ(a.layers[0].weights, b.layers[0].weights);
         EXPECT_NE(a.layers[0].weights, c.layers[0].weights);
@@ -90,13 +92,23 @@ TEST(NnNetwork, UntrainedNetworksHaveTheArchitectureAndAreSeeded) {
         EXPECT_NEAR(sumSq / a.layers[1].weights.size(), 2.0 / 32.0, 0.02);
     }
     EXPECT_EQ(parseKind("dfaoit"), NetworkKind::DFAOIT);
+    EXPECT_EQ(parseKind("starnt-residual"), NetworkKind::StarNTResidual);
     EXPECT_STREQ(kindName(NetworkKind::StarNT), "starnt");
+    EXPECT_STREQ(kindName(NetworkKind::StarNTResidual), "starnt-residual");
+    // The residual's linear output starts small (a tenth of Xavier: variance 0.01 * 2 / (16 + 3)),
+    // so that training starts near f = 0, the closed form.
+    const Network r = makeUntrained(NetworkKind::StarNTResidual, 7);
+    double outSq = 0.0;
+    for (float w : r.layers[2].weights) outSq += w * w;
+    EXPECT_LT(outSq / r.layers[2].weights.size(), 0.01 * 2.0 / 19.0 * 3.0);
+    EXPECT_GT(outSq / r.layers[2].weights.size(), 0.01 * 2.0 / 19.0 / 3.0);
     EXPECT_THROW(parseKind("wboit"), Error);
 }
 
 TEST(NnNetwork, BatchedForwardMatchesNetworkForward) {
-    for (NetworkKind kind : {NetworkKind::StarNT, NetworkKind::DFAOIT}) {
-        const Network net = makeUntrained(kind, 3);
+    for (NetworkKind kind : {NetworkKind::StarNT, NetworkKind::StarNTResidual, NetworkKind::DFAOIT}) {
+        Network net = makeUntrained(kind, 3);
+        for (float& b : net.layers.back().bias) b = -0.05f;  // some outputs negative before the activation
         const int inputs = net.inputCount();
         detail::Rng rng(5);
         detail::Mat<float> x(inputs, 16);
@@ -122,7 +134,7 @@ TEST_P(NnGradient, AnalyticMatchesFiniteDifferences) {
     detail::Rng rng(99);
     for (auto& b : mlp.b)
         for (Eigen::Index i = 0; i < b.size(); ++i) b(i) = 0.1 * rng.normal();  // non-zero biases
-    const int inputs = kind == NetworkKind::StarNT ? 5 : 10;
+    const int inputs = kind == NetworkKind::DFAOIT ? 10 : 5;
     const int batch = 12;
     M x(inputs, batch), y(3, batch);
     for (Eigen::Index i = 0; i < x.size(); ++i) x.data()[i] = rng.normal();
@@ -155,17 +167,18 @@ TEST_P(NnGradient, AnalyticMatchesFiniteDifferences) {
         for (Eigen::Index i = 0; i < mlp.w[l].size(); ++i) check(mlp.w[l].data()[i], grad.w[l].data()[i]);
         for (Eigen::Index i = 0; i < mlp.b[l].size(); ++i) check(mlp.b[l].data()[i], grad.b[l].data()[i]);
     }
-    EXPECT_EQ(checked, kind == NetworkKind::StarNT ? 5 * 32 + 32 + 32 * 16 + 16 + 16 * 3 + 3
-                                                   : 10 * 32 + 32 + 32 * 16 + 16 + 16 * 3 + 3);
+    EXPECT_EQ(checked, kind == NetworkKind::DFAOIT ? 10 * 32 + 32 + 32 * 16 + 16 + 16 * 3 + 3
+                                                   : 5 * 32 + 32 + 32 * 16 + 16 + 16 * 3 + 3);
     EXPECT_GT(nonZero, checked / 2);  // the check is not vacuous
     RecordProperty("worst_relative_error", std::to_string(worst));
 }
 
-INSTANTIATE_TEST_SUITE_P(BothKinds, NnGradient,
-                         ::testing::Combine(::testing::Values(NetworkKind::StarNT, NetworkKind::DFAOIT),
+INSTANTIATE_TEST_SUITE_P(EveryKind, NnGradient,
+                         ::testing::Combine(::testing::Values(NetworkKind::StarNT, NetworkKind::StarNTResidual,
+                                                              NetworkKind::DFAOIT),
                                             ::testing::Bool()),
                          [](const auto& info) {
-                             return std::string(kindName(std::get<0>(info.param))) +
+                             return test::identifier(kindName(std::get<0>(info.param))) +
                                     (std::get<1>(info.param) ? "_linear_output" : "");
                          });
 

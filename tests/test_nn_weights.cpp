@@ -74,7 +74,7 @@ protected:
 }  // namespace
 
 TEST_F(NnWeightsFile, RoundTripIsExact) {
-    for (NetworkKind kind : {NetworkKind::StarNT, NetworkKind::DFAOIT}) {
+    for (NetworkKind kind : {NetworkKind::StarNT, NetworkKind::StarNTResidual, NetworkKind::DFAOIT}) {
         const Network a = sampleNetwork(kind);
         const fs::path p = dir / (std::string(kindName(kind)) + ".json");
         saveWeights(a, p);
@@ -154,6 +154,12 @@ TEST_F(NnWeightsFile, WrongKind) {
     j = json;
     j["network"] = "dfaoit";
     expectLoadError(write(j, "mislabelled.json"), "layer_sizes");
+    // starnt and starnt-residual share inputs and sizes: the kind and the output activation tell them apart.
+    expectLoadError(good, "is a starnt network, --method starnt-residual needs a starnt-residual network",
+                    NetworkKind::StarNTResidual);
+    j = json;
+    j["network"] = "starnt-residual";
+    expectLoadError(write(j, "residual-relu.json"), "activations");
 }
 
 TEST_F(NnWeightsFile, WrongLayerSizesOrActivations) {

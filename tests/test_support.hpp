@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "starnt/error.hpp"
+#include <cctype>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -18,6 +19,13 @@ namespace starnt::test {
 std::filesystem::path sharedScenesDir();
 // A fresh empty folder under the system temp dir, unique per call.
 std::filesystem::path makeTempDir(const std::string& tag);
+// `name` as a GoogleTest parameter name: every character but letters and digits becomes '_'
+// ("starnt-residual" -> "starnt_residual").
+inline std::string identifier(std::string name) {
+    for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    return name;
+}
 
 }  // namespace starnt::test
 

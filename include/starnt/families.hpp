@@ -62,7 +62,7 @@ struct FamilyErrors {
     // (below that STAR-NT and hybrid are exact, and the whole-family means flatter them).
     double networkTail = 0.0, hybridTail = 0.0, wboitTail = 0.0;
 };
-FamilyErrors familyErrors(NetworkKind kind, const Network& net, const std::vector<FragmentList>& lists,
+FamilyErrors familyErrors(const Network& net, const std::vector<FragmentList>& lists,
                           float alphaCutoff = kDefaultAlphaCutoff);
 
 // CPU reference of the wboit method (McGuire & Bavoil 2013, eq. 10 weight on window depth, clamped

@@ -12,12 +12,19 @@
 
 namespace starnt::nn {
 
-enum class NetworkKind { StarNT, DFAOIT };
+// StarNT: the paper's network, f(x) is the tail colour (SPEC 3).
+// StarNTResidual: the same inputs and layer sizes, a linear output f(x) that corrects the closed-form
+//   tail (hybrid's): tail = (1 - t_tail) * max(C_tilde + f(x), 0). Where the tail is faint the
+//   correction fades with it, and f = 0 is hybrid exactly (see nn.hpp, compositeStarntResidual).
+// DFAOIT: the DFAOIT baseline's network (whole transparent colour, SPEC 3).
+enum class NetworkKind { StarNT, StarNTResidual, DFAOIT };
 
-// "starnt" / "dfaoit".
+// "starnt" / "starnt-residual" / "dfaoit".
 const char* kindName(NetworkKind kind);
-// Parses "starnt" / "dfaoit"; throws starnt::Error otherwise.
+// Parses "starnt" / "starnt-residual" / "dfaoit"; throws starnt::Error otherwise.
 NetworkKind parseKind(const std::string& name);
+// Whether the kind reads STAR-NT's five inputs (and composites over STAR-NT's exact two layers).
+inline bool readsStarntInputs(NetworkKind kind) { return kind != NetworkKind::DFAOIT; }
 
 // Feature guards (the inference shaders and the CPU reference in nn.hpp apply the same ones).
 inline constexpr float kTransmittanceEpsilon = 1e-6f;
@@ -27,14 +34,15 @@ inline constexpr float kDefaultAlphaCutoff = 0.03f;
 inline constexpr int kStarntInputs = 5;
 inline constexpr int kDfaoitInputs = 10;
 
-// Canonical input names (the `input_order` of the weights file) and layer sizes
+// Number of inputs, canonical input names (the `input_order` of the weights file) and layer sizes
 // (5-32-16-3 or 10-32-16-3, including the input layer).
+int inputCount(NetworkKind kind);
 const std::vector<std::string>& canonicalInputNames(NetworkKind kind);
 std::vector<int> layerSizes(NetworkKind kind);
 
 struct Network {
     struct Layer {
-        enum Activation { ReLU, Sigmoid };
+        enum Activation { ReLU, Sigmoid, Linear };
         int in = 0, out = 0;
         std::vector<float> weights;  // out x in, row-major: weights[o * in + i]
         std::vector<float> bias;     // out
@@ -56,7 +64,8 @@ struct Network {
 };
 
 // He-initialised (ReLU layers) / Xavier-initialised (sigmoid layer) network with identity
-// normalisation (offset 0, scale 1), deterministic for `seed`.
+// normalisation (offset 0, scale 1), deterministic for `seed`. A linear output layer (the residual
+// kind) starts at a tenth of Xavier's scale, so that training starts near f = 0 (the closed form).
 Network makeUntrained(NetworkKind kind, uint64_t seed);
 
 // Weights file (JSON, format "starnt-weights", version 1). saveWeights writes a temporary file

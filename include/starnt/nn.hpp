@@ -14,6 +14,8 @@
 // Composite of STAR-NT (exact where the sums determine the tail):
 //   tail = N < 2.5 ? 0 : N < 3.5 ? max(S_aC - a1 C1 - a2 C2, 0) : f(x)
 //   C    = a1 C1 + (1 - a1) a2 C2 + T2 * tail + T_all * C_bg
+// The residual kind changes only the deep tail (N > 3): (1 - t_tail) * max(C_tilde + f(x), 0);
+// hybrid's is (1 - t_tail) * C_tilde.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -71,15 +73,24 @@ std::array<float, kDfaoitInputs> dfaoitFeatures(const PixelSums& s);
 // Targets, from a list already prepared (cut off and sorted, see preparedFragments).
 // STAR-NT: exact tail colour sum_{i>=3} a_i C_i prod_{3<=j<i} (1 - a_j) (zero when N <= 2).
 glm::vec3 starntTarget(const FragmentList& sorted);
+// The residual kind's target: what f(x) must add to C_tilde so that (1 - t_tail) (C_tilde + f)
+// is the exact tail, i.e. tail / (1 - t_tail) - C_tilde, for a list with N > 3 and its sums. Tails
+// with 1 - t_tail below kResidualMinTailOpacity, invisible in any image, get 0.
+inline constexpr float kResidualMinTailOpacity = 1e-4f;
+glm::vec3 starntResidualTarget(const FragmentList& sorted, const PixelSums& sums);
 // DFAOIT: whole transparent colour sum_i a_i C_i prod_{j<i} (1 - a_j) (no background).
 glm::vec3 dfaoitTarget(const FragmentList& sorted);
 
 // Final pixel colours (CPU reference of the composite shader).
 // STAR-NT: see the top of this file (exact for N <= 3, the network is not evaluated there).
 glm::vec3 compositeStarnt(const Network& net, const PixelSums& s, glm::vec3 background);
+// The residual kind: STAR-NT's composite with the tail (1 - t_tail) max(C_tilde + f(x), 0).
+glm::vec3 compositeStarntResidual(const Network& net, const PixelSums& s, glm::vec3 background);
 // hybrid (SPEC 7): STAR-NT's composite with the tail in closed form, (1 - t_tail) C_tilde.
 glm::vec3 compositeHybrid(const PixelSums& s, glm::vec3 background);
 // DFAOIT: f(x) + T_all * C_bg; a pixel without fragments (N < 0.5) is the background alone.
 glm::vec3 compositeDfaoit(const Network& net, const PixelSums& s, glm::vec3 background);
+// The composite of net.kind (one of the three above).
+glm::vec3 compositeNetwork(const Network& net, const PixelSums& s, glm::vec3 background);
 
 }  // namespace starnt::nn

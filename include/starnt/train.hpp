@@ -27,7 +27,9 @@ struct TrainingSet {
     void append(const TrainingSet& other);  // same `inputs` (or this one empty)
 };
 
-// How buildTrainingSet weights the samples.
+// How buildTrainingSet weights the samples. The residual kind's samples always carry the square of
+// their tail opacity (1 - t_tail)^2, by which an error of f reaches the tail colour, so that its
+// loss measures what starnt's measures; TailVisibility multiplies that by T2^2.
 enum class SampleWeighting {
     None,
     // STAR-NT only: weight T2^2 = ((1 - a1)(1 - a2))^2, the factor by which an error of the tail
@@ -36,8 +38,8 @@ enum class SampleWeighting {
     TailVisibility,
 };
 
-// Features (sumsFromFragments + starntFeatures/dfaoitFeatures) and targets (starntTarget /
-// dfaoitTarget of the cut-off, sorted list) of every list that the network is used for:
+// Features (sumsFromFragments + starntFeatures/dfaoitFeatures) and targets (starntTarget,
+// starntResidualTarget or dfaoitTarget of the cut-off, sorted list) of every list that the network is used for:
 // STAR-NT keeps pixels with N > 3 (the others are composited exactly), DFAOIT keeps N >= 1.
 TrainingSet buildTrainingSet(NetworkKind kind, const std::vector<FragmentList>& lists,
                              float alphaCutoff = kDefaultAlphaCutoff, SampleWeighting weighting = SampleWeighting::None);
@@ -59,11 +61,12 @@ struct TrainOptions {
 
 // Trains a network of `kind` on `set` (set.inputs must match the kind). Input normalisation is
 // mean/std of the training split (scale 1 for a constant input). Records seed, samples seen and the
-// validation MSE (mean over samples and the 3 channels) in the result. Throws starnt::Error on an
-// empty or mismatched set.
+// validation MSE (mean over samples and the 3 channels, weighted by the sample weights if any) in
+// the result. Throws starnt::Error on an empty or mismatched set.
 Network train(NetworkKind kind, const TrainingSet& set, const TrainOptions& options);
 
-// Mean squared error (over samples and the 3 channels) of `net` on `set`.
+// Mean squared error (over samples and the 3 channels) of `net` on `set`; with sample weights, the
+// weighted mean (sum w e^2 / sum w), as the recorded validation MSE.
 double evaluateMse(const Network& net, const TrainingSet& set);
 
 }  // namespace starnt::nn

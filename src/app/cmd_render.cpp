@@ -7,6 +7,7 @@
 #include "app/commands.hpp"
 #include "app/render_progress.hpp"
 #include "methods/mboit/mboit_settings.hpp"
+#include "methods/neural/neural_method.hpp"
 #include "methods/registry.hpp"
 #include "render/method_options.hpp"
 #include "render/offscreen_renderer.hpp"
@@ -112,7 +113,7 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--frame-stats", a->frameStats, "write one JSON line per frame (.jsonl)");
     cmd->add_option("--reference-method", a->referenceMethod,
                     "also render this method (e.g. abuffer) per frame and record MSE/FLIP against it");
-    cmd->add_option("--weights", a->weights, "starnt/dfaoit: weights file (default: the shipped weights)");
+    cmd->add_option("--weights", a->weights, "starnt, starnt-residual, dfaoit: weights file (default: the shipped weights)");
     cmd->add_option("--out", a->out, "output image (.png, sRGB); frame_%04d.png writes every frame")->required();
     cmd->add_option("--exr", a->exr, "also write linear float EXR");
     cmd->add_option("--stats", a->stats, "write statistics JSON");
@@ -128,11 +129,12 @@ void addRenderCommand(CLI::App& app) {
         mboit::parseMomentKind(a->mboitMoments);  // a bad value fails before any work
         const size_t abufferCap = abufferCapBytes(a->abufferCapMib, "--abuffer-cap-mib");
         if (!a->weights.empty()) {
-            if (a->method != "starnt" && a->method != "dfaoit") {
+            const NeuralMethodConfig* config = neuralConfig(a->method);
+            if (!config || !config->evaluatesNetwork) {
                 throw Error("--weights " + a->weights + ": method " + a->method +
-                            " has no network (only starnt and dfaoit read a weights file)");
+                            " has no network (only starnt, starnt-residual and dfaoit read a weights file)");
             }
-            nn::loadWeights(a->weights, nn::parseKind(a->method));  // a bad file fails before any rendering
+            nn::loadWeights(a->weights, config->kind);  // a bad file fails before any rendering
         }
         MethodOptions options;
         applyAccelerationFlags(a->acceleration, options);

@@ -94,8 +94,8 @@ void addTrainCommand(CLI::App& app) {
         int captureWidth = 96, captureHeight = 72;
     };
     auto a = std::make_shared<Args>();
-    CLI::App* cmd = app.add_subcommand("train", "train the STAR-NT or DFAOIT network and write a weights file");
-    cmd->add_option("--network", a->network, "starnt|dfaoit")->required();
+    CLI::App* cmd = app.add_subcommand("train", "train the STAR-NT (or its residual kind) or DFAOIT network and write a weights file");
+    cmd->add_option("--network", a->network, "starnt|starnt-residual|dfaoit")->required();
     cmd->add_option("--out", a->out, "weights file to write (.json)")->required();
     cmd->add_option("--samples", a->samples, "training samples seen in total")->capture_default_str();
     cmd->add_option("--seed", a->seed, "random seed (weights, split, synthetic data)")->capture_default_str();
@@ -111,7 +111,8 @@ void addTrainCommand(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--hold-out", a->holdOut, "train on every family but this one (a built-in scene or a procedural family)");
     cmd->add_option("--weighting", a->weighting,
-                    "sample weights: none (default) or tail-visibility (starnt: ((1-a1)(1-a2))^2, the image-space error)")
+                    "sample weights: none (default) or tail-visibility (starnt, starnt-residual: times ((1-a1)(1-a2))^2, "
+                    "the image-space error)")
         ->capture_default_str();
     cmd->add_option("--report", a->report, "write the per-family validation errors to this JSON file");
     cmd->callback([a] {
@@ -210,7 +211,7 @@ void addTrainCommand(CLI::App& app) {
                     nn::kindName(kind), "hybrid", "wboit", "net/wboit", "tail", "net tail", "hyb tail", "wb tail",
                     "tail n/w");
         for (const nn::TrainingFamily& f : families) {
-            const nn::FamilyErrors e = nn::familyErrors(kind, net, f.validation);
+            const nn::FamilyErrors e = nn::familyErrors(net, f.validation);
             const bool heldOut = f.name == a->holdOut;
             std::printf("%-10s %-9s %7zu %10.3e %10.3e %10.3e %9.3f %7zu %10.3e %10.3e %10.3e %9.3f\n", f.name.c_str(),
                         heldOut ? "HELD-OUT" : f.train.empty() ? "no" : "yes", e.pixels, e.network, e.hybrid, e.wboit,

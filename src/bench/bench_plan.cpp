@@ -48,6 +48,11 @@ const std::vector<Variant>& allVariants() {
                     [](MethodOptions& o) { o.neural.spatial = true; }),
         makeVariant("hybrid", "hybrid", "STAR-NT's passes and tiles, tail in closed form (no network): what the network adds",
                     [](MethodOptions& o) { o.neural.spatial = false; }),
+        makeVariant("starnt-residual-full", "starnt-residual",
+                    "STAR-NT's passes and network size, the network correcting hybrid's closed-form tail; spatial off",
+                    [](MethodOptions& o) { o.neural.spatial = false; }),
+        makeVariant("starnt-residual", "starnt-residual", "starnt-residual with adaptive tiles on",
+                    [](MethodOptions& o) { o.neural.spatial = true; }),
         makeVariant("starnt-paper", "starnt",
                     "STAR-NT as the paper: tiles on the composite, continuous scales, no guard",
                     [](MethodOptions& o) {
@@ -87,7 +92,8 @@ const std::vector<Variant>& allVariants() {
 }
 
 std::vector<std::string> defaultVariantNames() {
-    return {"unsorted", "wboit", "mboit", "mboit-t3", "dfaoit", "starnt-full", "hybrid", "starnt", "starnt-paper", "starnt-total",
+    return {"unsorted", "wboit", "mboit", "mboit-t3", "dfaoit", "starnt-full", "hybrid", "starnt-residual-full", "starnt",
+            "starnt-paper", "starnt-total",
             "starnt-total-warp", "starnt-corners"};
 }
 

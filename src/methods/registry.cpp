@@ -22,6 +22,7 @@ const std::vector<Entry>& entries() {
         {"dfaoit", createDfaoitMethod},
         {"starnt", createStarntMethod},
         {"hybrid", createHybridMethod},
+        {"starnt-residual", createStarntResidualMethod},
     };
     return all;
 }
@@ -46,16 +47,19 @@ std::unique_ptr<OitMethod> createMethod(const std::string& name, const SurfaceSh
     throw Error("unknown method '" + name + "' (valid: " + valid + ")");
 }
 
-bool methodUsesTiles(const std::string& name, const MethodOptions& options) {
-    const bool corners = options.neural.inference == NeuralOptions::Inference::Corners;
-    if (name == starntConfig().name) return options.neural.spatial.value_or(starntConfig().spatialByDefault) || corners;
-    if (name == dfaoitConfig().name) return options.neural.spatial.value_or(dfaoitConfig().spatialByDefault) || corners;
-    if (name == hybridConfig().name) return options.neural.spatial.value_or(hybridConfig().spatialByDefault) || corners;
-    return false;
+const NeuralMethodConfig* neuralConfig(const std::string& name) {
+    for (const NeuralMethodConfig* c : {&starntConfig(), &dfaoitConfig(), &hybridConfig(), &starntResidualConfig()})
+        if (name == c->name) return c;
+    return nullptr;
 }
 
-bool methodHasNearestPass(const std::string& name) {
-    return name == starntConfig().name || name == dfaoitConfig().name || name == hybridConfig().name;
+bool methodUsesTiles(const std::string& name, const MethodOptions& options) {
+    const NeuralMethodConfig* config = neuralConfig(name);
+    if (!config) return false;
+    const bool corners = options.neural.inference == NeuralOptions::Inference::Corners;
+    return options.neural.spatial.value_or(config->spatialByDefault) || corners;
 }
+
+bool methodHasNearestPass(const std::string& name) { return neuralConfig(name) != nullptr; }
 
 }  // namespace starnt

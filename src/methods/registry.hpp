@@ -14,11 +14,15 @@ std::unique_ptr<OitMethod> createMboitMethod(const SurfaceShader&, const MethodO
 std::unique_ptr<OitMethod> createDfaoitMethod(const SurfaceShader&, const MethodOptions&);
 std::unique_ptr<OitMethod> createStarntMethod(const SurfaceShader&, const MethodOptions&);
 std::unique_ptr<OitMethod> createHybridMethod(const SurfaceShader&, const MethodOptions&);
+std::unique_ptr<OitMethod> createStarntResidualMethod(const SurfaceShader&, const MethodOptions&);
 
 struct NeuralMethodConfig;
 const NeuralMethodConfig& starntConfig();
 const NeuralMethodConfig& dfaoitConfig();
 const NeuralMethodConfig& hybridConfig();
+const NeuralMethodConfig& starntResidualConfig();
+// The neural method called `name` (starnt, dfaoit, hybrid, starnt-residual), null for the others.
+const NeuralMethodConfig* neuralConfig(const std::string& name);
 
 // True when `name` with `options` runs the adaptive tiles (a neural method with spatial on, by
 // option or by default, or with corner inference): the methods with a tile overlay.

@@ -220,7 +220,7 @@ TrainingSet buildFamilyTrainingSet(NetworkKind kind, const std::vector<TrainingF
     for (const TrainingFamily& f : families) names.push_back(f.name);
     checkHoldOut(names, holdOut);
     TrainingSet set;
-    set.inputs = kind == NetworkKind::StarNT ? kStarntInputs : kDfaoitInputs;
+    set.inputs = inputCount(kind);
     for (const TrainingFamily& family : families) {
         if (family.name != holdOut) set.append(buildTrainingSet(kind, family.train, kDefaultAlphaCutoff, weighting));
     }
@@ -228,7 +228,7 @@ TrainingSet buildFamilyTrainingSet(NetworkKind kind, const std::vector<TrainingF
     return set;
 }
 
-FamilyErrors familyErrors(NetworkKind kind, const Network& net, const std::vector<FragmentList>& lists,
+FamilyErrors familyErrors(const Network& net, const std::vector<FragmentList>& lists,
                           float alphaCutoff) {
     FamilyErrors e;
     const glm::vec3 black(0.0f);
@@ -239,8 +239,7 @@ FamilyErrors familyErrors(NetworkKind kind, const Network& net, const std::vecto
         e.tailPixels += sorted.size() > 3;
         const glm::vec3 exact = compositeOver(sorted, black);
         const PixelSums sums = sumsFromFragments(list, alphaCutoff);
-        const glm::vec3 predicted =
-            kind == NetworkKind::StarNT ? compositeStarnt(net, sums, black) : compositeDfaoit(net, sums, black);
+        const glm::vec3 predicted = compositeNetwork(net, sums, black);
         const double network = squaredError(predicted, exact), hybrid = squaredError(compositeHybrid(sums, black), exact),
                      wboit = squaredError(compositeWboit(sorted, black, alphaCutoff), exact);
         e.network += network;

@@ -118,6 +118,13 @@ glm::vec3 starntTarget(const FragmentList& sorted) {
     return glm::vec3(color);
 }
 
+glm::vec3 starntResidualTarget(const FragmentList& sorted, const PixelSums& sums) {
+    const auto x = starntFeatures(sums);
+    const float tailOpacity = 1.0f - x[0];
+    if (tailOpacity < kResidualMinTailOpacity) return glm::vec3(0.0f);
+    return starntTarget(sorted) / tailOpacity - glm::vec3(x[2], x[3], x[4]);
+}
+
 glm::vec3 dfaoitTarget(const FragmentList& sorted) {
     glm::dvec3 color(0.0);
     double transmittance = 1.0;
@@ -152,6 +159,13 @@ glm::vec3 compositeStarnt(const Network& net, const PixelSums& s, glm::vec3 back
     return compositeThreeLayersExact(s, background, [&](const auto& x) { return net.forward(x.data()); });
 }
 
+glm::vec3 compositeStarntResidual(const Network& net, const PixelSums& s, glm::vec3 background) {
+    return compositeThreeLayersExact(s, background, [&](const auto& x) {
+        const glm::vec3 cTilde(x[2], x[3], x[4]);
+        return (1.0f - x[0]) * glm::max(cTilde + net.forward(x.data()), glm::vec3(0.0f));
+    });
+}
+
 glm::vec3 compositeHybrid(const PixelSums& s, glm::vec3 background) {
     // x = (t_tail, N, C_tilde): the alpha-weighted mean tail colour under the tail's opacity.
     return compositeThreeLayersExact(s, background,
@@ -165,6 +179,15 @@ glm::vec3 compositeDfaoit(const Network& net, const PixelSums& s, glm::vec3 back
         transparent = net.forward(x.data());
     }
     return transparent + s.transmittance * background;
+}
+
+glm::vec3 compositeNetwork(const Network& net, const PixelSums& s, glm::vec3 background) {
+    switch (net.kind) {
+        case NetworkKind::StarNT: return compositeStarnt(net, s, background);
+        case NetworkKind::StarNTResidual: return compositeStarntResidual(net, s, background);
+        case NetworkKind::DFAOIT: return compositeDfaoit(net, s, background);
+    }
+    return background;
 }
 
 }  // namespace starnt::nn

@@ -111,9 +111,9 @@ std::string generateInferenceGlsl(const Network& net) {
             }
             std::vector<float> bias(layer.bias.begin() + 4 * ko, layer.bias.begin() + 4 * ko + rows);
             sum += "\n        + " + construct(vecType(rows), bias);
-            const std::string act = layer.activation == Network::Layer::ReLU
-                                        ? "max(" + sum + ", 0.0)"
-                                        : "1.0 / (1.0 + exp(-(" + sum + ")))";
+            const std::string act = layer.activation == Network::Layer::ReLU      ? "max(" + sum + ", 0.0)"
+                                    : layer.activation == Network::Layer::Sigmoid ? "1.0 / (1.0 + exp(-(" + sum + ")))"
+                                                                                  : sum;
             g << "    " << vecType(rows) << " h" << (l + 1) << "_" << ko << " = " << act << ";\n";
         }
     }

@@ -7,24 +7,34 @@
 
 namespace starnt::nn {
 
-const char* kindName(NetworkKind kind) { return kind == NetworkKind::StarNT ? "starnt" : "dfaoit"; }
+const char* kindName(NetworkKind kind) {
+    switch (kind) {
+        case NetworkKind::StarNT: return "starnt";
+        case NetworkKind::StarNTResidual: return "starnt-residual";
+        case NetworkKind::DFAOIT: return "dfaoit";
+    }
+    return "?";
+}
 
 NetworkKind parseKind(const std::string& name) {
     if (name == "starnt") return NetworkKind::StarNT;
+    if (name == "starnt-residual") return NetworkKind::StarNTResidual;
     if (name == "dfaoit") return NetworkKind::DFAOIT;
-    throw Error("unknown network kind '" + name + "' (expected starnt or dfaoit)");
+    throw Error("unknown network kind '" + name + "' (expected starnt, starnt-residual or dfaoit)");
 }
+
+int inputCount(NetworkKind kind) { return readsStarntInputs(kind) ? kStarntInputs : kDfaoitInputs; }
 
 const std::vector<std::string>& canonicalInputNames(NetworkKind kind) {
     static const std::vector<std::string> starnt = {"t_tail", "count", "c_tilde_r", "c_tilde_g", "c_tilde_b"};
     static const std::vector<std::string> dfaoit = {
         "alpha_avg",           "c_avg_r",             "c_avg_g",   "c_avg_b",   "sum_alpha_color_r",
         "sum_alpha_color_g",   "sum_alpha_color_b",   "c_exact2_r", "c_exact2_g", "c_exact2_b"};
-    return kind == NetworkKind::StarNT ? starnt : dfaoit;
+    return readsStarntInputs(kind) ? starnt : dfaoit;
 }
 
 std::vector<int> layerSizes(NetworkKind kind) {
-    return {kind == NetworkKind::StarNT ? kStarntInputs : kDfaoitInputs, 32, 16, 3};
+    return {inputCount(kind), 32, 16, 3};
 }
 
 glm::vec3 Network::forward(const float* rawInputs) const {
@@ -38,7 +48,9 @@ glm::vec3 Network::forward(const float* rawInputs) const {
             float z = layer.bias[o];
             const float* w = layer.weights.data() + static_cast<size_t>(o) * layer.in;
             for (int i = 0; i < layer.in; ++i) z += w[i] * current[i];
-            next[o] = layer.activation == Layer::ReLU ? std::max(z, 0.0f) : 1.0f / (1.0f + std::exp(-z));
+            next[o] = layer.activation == Layer::ReLU      ? std::max(z, 0.0f)
+                      : layer.activation == Layer::Sigmoid ? 1.0f / (1.0f + std::exp(-z))
+                                                           : z;
         }
         current.swap(next);
     }
@@ -61,10 +73,16 @@ Network makeUntrained(NetworkKind kind, uint64_t seed) {
         layer.in = sizes[l];
         layer.out = sizes[l + 1];
         const bool last = l + 2 == sizes.size();
-        layer.activation = (last && kind == NetworkKind::DFAOIT) ? Network::Layer::Sigmoid : Network::Layer::ReLU;
-        // He for layers followed by ReLU, Xavier (Glorot normal) for the sigmoid output layer.
-        const double stddev = layer.activation == Network::Layer::ReLU ? std::sqrt(2.0 / layer.in)
-                                                                         : std::sqrt(2.0 / (layer.in + layer.out));
+        layer.activation = !last                                     ? Network::Layer::ReLU
+                           : kind == NetworkKind::DFAOIT             ? Network::Layer::Sigmoid
+                           : kind == NetworkKind::StarNTResidual     ? Network::Layer::Linear
+                                                                      : Network::Layer::ReLU;
+        // He for layers followed by ReLU, Xavier (Glorot normal) for the sigmoid output layer, a
+        // tenth of Xavier for the residual's linear output (it starts near the closed form).
+        const double xavier = std::sqrt(2.0 / (layer.in + layer.out));
+        const double stddev = layer.activation == Network::Layer::ReLU    ? std::sqrt(2.0 / layer.in)
+                              : layer.activation == Network::Layer::Linear ? 0.1 * xavier
+                                                                            : xavier;
         layer.weights.resize(static_cast<size_t>(layer.in) * layer.out);
         for (float& w : layer.weights) w = static_cast<float>(stddev * rng.normal());
         // A small positive output bias keeps the ReLU outputs of STAR-NT alive at the start.

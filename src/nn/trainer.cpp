@@ -46,22 +46,29 @@ void TrainingSet::append(const TrainingSet& other) {
 TrainingSet buildTrainingSet(NetworkKind kind, const std::vector<FragmentList>& lists, float alphaCutoff,
                              SampleWeighting weighting) {
     TrainingSet set;
-    set.inputs = kind == NetworkKind::StarNT ? kStarntInputs : kDfaoitInputs;
+    set.inputs = inputCount(kind);
     for (const FragmentList& list : lists) {
         const FragmentList sorted = preparedFragments(list, alphaCutoff);
         const size_t n = sorted.size();
-        if (kind == NetworkKind::StarNT ? n <= 3 : n < 1) continue;
+        if (readsStarntInputs(kind) ? n <= 3 : n < 1) continue;
         // Already cut off and sorted, so the cut-off cannot drop anything more here.
         const PixelSums sums = sumsFromFragments(sorted, alphaCutoff);
         glm::vec3 target;
-        if (kind == NetworkKind::StarNT) {
+        if (readsStarntInputs(kind)) {
             const auto f = starntFeatures(sums);
             set.x.insert(set.x.end(), f.begin(), f.end());
-            target = starntTarget(sorted);
-            if (weighting == SampleWeighting::TailVisibility) {
-                const float visibility = (1.0f - sums.a1) * (1.0f - sums.a2);
-                set.w.push_back(visibility * visibility);
+            // How much an error of the prediction weighs in the tail colour (the residual's is
+            // scaled by the tail opacity), then in the image (through T2).
+            float tailScale = 1.0f;
+            if (kind == NetworkKind::StarNTResidual) {
+                target = starntResidualTarget(sorted, sums);
+                tailScale = 1.0f - f[0];
+            } else {
+                target = starntTarget(sorted);
             }
+            const float visibility = weighting == SampleWeighting::TailVisibility ? (1.0f - sums.a1) * (1.0f - sums.a2) : 1.0f;
+            if (weighting == SampleWeighting::TailVisibility || kind == NetworkKind::StarNTResidual)
+                set.w.push_back(tailScale * tailScale * visibility * visibility);
         } else {
             const auto f = dfaoitFeatures(sums);
             set.x.insert(set.x.end(), f.begin(), f.end());
@@ -96,17 +103,28 @@ double mseOn(const Mlp<float>& m, const TrainingSet& set, const std::vector<size
     if (indices.empty()) return 0.0;
     detail::Workspace<float> ws;
     Mat<float> x, y;
-    double sum = 0.0;
+    std::vector<float> w;
+    const bool weighted = !set.w.empty();
+    double sum = 0.0, weightSum = 0.0;
     const size_t chunk = 4096;
     for (size_t begin = 0; begin < indices.size(); begin += chunk) {
         const size_t end = std::min(indices.size(), begin + chunk);
         std::vector<size_t> part(indices.begin() + static_cast<std::ptrdiff_t>(begin),
                                  indices.begin() + static_cast<std::ptrdiff_t>(end));
-        gather(set, part, offset, scale, x, y);
+        gather(set, part, offset, scale, x, y, weighted ? &w : nullptr);
         const Mat<float>& out = detail::forwardBatch<float>(m, x, ws);
-        sum += (out - y).cast<double>().squaredNorm();
+        if (!weighted) {
+            sum += (out - y).cast<double>().squaredNorm();
+            weightSum += static_cast<double>(part.size());
+            continue;
+        }
+        const Eigen::VectorXd perSample = (out - y).cast<double>().colwise().squaredNorm().transpose();
+        for (Eigen::Index c = 0; c < perSample.size(); ++c) {
+            sum += w[static_cast<size_t>(c)] * perSample(c);
+            weightSum += w[static_cast<size_t>(c)];
+        }
     }
-    return sum / (3.0 * static_cast<double>(indices.size()));
+    return weightSum > 0.0 ? sum / (3.0 * weightSum) : 0.0;
 }
 
 void shuffle(std::vector<size_t>& v, detail::Rng& rng) {
@@ -123,7 +141,7 @@ double evaluateMse(const Network& net, const TrainingSet& set) {
 }
 
 Network train(NetworkKind kind, const TrainingSet& set, const TrainOptions& options) {
-    const int inputs = kind == NetworkKind::StarNT ? kStarntInputs : kDfaoitInputs;
+    const int inputs = inputCount(kind);
     if (set.inputs != inputs)
         throw Error(std::string("training set has ") + std::to_string(set.inputs) + " inputs, a " + kindName(kind) +
                     " network needs " + std::to_string(inputs));
@@ -162,8 +180,8 @@ Network train(NetworkKind kind, const TrainingSet& set, const TrainOptions& opti
     }
 
     // Output bias: the mean training target (through the inverse sigmoid for DFAOIT), so training
-    // starts from the constant predictor.
-    {
+    // starts from the constant predictor. The residual kind starts from f = 0, the closed form.
+    if (kind != NetworkKind::StarNTResidual) {
         double mean[3] = {0.0, 0.0, 0.0};
         for (size_t s : training)
             for (int k = 0; k < 3; ++k) mean[k] += set.y[s * 3 + k];

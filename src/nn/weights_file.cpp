@@ -1,8 +1,8 @@
 // Weights file: JSON, format "starnt-weights", version 1.
 //
 // {
-//   "format": "starnt-weights", "version": 1, "network": "starnt" | "dfaoit",
-//   "layer_sizes": [5, 32, 16, 3], "activations": ["relu", "relu", "relu"],
+//   "format": "starnt-weights", "version": 1, "network": "starnt" | "starnt-residual" | "dfaoit",
+//   "layer_sizes": [5, 32, 16, 3], "activations": ["relu", "relu", "relu" | "linear" | "sigmoid"],
 //   "input_order": ["t_tail", "count", ...], "input_offset": [...], "input_scale": [...],
 //   "normalization": "x' = (x - input_offset) * input_scale",
 //   "seed": 1, "training_samples": 10000000, "validation_mse": 0.0012,
@@ -31,11 +31,14 @@ constexpr int kVersion = 1;
 // with every value within 1e6 and inputs within 1e3, no layer's sum can leave float range.
 constexpr double kMaxMagnitude = 1e6;
 
-const char* activationName(Network::Layer::Activation a) { return a == Network::Layer::ReLU ? "relu" : "sigmoid"; }
+const char* activationName(Network::Layer::Activation a) {
+    return a == Network::Layer::ReLU ? "relu" : a == Network::Layer::Sigmoid ? "sigmoid" : "linear";
+}
 
 std::vector<Network::Layer::Activation> expectedActivations(NetworkKind kind) {
     using L = Network::Layer;
-    return {L::ReLU, L::ReLU, kind == NetworkKind::StarNT ? L::ReLU : L::Sigmoid};
+    const L::Activation output = kind == NetworkKind::StarNT ? L::ReLU : kind == NetworkKind::DFAOIT ? L::Sigmoid : L::Linear;
+    return {L::ReLU, L::ReLU, output};
 }
 
 [[noreturn]] void fail(const std::string& what, const std::string& message) {
@@ -183,8 +186,8 @@ Network parseWeights(const std::string& text, const std::string& what, std::opti
         const auto& kindJson = field(j, "network", what);
         if (!kindJson.is_string()) fail(what, "'network' must be a string");
         const std::string kindStr = kindJson.get<std::string>();
-        if (kindStr != "starnt" && kindStr != "dfaoit")
-            fail(what, "unknown network kind \"" + kindStr + "\" (expected starnt or dfaoit)");
+        if (kindStr != "starnt" && kindStr != "starnt-residual" && kindStr != "dfaoit")
+            fail(what, "unknown network kind \"" + kindStr + "\" (expected starnt, starnt-residual or dfaoit)");
         Network net;
         net.kind = parseKind(kindStr);
         if (expected && *expected != net.kind)

@@ -9,7 +9,7 @@ namespace starnt {
 
 const NeuralMethodConfig& hybridConfig() {
     static const NeuralMethodConfig config{"hybrid", nn::NetworkKind::StarNT, "methods/hybrid/hybrid_composite.frag.glsl",
-                                           "methods/starnt/starnt_weights.json", true};
+                                           "methods/starnt/starnt_weights.json", true, false};
     return config;
 }
 

@@ -12,11 +12,12 @@
 namespace starnt {
 
 struct NeuralMethodConfig {
-    std::string name;                // "starnt" / "dfaoit"
+    std::string name;                // "starnt", "dfaoit", "hybrid", "starnt-residual"
     nn::NetworkKind kind;
     std::string compositeShader;     // embedded path of the composite fragment shader
     std::string defaultWeights;      // embedded path of the shipped weights (JSON)
     bool spatialByDefault = false;   // MethodOptions::spatial when unset
+    bool evaluatesNetwork = true;    // false for hybrid: it reads no weights file
 };
 
 std::unique_ptr<OitMethod> createNeuralMethod(const NeuralMethodConfig& config, const SurfaceShader& surface,
