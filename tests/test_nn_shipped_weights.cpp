@@ -25,6 +25,7 @@ std::string fileBytes(const std::filesystem::path& path) {
 struct Shipped {
     std::string network, folder, recipe;
 };
+void PrintTo(const Shipped& s, std::ostream* os) { *os << s.network << s.recipe; }
 
 class ShippedWeights : public ::testing::TestWithParam<Shipped> {};
 
