@@ -12,17 +12,5 @@ void networkInputs(PixelSums s, out float x[STARNT_NN_INPUTS]) {
 }
 
 vec3 compositePixel(PixelSums s, vec3 networkOutput) {
-    vec3 tail;
-    if (s.count < 2.5) {
-        tail = vec3(0.0);
-    } else if (s.count < 3.5) {
-        tail = max(tailPremultiplied(s), vec3(0.0));
-    } else {
-        float t2 = twoLayerTransmittance(s);
-        float tTail = t2 > STARNT_EPS_TRANSMITTANCE ? clamp(s.transmittance / t2, 0.0, 1.0) : 0.0;
-        float tailAlpha = tailAlphaSum(s);
-        vec3 cTilde = tailAlpha > STARNT_EPS_TAIL_ALPHA ? max(tailPremultiplied(s) / tailAlpha, vec3(0.0)) : vec3(0.0);
-        tail = (1.0 - tTail) * cTilde;
-    }
-    return exactTwo(s) + twoLayerTransmittance(s) * tail + s.transmittance * u_background;
+    return threeLayerComposite(s, (1.0 - tailTransmittance(s)) * tailMeanColor(s), u_background);
 }

@@ -109,3 +109,35 @@ float twoLayerTransmittance(PixelSums s) { return (1.0 - s.a1) * (1.0 - s.a2); }
 // Premultiplied colour of the tail (fragments 3..N): sum a C minus the peeled ones.
 vec3 tailPremultiplied(PixelSums s) { return s.sumAlphaColor - s.a1 * s.c1 - s.a2 * s.c2; }
 float tailAlphaSum(PixelSums s) { return s.sumAlpha - s.a1 - s.a2; }
+
+// STAR-NT's tail features (SPEC 3) with the guards of nn::starntFeatures: the tail's own
+// transmittance t_tail = T_all / T2 and its alpha-weighted mean colour C_tilde.
+float tailTransmittance(PixelSums s) {
+    float t2 = twoLayerTransmittance(s);
+    return t2 > STARNT_EPS_TRANSMITTANCE ? clamp(s.transmittance / t2, 0.0, 1.0) : 0.0;
+}
+vec3 tailMeanColor(PixelSums s) {
+    float tailAlpha = tailAlphaSum(s);
+    return tailAlpha > STARNT_EPS_TAIL_ALPHA ? max(tailPremultiplied(s) / tailAlpha, vec3(0.0)) : vec3(0.0);
+}
+
+// STAR-NT's five network inputs in their order (nn::starntFeatures): t_tail, N, C_tilde.rgb.
+void starntInputs(PixelSums s, out float x[5]) {
+    vec3 cTilde = tailMeanColor(s);
+    x[0] = tailTransmittance(s);
+    x[1] = s.count;
+    x[2] = cTilde.r;
+    x[3] = cTilde.g;
+    x[4] = cTilde.b;
+}
+
+// The composite of the three-pass methods (starnt, hybrid, starnt-residual; CPU reference
+// compositeThreeLayersExact in src/nn/features.cpp): the two peeled layers exactly, the tail exactly
+// for N <= 3 (the third fragment follows from the sums), `deepTail` for N > 3, then the background.
+vec3 threeLayerComposite(PixelSums s, vec3 deepTail, vec3 background) {
+    vec3 tail;
+    if (s.count < 2.5) tail = vec3(0.0);
+    else if (s.count < 3.5) tail = max(tailPremultiplied(s), vec3(0.0));
+    else tail = deepTail;
+    return exactTwo(s) + twoLayerTransmittance(s) * tail + s.transmittance * background;
+}

@@ -10,23 +10,7 @@ uniform vec3 u_background;
 
 bool networkApplies(PixelSums s) { return s.count >= 3.5; }
 
-void networkInputs(PixelSums s, out float x[STARNT_NN_INPUTS]) {
-    float t2 = twoLayerTransmittance(s);
-    float tTail = t2 > STARNT_EPS_TRANSMITTANCE ? clamp(s.transmittance / t2, 0.0, 1.0) : 0.0;
-    float tailAlpha = tailAlphaSum(s);
-    vec3 cTilde = tailAlpha > STARNT_EPS_TAIL_ALPHA ? max(tailPremultiplied(s) / tailAlpha, vec3(0.0)) : vec3(0.0);
-    x[0] = tTail;
-    x[1] = s.count;
-    x[2] = cTilde.r;
-    x[3] = cTilde.g;
-    x[4] = cTilde.b;
-}
+void networkInputs(PixelSums s, out float x[STARNT_NN_INPUTS]) { starntInputs(s, x); }
 
 // `networkOutput` is f(x) where networkApplies(s), unused elsewhere.
-vec3 compositePixel(PixelSums s, vec3 networkOutput) {
-    vec3 tail;
-    if (s.count < 2.5) tail = vec3(0.0);
-    else if (s.count < 3.5) tail = max(tailPremultiplied(s), vec3(0.0));
-    else tail = networkOutput;
-    return exactTwo(s) + twoLayerTransmittance(s) * tail + s.transmittance * u_background;
-}
+vec3 compositePixel(PixelSums s, vec3 networkOutput) { return threeLayerComposite(s, networkOutput, u_background); }
