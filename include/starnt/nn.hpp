@@ -49,11 +49,12 @@ struct PixelSums {
 // dropped, the rest sorted by depth (sortByDepth). Sums are accumulated in double, stored as float.
 PixelSums sumsFromFragments(FragmentList fragments, float alphaCutoff = kDefaultAlphaCutoff);
 
-// What the compact pass targets (NeuralOptions::Targets::Compact, 16-bit floats) hold: the two
-// nearest colours and alphas rounded to half precision, the pass-3 sums accumulated with a rounding
-// after every addition and the transmittance after every multiplication, as the GPU's blending into
-// 16-bit targets does (in depth order here; the GPU's order is the draw order, so sums may differ
-// in their last bits). The count stays exact (16-bit floats hold integers to 2048). The shaders
+// What the compact pass targets (NeuralOptions::Targets::Compact, 16-bit) hold: the two nearest
+// colours and alphas rounded to half precision, the pass-3 sums accumulated in 16-bit floats with a
+// rounding after every addition, and the transmittance in 16-bit unsigned normalised fixed point
+// (GL_R16: 1 - a and every product rounded to the nearest step of 1/65535), as the GPU's blending
+// does (in depth order here; the GPU's order is the draw order, so sums may differ in their last
+// bits). The count stays exact (16-bit floats hold integers to 2048). The shaders
 // round what they write to the nearest 16-bit float; what blending writes is rounded by the driver:
 // to nearest on GPUs, toward zero on llvmpipe (`blendTruncates`).
 PixelSums sumsInHalfTargets(FragmentList fragments, bool blendTruncates = false, float alphaCutoff = kDefaultAlphaCutoff);
@@ -61,6 +62,8 @@ PixelSums sumsInHalfTargets(FragmentList fragments, bool blendTruncates = false,
 // toward zero.
 float roundToHalf(float v, bool towardZero = false);
 glm::vec3 roundToHalf(glm::vec3 v, bool towardZero = false);
+// Clamp to [0, 1] and round to the nearest step of 1/65535 (a GL_R16 target).
+float roundToUnorm16(float v);
 
 // Drops fragments with alpha < cutoff and sorts the rest by depth: the list targets are defined on.
 FragmentList preparedFragments(FragmentList fragments, float alphaCutoff = kDefaultAlphaCutoff);

@@ -49,6 +49,8 @@ float roundToHalf(float v, bool towardZero) {
     if (towardZero && std::abs(float(h)) > std::abs(v)) h = std::bit_cast<_Float16>(uint16_t(std::bit_cast<uint16_t>(h) - 1u));
     return float(h);
 }
+float roundToUnorm16(float v) { return std::round(std::clamp(v, 0.0f, 1.0f) * 65535.0f) / 65535.0f; }
+
 glm::vec3 roundToHalf(glm::vec3 v, bool towardZero) {
     return {roundToHalf(v.x, towardZero), roundToHalf(v.y, towardZero), roundToHalf(v.z, towardZero)};
 }
@@ -68,7 +70,7 @@ PixelSums sumsInHalfTargets(FragmentList fragments, bool blendTruncates, float a
         s.sumAlpha = roundToHalf(s.sumAlpha + f.alpha, blendTruncates);
         s.sumAlphaColor = roundToHalf(s.sumAlphaColor + f.alpha * f.color, blendTruncates);
         s.sumColor = roundToHalf(s.sumColor + f.color, blendTruncates);
-        s.transmittance = roundToHalf(s.transmittance * (1.0f - f.alpha), blendTruncates);
+        s.transmittance = roundToUnorm16(s.transmittance * roundToUnorm16(1.0f - f.alpha));
     }
     s.count = static_cast<float>(fragments.size());
     return s;

@@ -94,6 +94,8 @@ public:
     size_t gpuMemoryBytes() const;
     // Format of an output texture of the method's own (RGBA16F or RGBA32F, as the targets).
     GLenum outputFormat() const;
+    // The compact layout's transmittance target: GL_R16 (GL_R16F on ES without EXT_texture_norm16).
+    static GLenum compactTransmittanceFormat();
 
     // Where the inference may write the output in place, after run(): a target that it reads at
     // the output pixel only, and that nothing reads after it. Pass 3's sums when pass 3 ran at full
