@@ -103,6 +103,24 @@ TEST(Cli, NeuralMemoryTargetsSumToTheTotal) {
     const nlohmann::json dfaoit = nlohmann::json::parse(f);
     EXPECT_EQ(dfaoit["memory_targets"]["pass3_color_count"].get<size_t>(), size_t(64 * 48 * 8));
     EXPECT_FALSE(dfaoit["memory_targets"].contains("pass3_count"));
+    // Its default (full resolution, no tiles, no temporal frames) runs the narrow layers: 4-byte
+    // layer colours, both alphas in one 4-byte target, a 2-byte pass-2 depth, 36 bytes a pixel
+    // (74,649,600 bytes at 1920x1080).
+    const nlohmann::json& narrow = dfaoit["memory_targets"];
+    EXPECT_EQ(narrow["pass1_color"].get<size_t>(), size_t(64 * 48 * 4));
+    EXPECT_EQ(narrow["pass2_color"].get<size_t>(), size_t(64 * 48 * 4));
+    EXPECT_EQ(narrow["layer_alphas"].get<size_t>(), size_t(64 * 48 * 4));
+    EXPECT_EQ(narrow["pass2_depth"].get<size_t>(), size_t(64 * 48 * 2));
+    EXPECT_EQ(dfaoit["memory_bytes"].get<size_t>(), size_t(64 * 48 * 36));
+    // With the tiles on, the tiles read the layers' alphas from the colour targets: RGBA16F layers.
+    const CliRun tiled = run("render --scene builtin:tubes --method dfaoit --spatial on --width 64 --height 48 --out " +
+                             (dir / "d.png").string() + " --stats " + (dir / "d.json").string());
+    ASSERT_EQ(tiled.exitCode, 0) << tiled.err;
+    std::ifstream g(dir / "d.json");
+    const nlohmann::json wide = nlohmann::json::parse(g)["memory_targets"];
+    EXPECT_EQ(wide["pass1_color"].get<size_t>(), size_t(64 * 48 * 8));
+    EXPECT_EQ(wide["layer_alphas"].get<size_t>(), 0u);
+    EXPECT_EQ(wide["pass2_depth"].get<size_t>(), size_t(64 * 48 * 4));
 }
 
 TEST(Cli, CompareIdenticalIsZeroAndJsonShape) {

@@ -24,6 +24,7 @@
 #define STARNT_UNIT_TRANSMITTANCE 4  /* pass 3: prod (1 - a) */
 #define STARNT_UNIT_NEAREST_DEPTH 5  /* pass-1 window depth (joint upsampling, pass-2 peel) */
 #define STARNT_UNIT_CORNER_NETWORK 6 /* corner inference: the network at leaf corners */
+#define STARNT_UNIT_LAYER_ALPHA 7    /* dfaoit's narrow layers: a1, a2 (full resolution) */
 
 /* ---- Shader storage buffer bindings ---- */
 #define STARNT_SSBO_ABUFFER_HEADS 0

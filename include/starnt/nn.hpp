@@ -57,13 +57,17 @@ PixelSums sumsFromFragments(FragmentList fragments, float alphaCutoff = kDefault
 // bits). The count stays exact (16-bit floats hold integers to 2048). The shaders
 // round what they write to the nearest 16-bit float; what blending writes is rounded by the driver:
 // to nearest on GPUs, toward zero on llvmpipe (`blendTruncates`).
-PixelSums sumsInHalfTargets(FragmentList fragments, bool blendTruncates = false, float alphaCutoff = kDefaultAlphaCutoff);
+// `narrowLayers`: DFAOIT's narrow layers (NeuralPasses): the two nearest colours clamped to [0, 1]
+// and rounded to the nearest step of 1/1023 (RGB10_A2) instead of to half precision.
+PixelSums sumsInHalfTargets(FragmentList fragments, bool blendTruncates = false, float alphaCutoff = kDefaultAlphaCutoff,
+                            bool narrowLayers = false);
 // Round to the nearest 16-bit float (ties to even), as half_targets.glsl does before a write, or
 // toward zero.
 float roundToHalf(float v, bool towardZero = false);
 glm::vec3 roundToHalf(glm::vec3 v, bool towardZero = false);
-// Clamp to [0, 1] and round to the nearest step of 1/65535 (a GL_R16 target).
+// Clamp to [0, 1] and round to the nearest step of 1/65535 (a GL_R16 target) or 1/1023 (10 bits).
 float roundToUnorm16(float v);
+glm::vec3 roundToUnorm10(glm::vec3 v);
 
 // Drops fragments with alpha < cutoff and sorts the rest by depth: the list targets are defined on.
 FragmentList preparedFragments(FragmentList fragments, float alphaCutoff = kDefaultAlphaCutoff);

@@ -51,19 +51,22 @@ float roundToHalf(float v, bool towardZero) {
 }
 float roundToUnorm16(float v) { return std::round(std::clamp(v, 0.0f, 1.0f) * 65535.0f) / 65535.0f; }
 
+glm::vec3 roundToUnorm10(glm::vec3 v) { return glm::round(glm::clamp(v, 0.0f, 1.0f) * 1023.0f) / 1023.0f; }
+
 glm::vec3 roundToHalf(glm::vec3 v, bool towardZero) {
     return {roundToHalf(v.x, towardZero), roundToHalf(v.y, towardZero), roundToHalf(v.z, towardZero)};
 }
 
-PixelSums sumsInHalfTargets(FragmentList fragments, bool blendTruncates, float alphaCutoff) {
+PixelSums sumsInHalfTargets(FragmentList fragments, bool blendTruncates, float alphaCutoff, bool narrowLayers) {
     fragments = preparedFragments(std::move(fragments), alphaCutoff);
     PixelSums s;
+    const auto layerColor = [&](glm::vec3 c) { return narrowLayers ? roundToUnorm10(c) : roundToHalf(c); };
     if (!fragments.empty()) {
-        s.c1 = roundToHalf(fragments[0].color);
+        s.c1 = layerColor(fragments[0].color);
         s.a1 = roundToHalf(fragments[0].alpha);
     }
     if (fragments.size() > 1) {
-        s.c2 = roundToHalf(fragments[1].color);
+        s.c2 = layerColor(fragments[1].color);
         s.a2 = roundToHalf(fragments[1].alpha);
     }
     for (const Fragment& f : fragments) {

@@ -26,3 +26,14 @@ vec4 targetValue(vec4 v) {
     return v;
 #endif
 }
+
+#ifdef STARNT_SPLIT_ALPHA
+// DFAOIT's narrow layers (NeuralPasses, "Narrow layers"): the colour rounded here to the nearest
+// step of the RGB10_A2 target (1/1023, clamped to [0, 1]; its 2-bit alpha is unused), the alpha to
+// the nearest 16-bit float for the RG16F target. CPU reference: nn::sumsInHalfTargets(...,
+// narrowLayers = true).
+void splitLayerValue(vec4 v, out vec4 color, out vec2 alpha) {
+    color = vec4(round(clamp(v.rgb, 0.0, 1.0) * 1023.0) / 1023.0, 1.0);
+    alpha = vec2(nearestHalf(v.a));
+}
+#endif

@@ -9,6 +9,13 @@ layout(binding = STARNT_UNIT_SECOND) uniform sampler2D u_second;         // C2, 
 layout(binding = STARNT_UNIT_ALPHA_COLOR) uniform sampler2D u_alphaColor;     // sum a C, sum a
 layout(binding = STARNT_UNIT_COLOR_COUNT) uniform sampler2D u_colorCount;     // sum C, N (N in .r with STARNT_COUNT_ONLY)
 layout(binding = STARNT_UNIT_TRANSMITTANCE) uniform sampler2D u_transmittance;  // prod (1 - a)
+#ifdef STARNT_SPLIT_ALPHA
+// DFAOIT's narrow layers: C1 and C2 in RGB10_A2, their alphas here (a1, a2). Full resolution only.
+layout(binding = STARNT_UNIT_LAYER_ALPHA) uniform sampler2D u_layerAlpha;
+#ifndef STARNT_INPUTS_FULL_RESOLUTION
+#error "narrow layers need every pass at full resolution"
+#endif
+#endif
 #include "methods/neural/upsample.glsl"
 
 struct PixelSums {
@@ -26,6 +33,10 @@ struct PixelSums {
 PixelSums readPixelSums(ivec2 p) {
     PixelSums s;
     vec4 f1 = texelFetch(u_nearest, p, 0);
+#ifdef STARNT_SPLIT_ALPHA
+    vec2 layerAlpha = texelFetch(u_layerAlpha, p, 0).rg;
+    f1.a = layerAlpha.r;
+#endif
     if (f1.a == 0.0) {
         // Pass 1 runs at full resolution: no nearest fragment means no fragment at all. Without
         // this, reduced passes 2/3 would leak their neighbours' sums into background pixels
@@ -37,6 +48,9 @@ PixelSums readPixelSums(ivec2 p) {
     }
 #if defined(STARNT_INPUTS_FULL_RESOLUTION)
     vec4 f2 = texelFetch(u_second, p, 0);
+#ifdef STARNT_SPLIT_ALPHA
+    f2.a = layerAlpha.g;
+#endif
 #else
     // Pass 2 at full resolution (pass 3 reduced): its own pixel only. The inference may write the
     // output in place over pass 2's target then (NeuralPasses::outputSlot), so no neighbour may be

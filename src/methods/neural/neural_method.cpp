@@ -20,6 +20,16 @@ namespace {
 // Texture unit of the corner network outputs in infer_fill.frag.glsl (after the NeuralInputUnit units).
 constexpr GLuint kUnitCornerNetwork = STARNT_UNIT_CORNER_NETWORK;
 
+// DFAOIT's narrow layers (NeuralPasses, "Narrow layers"): only where every pass runs at full
+// resolution and nothing but the inference reads the layers (no tiles, no scale guard, no temporal
+// frames), since the tiles, the tail resolve and the reprojection read the alphas from the colour
+// targets.
+bool narrowLayersApply(const NeuralMethodConfig& config, const MethodOptions& o, bool spatial, bool corners) {
+    const bool fullScales = o.neural.fixedScale2 == 0.0f || (o.neural.fixedScale2 == 1.0f && o.neural.fixedScale3 == 1.0f);
+    return config.kind == nn::NetworkKind::DFAOIT && o.neural.targets == NeuralOptions::Targets::Compact && !spatial &&
+           !corners && fullScales && o.neural.temporalInterval == 1 && !o.neural.temporalAuto;
+}
+
 class NeuralMethod final : public MethodBase {
 public:
     NeuralMethod(const NeuralMethodConfig& config, const SurfaceShader& surface, const MethodOptions& options)
@@ -30,7 +40,8 @@ public:
           corners_(options.neural.inference == NeuralOptions::Inference::Corners),
           network_(loadMethodNetwork(config, options)),
           // Only DFAOIT's inputs read the unweighted colour sum of pass 3 (SPEC 3).
-          passes_(surface, config.kind == nn::NetworkKind::DFAOIT, options_.neural.targets),
+          passes_(surface, config.kind == nn::NetworkKind::DFAOIT, options_.neural.targets,
+                  narrowLayersApply(config, options_, spatial_, corners_)),
           temporal_(options_) {
         if (spatial_ || corners_) tiles_ = std::make_unique<tiles::GpuTiles>();
         // Compile up front what the frames will need, so no frame pays for a shader compile: the
@@ -233,6 +244,7 @@ private:
     gl::Program buildInference(const std::string& stage, bool fullResolutionInputs) const {
         const std::string defines = std::string(fullResolutionInputs ? "#define STARNT_INPUTS_FULL_RESOLUTION\n" : "") +
                                     (joint() ? "#define STARNT_UPSAMPLE_JOINT\n" : "") + passes_.countLayoutDefine() + passes_.targetsDefine() +
+                                    passes_.layerDefine() +
                                     neuralEpsilonDefines() + nn::generateInferenceGlsl(network_);
         return buildFullscreenProgram(config_.name + "_" + stage + (fullResolutionInputs ? "" : "_upsampled"),
                                       {config_.compositeShader, "methods/neural/" + stage + ".frag.glsl"}, defines);

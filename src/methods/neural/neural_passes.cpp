@@ -75,15 +75,18 @@ void resolveTails(const TailResolveInputs& in, GLuint pass3Framebuffer, const gl
     resetPassState();
 }
 
-NeuralPasses::NeuralPasses(const SurfaceShader& surface, bool colorSums, NeuralOptions::Targets targets)
-    : pass1_(buildSurfaceProgram(surface, "neural_pass1", "methods/neural/pass1_nearest.frag.glsl", targetsDefine(targets))),
-      pass2_(buildSurfaceProgram(surface, "neural_pass2", "methods/neural/pass2_second.frag.glsl", targetsDefine(targets))),
+NeuralPasses::NeuralPasses(const SurfaceShader& surface, bool colorSums, NeuralOptions::Targets targets, bool narrowLayers)
+    : pass1_(buildSurfaceProgram(surface, "neural_pass1", "methods/neural/pass1_nearest.frag.glsl",
+                                 std::string(targetsDefine(targets)) + (narrowLayers ? "#define STARNT_SPLIT_ALPHA\n" : ""))),
+      pass2_(buildSurfaceProgram(surface, "neural_pass2", "methods/neural/pass2_second.frag.glsl",
+                                 std::string(targetsDefine(targets)) + (narrowLayers ? "#define STARNT_SPLIT_ALPHA\n" : ""))),
       pass3_(buildSurfaceProgram(surface, "neural_pass3", "methods/neural/pass3_accumulate.frag.glsl",
                                  colorSums ? "" : "#define STARNT_COUNT_ONLY\n")),
       tailResolve_(buildTailResolveProgram(std::string(colorSums ? "" : "#define STARNT_COUNT_ONLY\n") + targetsDefine(targets))),
       emptyVao_(gl::makeEmptyVertexArray()),
       colorSums_(colorSums),
-      targets_(targets) {}
+      targets_(targets),
+      narrowLayers_(narrowLayers && targets == NeuralOptions::Targets::Compact) {}
 
 // The compact layout's transmittance, prod (1 - a) blended over up to hundreds of fragments. In a
 // 16-bit float target every blended multiply loses up to a step of 2^-11 relative, and llvmpipe
@@ -104,6 +107,7 @@ NeuralPasses::OutputSlot NeuralPasses::outputSlot(bool nearestFree) const {
     const Size2 full{width_, height_};
     if (gl::isEs()) return {};
     if (pass3Size_ == full) return {alphaColor_.id(), alphaColorOnlyFb_.id(), "pass3_alpha_color"};
+    if (narrowLayers_) return {};  // the layer colours are unsigned normalised: no place for an output
     if (pass2Size_ == full) return {second_.id(), secondOnlyFb_.id(), "pass2_color"};
     if (nearestFree) return {nearest_.id(), nearestOnlyFb_.id(), "pass1_color"};
     return {};
@@ -115,15 +119,22 @@ void NeuralPasses::resize(int width, int height) {
     height_ = height;
     const bool compact = targets_ == NeuralOptions::Targets::Compact;
     const GLenum color = compact ? GL_RGBA16F : GL_RGBA32F, single = compact ? GL_R16F : GL_R32F;
-    nearest_ = gl::Texture2D(color, width, height);
+    const GLenum layer = narrowLayers_ ? GL_RGB10_A2 : color;
+    nearest_ = gl::Texture2D(layer, width, height);
     nearestDepth_ = gl::Texture2D(GL_DEPTH_COMPONENT32F, width, height);
-    second_ = gl::Texture2D(color, width, height);
-    secondDepth_ = gl::Texture2D(GL_DEPTH_COMPONENT32F, width, height);
+    second_ = gl::Texture2D(layer, width, height);
+    secondDepth_ = gl::Texture2D(narrowLayers_ ? GL_DEPTH_COMPONENT16 : GL_DEPTH_COMPONENT32F, width, height);
+    if (narrowLayers_) layerAlpha_ = gl::Texture2D(GL_RG16F, width, height);
     alphaColor_ = gl::Texture2D(color, width, height, GL_LINEAR);
     colorCount_ = gl::Texture2D(colorSums_ ? color : single, width, height, GL_LINEAR);
     transmittance_ = gl::Texture2D(compact ? compactTransmittanceFormat() : GL_R32F, width, height, GL_LINEAR);
-    pass1Fb_ = gl::makeFramebuffer({&nearest_}, &nearestDepth_);
-    pass2Fb_ = gl::makeFramebuffer({&second_}, &secondDepth_);
+    if (narrowLayers_) {
+        pass1Fb_ = gl::makeFramebuffer({&nearest_, &layerAlpha_}, &nearestDepth_);
+        pass2Fb_ = gl::makeFramebuffer({&second_, &layerAlpha_}, &secondDepth_);
+    } else {
+        pass1Fb_ = gl::makeFramebuffer({&nearest_}, &nearestDepth_);
+        pass2Fb_ = gl::makeFramebuffer({&second_}, &secondDepth_);
+    }
     pass3Fb_ = gl::makeFramebuffer({&alphaColor_, &colorCount_, &transmittance_});
     nearestOnlyFb_ = gl::makeFramebuffer({&nearest_});
     secondOnlyFb_ = gl::makeFramebuffer({&second_});
@@ -138,12 +149,14 @@ void NeuralPasses::addMemoryTargets(OitMethod::MemoryTargets& out) const {
                            {"pass3_alpha_color", alphaColor_.bytes()},
                            {colorSums_ ? "pass3_color_count" : "pass3_count", colorCount_.bytes()},
                            {"pass3_transmittance", transmittance_.bytes()},
+                           {"layer_alphas", layerAlpha_.bytes()},
                            {"pass3_resolve_copies_es", esResolveCopies_.bytes()}});
 }
 
 size_t NeuralPasses::gpuMemoryBytes() const {
     return nearest_.bytes() + nearestDepth_.bytes() + second_.bytes() + secondDepth_.bytes() +
-           alphaColor_.bytes() + colorCount_.bytes() + transmittance_.bytes() + esResolveCopies_.bytes();
+           alphaColor_.bytes() + colorCount_.bytes() + transmittance_.bytes() + layerAlpha_.bytes() +
+           esResolveCopies_.bytes();
 }
 
 void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) {
@@ -155,6 +168,10 @@ void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) 
     glBindFramebuffer(GL_FRAMEBUFFER, pass1Fb_.id());
     glClearBufferfv(GL_COLOR, 0, zero);
     glClearBufferfv(GL_DEPTH, 0, &farDepth);
+    if (narrowLayers_) {
+        glClearBufferfv(GL_COLOR, 1, zero);                        // both alphas (before the mask)
+        glColorMaski(1, GL_TRUE, GL_FALSE, GL_FALSE, GL_FALSE);  // pass 1 writes a1 alone
+    }
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     MethodBase::runGeometryPass("pass1", pass1_, frame, draw);
@@ -175,6 +192,7 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
         glBindFramebuffer(GL_FRAMEBUFFER, pass2Fb_.id());
         glClearBufferfv(GL_COLOR, 0, zero);
         glClearBufferfv(GL_DEPTH, 0, &farDepth);
+        if (narrowLayers_) glColorMaski(1, GL_FALSE, GL_TRUE, GL_FALSE, GL_FALSE);  // a2 beside pass 1's a1
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
         glUseProgram(pass2_.id());
@@ -216,6 +234,7 @@ void NeuralPasses::bindInputs(const gl::Program& program) const {
     gl::bindTexture(kUnitColorCount, colorCount_.id());
     gl::bindTexture(kUnitTransmittance, transmittance_.id());
     gl::bindTexture(kUnitNearestDepth, nearestDepth_.id());
+    if (narrowLayers_) gl::bindTexture(STARNT_UNIT_LAYER_ALPHA, layerAlpha_.id());
     glUniform2i(program.uniform("u_fullSize"), width_, height_);
     glUniform2i(program.uniform("u_pass2Size"), pass2Size_.width, pass2Size_.height);
     glUniform2i(program.uniform("u_pass3Size"), pass3Size_.width, pass3Size_.height);

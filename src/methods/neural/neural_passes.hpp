@@ -14,6 +14,15 @@
 //   2048; DFAOIT: sum C + N RGBA16F, 8), transmittance R16F (2); the three pass-3 targets with
 //   GL_LINEAR filtering, as the inference reads their reduced tails through the bilinear filter.
 //   The output is written in place over one of them (outputSlot), so it costs nothing.
+// Narrow layers (DFAOIT, compact, every pass at full resolution, no tiles, no temporal frames;
+// `narrowLayers`): 36 bytes a pixel, so that DFAOIT fits the paper's 75 MB at 1080p. The layer
+// colours go to RGB10_A2 (4 + 4; 10-bit unsigned normalised, clamped to [0, 1]), both alphas to one
+// RG16F target (4; pass 1 writes .r, pass 2 .g under colour masks: 8-bit alphas biased DFAOIT's
+// tail alpha sum a - a1 - a2 by up to 19 % MSE, docs/results/memory_compact_targets.md), and pass
+// 2's depth buffer, which only ranks the fragments behind the nearest one, to DEPTH_COMPONENT16 (2;
+// the peel itself still compares against pass 1's 32-bit depth). Measured against the 32-bit layout
+// on the 13 suite scenes: docs/results/memory_compact_targets.md. Tiles, reduced passes and
+// temporal frames read the layers' alpha from the colour targets, so they keep the RGBA16F layers.
 // Float32: every colour target 32-bit float (the earlier layout).
 // Passes 2 and 3 keep full-size targets even when they run reduced: the scale guard's probe frames
 // run them at full resolution every 8th to 32nd real frame, so the full size is the peak anyway, and
@@ -73,10 +82,14 @@ public:
     // Builds the three geometry-pass programs around the engine's surface shader. Without
     // `colorSums` pass 3 keeps the fragment count alone in an R32F target instead of sum C and N in
     // an RGBA32F one (STARNT_COUNT_ONLY): the STAR-NT inputs never read sum C, only DFAOIT's do.
+    // `narrowLayers` (compact targets only): the narrow layers above.
     explicit NeuralPasses(const SurfaceShader& surface, bool colorSums = true,
-                          NeuralOptions::Targets targets = NeuralOptions::Targets::Compact);
+                          NeuralOptions::Targets targets = NeuralOptions::Targets::Compact, bool narrowLayers = false);
     // The define the programs that read pass 3 (neural_inputs.glsl, the tail resolve) need.
     const char* countLayoutDefine() const { return colorSums_ ? "" : "#define STARNT_COUNT_ONLY\n"; }
+    // "#define STARNT_SPLIT_ALPHA" for the programs that read the narrow layers' alphas apart.
+    const char* layerDefine() const { return narrowLayers_ ? "#define STARNT_SPLIT_ALPHA\n" : ""; }
+    bool narrowLayers() const { return narrowLayers_; }
     // The define of the programs that write into the targets or the output (half_targets.glsl).
     static const char* targetsDefine(NeuralOptions::Targets targets) {
         return targets == NeuralOptions::Targets::Compact ? "#define STARNT_HALF_TARGETS\n" : "";
@@ -129,9 +142,11 @@ private:
     int width_ = 0, height_ = 0;
     Size2 pass2Size_, pass3Size_;
     gl::Texture2D nearest_, nearestDepth_, second_, secondDepth_, alphaColor_, colorCount_, transmittance_;
+    gl::Texture2D layerAlpha_;  // narrow layers only: a1, a2
     TailResolveCopies esResolveCopies_;  // OpenGL ES only: what the tail resolve reads
     bool colorSums_ = true;
     NeuralOptions::Targets targets_;
+    bool narrowLayers_ = false;
     gl::FramebufferHandle pass1Fb_, pass2Fb_, pass3Fb_;
     gl::FramebufferHandle nearestOnlyFb_, secondOnlyFb_, alphaColorOnlyFb_;  // output slots
 };

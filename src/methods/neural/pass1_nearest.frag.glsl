@@ -3,7 +3,14 @@
 // the colour target, its depth in the depth target (used by pass 2 and by reprojection).
 #include "methods/neural/half_targets.glsl"
 layout(location = 0) out vec4 outNearest;
+#ifdef STARNT_SPLIT_ALPHA
+layout(location = 1) out vec2 outLayerAlpha;  // a1 in .r (a colour mask keeps .g for pass 2)
+#endif
 
 void main() {
+#ifdef STARNT_SPLIT_ALPHA
+    splitLayerValue(fetchSurfaceOrDiscard(), outNearest, outLayerAlpha);
+#else
     outNearest = targetValue(fetchSurfaceOrDiscard());
+#endif
 }

@@ -5,6 +5,9 @@
 #include "methods/neural/reduced_peel_depth.glsl"
 #include "methods/neural/half_targets.glsl"
 layout(location = 0) out vec4 outSecond;
+#ifdef STARNT_SPLIT_ALPHA
+layout(location = 1) out vec2 outLayerAlpha;  // a2 in .g (a colour mask keeps pass 1's .r)
+#endif
 layout(binding = 0) uniform sampler2D u_nearestDepth;  // full resolution
 uniform float u_peelEpsilon;
 uniform ivec2 u_fullSize;
@@ -15,5 +18,9 @@ void main() {
     float nearest = u_reducedSize == u_fullSize ? texelFetch(u_nearestDepth, i, 0).r
                                                 : reducedPeelDepth(u_nearestDepth, i, u_fullSize, u_reducedSize);
     if (gl_FragCoord.z <= nearest + u_peelEpsilon) discard;
+#ifdef STARNT_SPLIT_ALPHA
+    splitLayerValue(fetchSurfaceOrDiscard(), outSecond, outLayerAlpha);
+#else
     outSecond = targetValue(fetchSurfaceOrDiscard());
+#endif
 }
