@@ -79,8 +79,10 @@ struct NeuralOptions {
     TemporalMode temporalMode = TemporalMode::Refresh;
     double targetFps = 60.0;
     // Precision of the pass targets and the output (issue 17): Compact (default) = 16-bit float
-    // colours, sums, count and transmittance, 32-bit depths, and the output written in place into
-    // a pass target the inference no longer needs (36 bytes a pixel at full resolution);
+    // colours, sums and count, a 16-bit unsigned normalised transmittance, 32-bit depths, and the
+    // output written in place into a pass target the inference no longer needs (36 bytes a pixel at
+    // full resolution; DFAOIT at full resolution without tiles or temporal frames: 10-bit layer
+    // colours, 16-bit alphas apart, a 16-bit pass-2 depth, 36 bytes too);
     // Float32 = every colour target 32-bit float (the earlier layout, for comparison).
     enum class Targets { Compact, Float32 };
     Targets targets = Targets::Compact;

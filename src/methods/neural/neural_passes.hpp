@@ -11,7 +11,8 @@
 // resolution for STAR-NT:
 //   nearest / second colour RGBA16F (8 + 8), their depths DEPTH_COMPONENT32F (4 + 4: peeling
 //   compares depths bit for bit), sum aC + sum a RGBA16F (8), N alone R16F (2; integers exact to
-//   2048; DFAOIT: sum C + N RGBA16F, 8), transmittance R16F (2); the three pass-3 targets with
+//   2048; DFAOIT: sum C + N RGBA16F, 8), transmittance R16 (2; unsigned normalised: see
+//   compactTransmittanceFormat); the three pass-3 targets with
 //   GL_LINEAR filtering, as the inference reads their reduced tails through the bilinear filter.
 //   The output is written in place over one of them (outputSlot), so it costs nothing.
 // Narrow layers (DFAOIT, compact, every pass at full resolution, no tiles, no temporal frames;
