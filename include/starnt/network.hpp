@@ -63,6 +63,10 @@ struct Network {
     glm::vec3 forward(const float* rawInputs) const;
 };
 
+// The output layer's activation of a kind: ReLU (starnt), linear (starnt-residual), sigmoid (dfaoit);
+// the hidden layers are ReLU.
+Network::Layer::Activation outputActivation(NetworkKind kind);
+
 // He-initialised (ReLU layers) / Xavier-initialised (sigmoid layer) network with identity
 // normalisation (offset 0, scale 1), deterministic for `seed`. A linear output layer (the residual
 // kind) starts at a tenth of Xavier's scale, so that training starts near f = 0 (the closed form).

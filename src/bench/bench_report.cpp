@@ -250,53 +250,65 @@ void qualityTables(std::ostringstream& md, const Results& r) {
         [](const CaseResult& c) { return c.flipReductionVsWboit; }, [](double v) { return fixed(v, 1) + "%"; });
 }
 
-// Issue 15: the same three passes with the tail in closed form (hybrid) against the network
+// Issue 15: the same three passes with the tail in closed form (hybrid) against the networks
 // (starnt-full, and starnt-residual-full where it ran), all at full resolution, scene by scene.
 void networkAddsTable(std::ostringstream& md, const Results& r) {
-    bool any = false, residual = false;
-    for (const auto& s : r.scenes) {
-        any = any || (s.find("hybrid") && s.find("starnt-full"));
-        residual = residual || (s.find("hybrid") && s.find("starnt-residual-full"));
+    // The network variants to set beside hybrid: those that ran with it on some scene.
+    std::vector<std::string> networks;
+    for (const char* name : {"starnt-full", "starnt-residual-full"}) {
+        for (const auto& s : r.scenes) {
+            if (s.find("hybrid") && s.find(name)) {
+                networks.emplace_back(name);
+                break;
+            }
+        }
     }
-    if (!any) return;
+    if (networks.empty() || networks.front() != "starnt-full") return;
+    const bool residual = networks.size() > 1;
     md << "## What the network adds (starnt-full against hybrid)\n\n"
           "All run STAR-NT's three passes at full resolution; hybrid composites the tail in closed form, "
           "(1 - t_tail) C_tilde, where starnt evaluates the paper's network"
        << (residual ? " and starnt-residual a network of the same size that corrects the closed form, "
                       "(1 - t_tail) max(C_tilde + f(x), 0)"
                     : "")
-       << ". Ratio < 1: the network is more accurate.\n\n"
-          "| scene | MSE x10^2 hybrid | MSE x10^2 starnt-full | ratio |"
-       << (residual ? " MSE x10^2 starnt-residual-full | ratio |" : "")
-       << " FLIP hybrid | FLIP starnt-full |" << (residual ? " FLIP starnt-residual-full |" : "")
-       << " ms hybrid | ms starnt-full |" << (residual ? " ms starnt-residual-full |" : "") << "\n|---|---|---|---|"
-       << (residual ? "---|---|" : "") << "---|---|" << (residual ? "---|" : "") << "---|---|" << (residual ? "---|" : "")
-       << "\n";
-    std::vector<double> ratios, residualRatios;
-    auto ratioOf = [](const CaseResult* net, const CaseResult* h, std::vector<double>& into) {
-        if (!net || !net->quality) return std::string(kMissing);
-        const double ratio = h->quality->mse > 0.0 ? net->quality->mse / h->quality->mse : NAN;
-        if (std::isfinite(ratio)) into.push_back(ratio);
-        return fixed(ratio, 2);
-    };
+       << ". Ratio < 1: the network is more accurate.\n\n| scene | MSE x10^2 hybrid |";
+    for (const auto& n : networks) md << " MSE x10^2 " << n << " | ratio |";
+    md << " FLIP hybrid |";
+    for (const auto& n : networks) md << " FLIP " << n << " |";
+    md << " ms hybrid |";
+    for (const auto& n : networks) md << " ms " << n << " |";
+    md << "\n|---|---|";
+    for (size_t i = 0; i < 4 * networks.size() + 2; ++i) md << "---|";
+    md << "\n";
+    std::vector<std::vector<double>> ratios(networks.size());
     for (const auto& s : r.scenes) {
-        const CaseResult *h = s.find("hybrid"), *n = s.find("starnt-full"), *res = s.find("starnt-residual-full");
-        if (!h || !n || !h->quality || !n->quality) continue;
-        const bool hasResidual = res && res->quality;
-        md << "| " << s.spec.name << " | " << fixed(h->quality->mse * 100.0, 4) << " | " << fixed(n->quality->mse * 100.0, 4)
-           << " | " << ratioOf(n, h, ratios) << " |";
-        if (residual)
-            md << " " << (hasResidual ? fixed(res->quality->mse * 100.0, 4) : kMissing) << " | "
-               << ratioOf(res, h, residualRatios) << " |";
-        md << " " << fixed(h->quality->flip, 4) << " | " << fixed(n->quality->flip, 4) << " |";
-        if (residual) md << " " << (hasResidual ? fixed(res->quality->flip, 4) : kMissing) << " |";
-        md << " " << ms(h->frameMs()) << " | " << ms(n->frameMs()) << " |";
-        if (residual) md << " " << (hasResidual ? ms(res->frameMs()) : kMissing) << " |";
+        const CaseResult* h = s.find("hybrid");
+        std::vector<const CaseResult*> cases;
+        for (const auto& n : networks) {
+            const CaseResult* c = s.find(n);
+            cases.push_back(c && c->quality ? c : nullptr);
+        }
+        if (!h || !h->quality || !cases.front()) continue;
+        md << "| " << s.spec.name << " | " << fixed(h->quality->mse * 100.0, 4) << " |";
+        for (size_t i = 0; i < cases.size(); ++i) {
+            if (!cases[i]) {
+                md << " " << kMissing << " | " << kMissing << " |";
+                continue;
+            }
+            const double ratio = h->quality->mse > 0.0 ? cases[i]->quality->mse / h->quality->mse : NAN;
+            if (std::isfinite(ratio)) ratios[i].push_back(ratio);
+            md << " " << fixed(cases[i]->quality->mse * 100.0, 4) << " | " << fixed(ratio, 2) << " |";
+        }
+        md << " " << fixed(h->quality->flip, 4) << " |";
+        for (const CaseResult* c : cases) md << " " << (c ? fixed(c->quality->flip, 4) : kMissing) << " |";
+        md << " " << ms(h->frameMs()) << " |";
+        for (const CaseResult* c : cases) md << " " << (c ? ms(c->frameMs()) : kMissing) << " |";
         md << "\n";
     }
-    auto mean = [](const std::vector<double>& v) { return v.empty() ? std::string(kMissing) : fixed(meanOf(v), 2); };
-    md << "| **mean ratio** | | | " << mean(ratios) << " |" << (residual ? " | " + mean(residualRatios) + " |" : "")
-       << " | |" << (residual ? " |" : "") << " | |" << (residual ? " |" : "") << "\n\n";
+    md << "| **mean ratio** | |";
+    for (const auto& v : ratios) md << " | " << (v.empty() ? std::string(kMissing) : fixed(meanOf(v), 2)) << " |";
+    for (size_t i = 0; i < 2 * networks.size() + 2; ++i) md << " |";
+    md << "\n\n";
 }
 
 void memoryTable(std::ostringstream& md, const Results& r) {

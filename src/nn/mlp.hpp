@@ -25,6 +25,9 @@ struct Mlp {
     // the real (ReLU) network is at most the surrogate loss.
     bool linearOutput = false;
 
+    // Whether layer l's activation is the identity: a linear layer, or the output under the surrogate.
+    bool identityAt(size_t l) const { return act[l] == Network::Layer::Linear || (linearOutput && l + 1 == w.size()); }
+
     // Same shapes, all zero (gradients, Adam moments).
     Mlp zerosLike() const {
         Mlp z;
@@ -83,7 +86,7 @@ const Mat<S>& forwardBatch(const Mlp<S>& m, const Eigen::Ref<const Mat<S>>& x, W
         z.resize(m.w[l].rows(), x.cols());
         z.noalias() = m.w[l] * ws.a[l];
         z.colwise() += m.b[l];
-        if ((m.linearOutput && l + 1 == m.w.size()) || m.act[l] == Network::Layer::Linear) continue;
+        if (m.identityAt(l)) continue;
         if (m.act[l] == Network::Layer::ReLU)
             z = z.cwiseMax(S(0));
         else
@@ -115,7 +118,7 @@ S lossAndGradients(const Mlp<S>& m, const Eigen::Ref<const Mat<S>>& x, const Eig
     for (size_t l = m.w.size(); l-- > 0;) {
         const Mat<S>& a = ws.a[l + 1];
         // d loss / d z, from the activation output.
-        if ((m.linearOutput && l + 1 == m.w.size()) || m.act[l] == Network::Layer::Linear) {
+        if (m.identityAt(l)) {
             // identity
         } else if (m.act[l] == Network::Layer::ReLU)
             ws.delta = ws.delta.cwiseProduct((a.array() > S(0)).template cast<S>().matrix());

@@ -59,6 +59,15 @@ glm::vec3 Network::forward(const float* rawInputs) const {
     return out;
 }
 
+Network::Layer::Activation outputActivation(NetworkKind kind) {
+    switch (kind) {
+        case NetworkKind::StarNT: return Network::Layer::ReLU;
+        case NetworkKind::StarNTResidual: return Network::Layer::Linear;
+        case NetworkKind::DFAOIT: return Network::Layer::Sigmoid;
+    }
+    return Network::Layer::ReLU;
+}
+
 Network makeUntrained(NetworkKind kind, uint64_t seed) {
     Network net;
     net.kind = kind;
@@ -73,10 +82,7 @@ Network makeUntrained(NetworkKind kind, uint64_t seed) {
         layer.in = sizes[l];
         layer.out = sizes[l + 1];
         const bool last = l + 2 == sizes.size();
-        layer.activation = !last                                     ? Network::Layer::ReLU
-                           : kind == NetworkKind::DFAOIT             ? Network::Layer::Sigmoid
-                           : kind == NetworkKind::StarNTResidual     ? Network::Layer::Linear
-                                                                      : Network::Layer::ReLU;
+        layer.activation = last ? outputActivation(kind) : Network::Layer::ReLU;
         // He for layers followed by ReLU, Xavier (Glorot normal) for the sigmoid output layer, a
         // tenth of Xavier for the residual's linear output (it starts near the closed form).
         const double xavier = std::sqrt(2.0 / (layer.in + layer.out));

@@ -37,8 +37,7 @@ const char* activationName(Network::Layer::Activation a) {
 
 std::vector<Network::Layer::Activation> expectedActivations(NetworkKind kind) {
     using L = Network::Layer;
-    const L::Activation output = kind == NetworkKind::StarNT ? L::ReLU : kind == NetworkKind::DFAOIT ? L::Sigmoid : L::Linear;
-    return {L::ReLU, L::ReLU, output};
+    return {L::ReLU, L::ReLU, outputActivation(kind)};
 }
 
 [[noreturn]] void fail(const std::string& what, const std::string& message) {
@@ -186,10 +185,12 @@ Network parseWeights(const std::string& text, const std::string& what, std::opti
         const auto& kindJson = field(j, "network", what);
         if (!kindJson.is_string()) fail(what, "'network' must be a string");
         const std::string kindStr = kindJson.get<std::string>();
-        if (kindStr != "starnt" && kindStr != "starnt-residual" && kindStr != "dfaoit")
-            fail(what, "unknown network kind \"" + kindStr + "\" (expected starnt, starnt-residual or dfaoit)");
         Network net;
-        net.kind = parseKind(kindStr);
+        try {
+            net.kind = parseKind(kindStr);
+        } catch (const Error& e) {
+            fail(what, e.what());
+        }
         if (expected && *expected != net.kind)
             fail(what, std::string("is a ") + kindName(net.kind) + " network, --method " + kindName(*expected) +
                            " needs a " + kindName(*expected) + " network");

@@ -23,11 +23,11 @@ constexpr GLuint kUnitCornerNetwork = STARNT_UNIT_CORNER_NETWORK;
 // DFAOIT's narrow layers (NeuralPasses, "Narrow layers"): only where every pass runs at full
 // resolution and nothing but the inference reads the layers (no tiles, no scale guard, no temporal
 // frames), since the tiles, the tail resolve and the reprojection read the alphas from the colour
-// targets.
+// targets. (NeuralPasses ignores the request with 32-bit targets.)
 bool narrowLayersApply(const NeuralMethodConfig& config, const MethodOptions& o, bool spatial, bool corners) {
     const bool fullScales = o.neural.fixedScale2 == 0.0f || (o.neural.fixedScale2 == 1.0f && o.neural.fixedScale3 == 1.0f);
-    return config.kind == nn::NetworkKind::DFAOIT && o.neural.targets == NeuralOptions::Targets::Compact && !spatial &&
-           !corners && fullScales && o.neural.temporalInterval == 1 && !o.neural.temporalAuto;
+    return config.kind == nn::NetworkKind::DFAOIT && !spatial && !corners && fullScales &&
+           o.neural.temporalInterval == 1 && !o.neural.temporalAuto;
 }
 
 class NeuralMethod final : public MethodBase {

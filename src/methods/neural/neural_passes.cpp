@@ -75,18 +75,33 @@ void resolveTails(const TailResolveInputs& in, GLuint pass3Framebuffer, const gl
     resetPassState();
 }
 
+namespace {
+
+// Narrow layers exist only in the compact layout.
+bool narrowLayersUsed(NeuralOptions::Targets targets, bool narrowLayers) {
+    return narrowLayers && targets == NeuralOptions::Targets::Compact;
+}
+
+// The defines of passes 1 and 2, which write the layers.
+std::string layerPassDefines(NeuralOptions::Targets targets, bool narrowLayers) {
+    return std::string(NeuralPasses::targetsDefine(targets)) +
+           NeuralPasses::layerDefine(narrowLayersUsed(targets, narrowLayers));
+}
+
+}  // namespace
+
 NeuralPasses::NeuralPasses(const SurfaceShader& surface, bool colorSums, NeuralOptions::Targets targets, bool narrowLayers)
     : pass1_(buildSurfaceProgram(surface, "neural_pass1", "methods/neural/pass1_nearest.frag.glsl",
-                                 std::string(targetsDefine(targets)) + (narrowLayers ? "#define STARNT_SPLIT_ALPHA\n" : ""))),
+                                 layerPassDefines(targets, narrowLayers))),
       pass2_(buildSurfaceProgram(surface, "neural_pass2", "methods/neural/pass2_second.frag.glsl",
-                                 std::string(targetsDefine(targets)) + (narrowLayers ? "#define STARNT_SPLIT_ALPHA\n" : ""))),
+                                 layerPassDefines(targets, narrowLayers))),
       pass3_(buildSurfaceProgram(surface, "neural_pass3", "methods/neural/pass3_accumulate.frag.glsl",
                                  colorSums ? "" : "#define STARNT_COUNT_ONLY\n")),
       tailResolve_(buildTailResolveProgram(std::string(colorSums ? "" : "#define STARNT_COUNT_ONLY\n") + targetsDefine(targets))),
       emptyVao_(gl::makeEmptyVertexArray()),
       colorSums_(colorSums),
       targets_(targets),
-      narrowLayers_(narrowLayers && targets == NeuralOptions::Targets::Compact) {}
+      narrowLayers_(narrowLayersUsed(targets, narrowLayers)) {}
 
 // The compact layout's transmittance, prod (1 - a) blended over up to hundreds of fragments. In a
 // 16-bit float target every blended multiply loses up to a step of 2^-11 relative, and llvmpipe

@@ -89,7 +89,8 @@ public:
     // The define the programs that read pass 3 (neural_inputs.glsl, the tail resolve) need.
     const char* countLayoutDefine() const { return colorSums_ ? "" : "#define STARNT_COUNT_ONLY\n"; }
     // "#define STARNT_SPLIT_ALPHA" for the programs that read the narrow layers' alphas apart.
-    const char* layerDefine() const { return narrowLayers_ ? "#define STARNT_SPLIT_ALPHA\n" : ""; }
+    static const char* layerDefine(bool narrowLayers) { return narrowLayers ? "#define STARNT_SPLIT_ALPHA\n" : ""; }
+    const char* layerDefine() const { return layerDefine(narrowLayers_); }
     bool narrowLayers() const { return narrowLayers_; }
     // The define of the programs that write into the targets or the output (half_targets.glsl).
     static const char* targetsDefine(NeuralOptions::Targets targets) {
