@@ -136,6 +136,49 @@ TEST(GlNeural, HybridMatchesCpuReferencePerPixel) {
     }
 }
 
+// hybrid-moments: pass 3's depth moments and the weighted tail colour against the CPU reference.
+// Its compact layout keeps sum a C, sum a and the transmittance in 32-bit float (NeuralPasses,
+// tailMoments): the CPU model takes the layers at 16 bits and those from the 32-bit sums.
+TEST(GlNeural, HybridMomentsMatchesCpuReferencePerPixel) {
+    for (const char* scene : {"tubes", "smoke"}) {
+        Case c = makeCase(scene, 75.0f);
+        const CapturedFrame frags = c.capture();
+        for (auto layout : kLayouts) {
+            const bool compact = layout == NeuralOptions::Targets::Compact;
+            const bool truncates = compact && halfBlendTruncates();
+            const Image gpu = renderWith(c, "hybrid-moments", withTargets(layout));
+            size_t deep = 0, bad = 0, differsFromHybrid = 0;
+            for (int y = 0; y < kH; ++y) {
+                for (int x = 0; x < kW; ++x) {
+                    const FragmentList& list = frags.at(x, y);
+                    const nn::PixelSums exact = nn::sumsFromFragments(list);
+                    nn::PixelSums sums = compact ? nn::sumsInHalfTargets(list, truncates) : exact;
+                    sums.sumAlphaColor = exact.sumAlphaColor;
+                    sums.sumAlpha = exact.sumAlpha;
+                    sums.transmittance = exact.transmittance;
+                    const nn::TailMoments m = nn::tailMomentsFromFragments(list);
+                    glm::vec3 want = nn::compositeHybridMoments(sums, m, kBackground);
+                    if (compact) want = nn::roundToHalf(want);
+                    if (sums.count > 3.5f) ++deep;
+                    differsFromHybrid += glm::length(want - nn::compositeHybrid(sums, kBackground)) > 1e-2f;
+                    const float allowed = sums.count > 3.5f ? 2e-3f : 1e-3f;
+                    for (int ch = 0; ch < 3; ++ch) {
+                        if (!(std::abs(gpu.pixel(x, y)[ch] - want[ch]) <= allowed) && ++bad <= 5) {
+                            ADD_FAILURE() << scene << " pixel " << x << "," << y << " ch " << ch << ": gpu "
+                                          << gpu.pixel(x, y)[ch] << " cpu " << want[ch] << " N=" << sums.count
+                                          << (compact ? " (compact)" : " (fp32)");
+                        }
+                    }
+                }
+            }
+            EXPECT_EQ(bad, 0u) << scene;
+            EXPECT_GT(deep, 100u) << scene;
+            // The moments change what the tail shows (else this test would not test them).
+            EXPECT_GT(differsFromHybrid, 20u) << scene;
+        }
+    }
+}
+
 TEST(GlNeural, DfaoitMatchesCpuReferencePerPixel) {
     Case c = makeCase("tubes", 200.0f);
     const nn::Network net = loadMethodNetwork(dfaoitConfig(), {});

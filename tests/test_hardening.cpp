@@ -186,6 +186,20 @@ TEST(Hardening, WeightsWithAbsurdMagnitudes) {
     EXPECT_FALSE(fs::exists(out));
 }
 
+// hybrid-moments' moments are relative to pass 2's depth at the same pixel: no reduced passes.
+TEST(Hardening, HybridMomentsRefusesReducedPasses) {
+    const fs::path dir = makeTempDir("hmom");
+    const std::string out = (dir / "x.png").string();
+    const std::string base = "render --scene builtin:panes --width 16 --height 12 --method hybrid-moments --out " + out + " ";
+    for (const char* flags : {"--spatial on", "--scales 100,50", "--inference corners", "--upsample joint"}) {
+        expectOneLineError(run(base + flags), {"hybrid-moments", "full resolution"}, flags);
+        EXPECT_FALSE(fs::exists(out)) << flags;
+    }
+    // Its default and full-resolution scales render.
+    EXPECT_EQ(run(base + "--scales 100,100").exitCode, 0);
+    EXPECT_TRUE(fs::exists(out));
+}
+
 TEST(Hardening, WeightsForAMethodWithoutNetworkAndNegativeAlpha) {
     const fs::path dir = makeTempDir("wnet");
     const std::string out = (dir / "x.png").string();

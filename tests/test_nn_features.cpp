@@ -250,3 +250,81 @@ TEST(NnComposite, DfaoitAddsBackgroundThroughAllLayers) {
     // No fragment: the background alone.
     expectVec(compositeDfaoit(net, sumsFromFragments({}), glm::vec3(0.3f)), glm::vec3(0.3f), 0.0f, "empty");
 }
+
+// hybrid-moments (nn::momentWeightedTailColor): the tail's colour weighted by where its opacity lies.
+namespace {
+
+// Two front layers, then `n` tail layers of alpha `a` evenly spaced in depth from `zFront` to
+// `zBack`, their colour running from `front` to `back`.
+FragmentList graded(int n, float a, float zFront, float zBack, glm::vec3 front, glm::vec3 back) {
+    FragmentList list = {frag({0.2f, 0.2f, 0.2f}, 0.3f, 0.1f), frag({0.5f, 0.5f, 0.5f}, 0.3f, 0.2f)};
+    for (int i = 0; i < n; ++i) {
+        const float s = n > 1 ? float(i) / float(n - 1) : 0.0f;
+        list.push_back(frag(glm::mix(front, back, s), a, zFront + (zBack - zFront) * s));
+    }
+    return list;
+}
+
+glm::vec3 exactTailColor(const FragmentList& list) {
+    const FragmentList sorted = preparedFragments(list);
+    const glm::vec3 tail = starntTarget(sorted);
+    const PixelSums s = sumsFromFragments(list);
+    return tail / (1.0f - starntFeatures(s)[0]);  // the exact tail's colour under its own opacity
+}
+
+}  // namespace
+
+// A dense graded tail (front red, back blue): over-compositing shows mostly its front, which the
+// plain alpha-weighted mean cannot see and the depth moments do.
+TEST(NnTailMoments, NearerTailLayersWeighMoreThanFartherOnes) {
+    const FragmentList list = graded(40, 0.1f, 0.3f, 0.6f, {1, 0, 0}, {0, 0, 1});
+    const PixelSums s = sumsFromFragments(list);
+    const TailMoments m = tailMomentsFromFragments(list);
+    const glm::vec3 exact = exactTailColor(list), plain(starntFeatures(s)[2], starntFeatures(s)[3], starntFeatures(s)[4]);
+    const glm::vec3 weighted = momentWeightedTailColor(s, m);
+    EXPECT_GT(exact.r, 0.75f);            // the front dominates
+    EXPECT_NEAR(plain.r, 0.5f, 1e-3f);    // the plain mean cannot tell
+    const float plainError = glm::length(plain - exact), weightedError = glm::length(weighted - exact);
+    EXPECT_LT(weightedError, 0.1f * plainError) << "plain " << plainError << " weighted " << weightedError;
+    // The composite uses it under the tail's opacity, with the two front layers exact.
+    const glm::vec3 bg(0.3f, 0.6f, 0.9f);
+    const glm::vec3 truth = compositeOver(preparedFragments(list), bg);
+    EXPECT_LT(glm::length(compositeHybridMoments(s, m, bg) - truth), 0.1f * glm::length(compositeHybrid(s, bg) - truth));
+}
+
+// A faint tail (t_tail near 1) lets every layer through alike: the weight is flat and the colour is
+// the plain mean. So is a tail whose layers share one depth (no spread to weigh by).
+TEST(NnTailMoments, FlatWeightsGiveThePlainMean) {
+    const auto plainMean = [](const PixelSums& s) {
+        const auto x = starntFeatures(s);
+        return glm::vec3(x[2], x[3], x[4]);
+    };
+    // 30 layers of alpha 1e-4 (no cut-off): tau = 0.003, weights within 0.3 % of each other.
+    const FragmentList faint = graded(30, 1e-4f, 0.3f, 0.6f, {1, 0, 0}, {0, 0, 1});
+    const PixelSums s = sumsFromFragments(faint, 0.0f);
+    const glm::vec3 weighted = momentWeightedTailColor(s, tailMomentsFromFragments(faint, 0.0f));
+    expectVec(weighted, plainMean(s), 2e-3f, "faint tail");
+    EXPECT_GT(weighted.r, plainMean(s).r);  // still front-weighted, a little
+    // One depth for the whole tail: exactly the plain mean.
+    const FragmentList flat = graded(30, 0.2f, 0.5f, 0.5f, {1, 0, 0}, {0, 0, 1});
+    const PixelSums f = sumsFromFragments(flat);
+    expectVec(momentWeightedTailColor(f, tailMomentsFromFragments(flat)), plainMean(f), 0.0f, "one depth");
+}
+
+// The moments count only what lies behind the second layer, relative to it, and a tail whose
+// spread is tiny next to its distance (32-bit sums could not centre it) falls back to the plain mean.
+TEST(NnTailMoments, MomentsAreRelativeToTheSecondLayerAndGuarded) {
+    const FragmentList list = {frag({1, 0, 0}, 0.5f, 0.4f), frag({0, 1, 0}, 0.5f, 0.2f), frag({0, 0, 1}, 0.5f, 0.5f),
+                               frag({1, 1, 1}, 0.5f, 0.7f), frag({1, 1, 0}, 0.01f, 0.9f)};  // the last below the cut-off
+    const TailMoments m = tailMomentsFromFragments(list);
+    // Tail: blue at u = 0.1, white at u = 0.3 (z2 = 0.4).
+    EXPECT_NEAR(m.alphaU, 0.5f * 0.1f + 0.5f * 0.3f, 1e-6f);
+    EXPECT_NEAR(m.alphaU2, 0.5f * 0.01f + 0.5f * 0.09f, 1e-6f);
+    expectVec(m.alphaColorU, glm::vec3(0.15f, 0.15f, 0.2f), 1e-6f, "sum a C u");
+    expectVec(m.alphaColorU2, glm::vec3(0.045f, 0.045f, 0.05f), 1e-6f, "sum a C u^2");
+    // Spread 1e-4 behind a gap of 0.3: below STARNT_TAIL_MOMENT_PLAIN_BELOW of the mean.
+    FragmentList far = graded(20, 0.3f, 0.5f, 0.50001f, {1, 0, 0}, {0, 0, 1});
+    const PixelSums s = sumsFromFragments(far);
+    const glm::vec3 plain(starntFeatures(s)[2], starntFeatures(s)[3], starntFeatures(s)[4]);
+    expectVec(momentWeightedTailColor(s, tailMomentsFromFragments(far)), plain, 0.0f, "guarded");
+}

@@ -25,6 +25,11 @@
 #define STARNT_UNIT_NEAREST_DEPTH 5  /* pass-1 window depth (joint upsampling, pass-2 peel) */
 #define STARNT_UNIT_CORNER_NETWORK 6 /* corner inference: the network at leaf corners */
 #define STARNT_UNIT_LAYER_ALPHA 7    /* dfaoit's narrow layers: a1, a2 (full resolution) */
+/* hybrid-moments' tail depth moments (full resolution). They share units 6 and 7 with the corner
+ * network and the narrow layers' alphas, which hybrid-moments never uses (NeuralMethod rejects
+ * corner inference for it; narrow layers are DFAOIT's). */
+#define STARNT_UNIT_TAIL_MOMENT1 6
+#define STARNT_UNIT_TAIL_MOMENT2 7
 
 /* ---- Shader storage buffer bindings ---- */
 #define STARNT_SSBO_ABUFFER_HEADS 0

@@ -95,6 +95,27 @@ glm::vec3 compositeStarnt(const Network& net, const PixelSums& s, glm::vec3 back
 glm::vec3 compositeStarntResidual(const Network& net, const PixelSums& s, glm::vec3 background);
 // hybrid (SPEC 7): STAR-NT's composite with the tail in closed form, (1 - t_tail) C_tilde.
 glm::vec3 compositeHybrid(const PixelSums& s, glm::vec3 background);
+// hybrid-moments: hybrid with the tail's colour weighted by where its opacity lies in depth.
+// Pass 3 also sums, over the fragments behind the second layer (u = z - z2 > 0, window depth):
+struct TailMoments {
+    glm::vec3 alphaColorU{0.0f};   // sum a C u
+    float alphaU = 0.0f;           // sum a u
+    glm::vec3 alphaColorU2{0.0f};  // sum a C u^2
+    float alphaU2 = 0.0f;          // sum a u^2
+};
+// CPU reference of those sums (accumulated in double, stored as float), for the same list as
+// sumsFromFragments (any order; cut off and sorted here).
+TailMoments tailMomentsFromFragments(FragmentList fragments, float alphaCutoff = kDefaultAlphaCutoff);
+// The tail's colour: its opacity is modelled as spread evenly over the interval with the mean and
+// variance of the alpha-weighted u (x in [0, 1] across it), so a fragment at x shows through
+// exp(-tau x) of the tail in front of it, tau = -ln t_tail. That weight's least-squares quadratic
+// on [0, 1] (Legendre coefficients of closed-form integrals) turns the moments into the weighted
+// mean colour sum a C w(x) / sum a w(x) in closed form: one additive pass, no second pass over the
+// fragments. The quadratic (then the linear) term is dropped where 32-bit sums cannot centre it
+// (tail_moments_constants.h); C_tilde where the spread is zero. Zero when A_tail <= kTailAlphaEpsilon.
+glm::vec3 momentWeightedTailColor(const PixelSums& s, const TailMoments& m);
+// hybrid-moments' composite: hybrid's with the deep tail (1 - t_tail) momentWeightedTailColor.
+glm::vec3 compositeHybridMoments(const PixelSums& s, const TailMoments& m, glm::vec3 background);
 // DFAOIT: f(x) + T_all * C_bg; a pixel without fragments (N < 0.5) is the background alone.
 glm::vec3 compositeDfaoit(const Network& net, const PixelSums& s, glm::vec3 background);
 // The composite of net.kind (one of the three above).

@@ -48,6 +48,8 @@ const std::vector<Variant>& allVariants() {
                     [](MethodOptions& o) { o.neural.spatial = true; }),
         makeVariant("hybrid", "hybrid", "STAR-NT's passes and tiles, tail in closed form (no network): what the network adds",
                     [](MethodOptions& o) { o.neural.spatial = false; }),
+        makeVariant("hybrid-moments", "hybrid-moments",
+                    "hybrid with the tail colour weighted by the tail's depth moments (no network; full resolution)"),
         makeVariant("starnt-residual-full", "starnt-residual",
                     "STAR-NT's passes and network size, the network correcting hybrid's closed-form tail; spatial off",
                     [](MethodOptions& o) { o.neural.spatial = false; }),
@@ -92,7 +94,7 @@ const std::vector<Variant>& allVariants() {
 }
 
 std::vector<std::string> defaultVariantNames() {
-    return {"unsorted", "wboit", "mboit", "mboit-t3", "dfaoit", "starnt-full", "hybrid", "starnt-residual-full", "starnt",
+    return {"unsorted", "wboit", "mboit", "mboit-t3", "dfaoit", "starnt-full", "hybrid", "hybrid-moments", "starnt-residual-full", "starnt",
             "starnt-paper", "starnt-total",
             "starnt-total-warp", "starnt-corners"};
 }

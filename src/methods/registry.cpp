@@ -23,6 +23,7 @@ const std::vector<Entry>& entries() {
         {"starnt", createStarntMethod},
         {"hybrid", createHybridMethod},
         {"starnt-residual", createStarntResidualMethod},
+        {"hybrid-moments", createHybridMomentsMethod},
     };
     return all;
 }
@@ -48,7 +49,8 @@ std::unique_ptr<OitMethod> createMethod(const std::string& name, const SurfaceSh
 }
 
 const NeuralMethodConfig* neuralConfig(const std::string& name) {
-    for (const NeuralMethodConfig* c : {&starntConfig(), &dfaoitConfig(), &hybridConfig(), &starntResidualConfig()})
+    for (const NeuralMethodConfig* c : {&starntConfig(), &dfaoitConfig(), &hybridConfig(), &starntResidualConfig(),
+                                             &hybridMomentsConfig()})
         if (name == c->name) return c;
     return nullptr;
 }

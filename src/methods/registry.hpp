@@ -15,13 +15,16 @@ std::unique_ptr<OitMethod> createDfaoitMethod(const SurfaceShader&, const Method
 std::unique_ptr<OitMethod> createStarntMethod(const SurfaceShader&, const MethodOptions&);
 std::unique_ptr<OitMethod> createHybridMethod(const SurfaceShader&, const MethodOptions&);
 std::unique_ptr<OitMethod> createStarntResidualMethod(const SurfaceShader&, const MethodOptions&);
+std::unique_ptr<OitMethod> createHybridMomentsMethod(const SurfaceShader&, const MethodOptions&);
 
 struct NeuralMethodConfig;
 const NeuralMethodConfig& starntConfig();
 const NeuralMethodConfig& dfaoitConfig();
 const NeuralMethodConfig& hybridConfig();
 const NeuralMethodConfig& starntResidualConfig();
-// The neural method called `name` (starnt, dfaoit, hybrid, starnt-residual), null for the others.
+const NeuralMethodConfig& hybridMomentsConfig();
+// The neural method called `name` (starnt, dfaoit, hybrid, starnt-residual, hybrid-moments), null
+// for the others.
 const NeuralMethodConfig* neuralConfig(const std::string& name);
 
 // True when `name` with `options` runs the adaptive tiles (a neural method with spatial on, by

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "starnt/nn.hpp"
+#include "methods/hybrid_moments/tail_moments_constants.h"
 
 namespace starnt::nn {
 
@@ -175,6 +176,81 @@ glm::vec3 compositeHybrid(const PixelSums& s, glm::vec3 background) {
     // x = (t_tail, N, C_tilde): the alpha-weighted mean tail colour under the tail's opacity.
     return compositeThreeLayersExact(s, background,
                                      [](const auto& x) { return (1.0f - x[0]) * glm::vec3(x[2], x[3], x[4]); });
+}
+
+TailMoments tailMomentsFromFragments(FragmentList fragments, float alphaCutoff) {
+    fragments = preparedFragments(std::move(fragments), alphaCutoff);
+    TailMoments m;
+    if (fragments.size() < 3) return m;
+    const float second = fragments[1].depth;
+    glm::dvec4 m1(0.0), m2(0.0);
+    for (size_t i = 2; i < fragments.size(); ++i) {
+        const Fragment& f = fragments[i];
+        if (!(f.depth > second)) continue;  // u = 0 adds nothing
+        const double u = double(f.depth - second);  // the float difference pass 3 computes
+        const glm::dvec4 term = glm::dvec4(glm::dvec3(f.color) * double(f.alpha), double(f.alpha)) * u;
+        m1 += term;
+        m2 += term * u;
+    }
+    m.alphaColorU = glm::vec3(m1);
+    m.alphaU = float(m1.w);
+    m.alphaColorU2 = glm::vec3(m2);
+    m.alphaU2 = float(m2.w);
+    return m;
+}
+
+namespace {
+// I_k = integral over [0, 1] of x^k exp(-tau x), k = 0, 1, 2 (tail_moments.glsl, the same float
+// operations).
+void exponentialMoments(float tau, float integrals[3]) {
+    if (tau < float(STARNT_TAIL_MOMENT_SERIES_BELOW)) {
+        // sum over n of (-tau)^n / (n! (n + k + 1)); 12 terms leave < 2e-10 at tau = 1.
+        for (int k = 0; k < 3; ++k) integrals[k] = 0.0f;
+        float term = 1.0f;
+        for (int n = 0; n < 12; ++n) {
+            for (int k = 0; k < 3; ++k) integrals[k] += term / float(n + k + 1);
+            term *= -tau / float(n + 1);
+        }
+        return;
+    }
+    const float e = std::exp(-tau);
+    integrals[0] = (1.0f - e) / tau;
+    integrals[1] = (1.0f - e * (1.0f + tau)) / (tau * tau);
+    integrals[2] = (2.0f - e * (tau * tau + 2.0f * tau + 2.0f)) / (tau * tau * tau);
+}
+}  // namespace
+
+glm::vec3 momentWeightedTailColor(const PixelSums& s, const TailMoments& m) {
+    const glm::vec3 alphaColor = tailAlphaColor(s);
+    const float alpha = s.sumAlpha - s.a1 - s.a2;
+    if (!(alpha > kTailAlphaEpsilon)) return glm::vec3(0.0f);
+    const glm::vec3 plain = glm::max(alphaColor / alpha, glm::vec3(0.0f));
+    const float mean = m.alphaU / alpha;
+    const float spread = std::sqrt(std::max(m.alphaU2 / alpha - mean * mean, 0.0f));
+    if (!(spread > float(STARNT_TAIL_MOMENT_PLAIN_BELOW) * mean)) return plain;
+    const bool quadratic = spread > float(STARNT_TAIL_MOMENT_LINEAR_BELOW) * mean;
+    const float t2 = twoLayerTransmittance(s);
+    const float tTail = t2 > kTransmittanceEpsilon ? std::clamp(s.transmittance / t2, 0.0f, 1.0f) : 0.0f;
+    const float maxDepth = float(STARNT_TAIL_MOMENT_MAX_OPTICAL_DEPTH);
+    const float tau = tTail > 0.0f ? std::min(-std::log(tTail), maxDepth) : maxDepth;
+    float integral[3];
+    exponentialMoments(tau, integral);
+    // Shifted Legendre coefficients of exp(-tau x), then the same polynomial in powers of x.
+    const float c0 = integral[0], c1 = 3.0f * (2.0f * integral[1] - integral[0]);
+    const float c2 = quadratic ? 5.0f * (6.0f * integral[2] - 6.0f * integral[1] + integral[0]) : 0.0f;
+    const float b0 = c0 - c1 + c2, b1 = 2.0f * c1 - 6.0f * c2, b2 = 6.0f * c2;
+    // x = (u - lo) / width over the uniform interval with this mean and spread.
+    const float halfWidth = std::sqrt(3.0f) * spread, lo = mean - halfWidth, width = 2.0f * halfWidth;
+    const glm::vec3 firstFromLo = m.alphaColorU - lo * alphaColor;
+    const glm::vec3 x1 = firstFromLo / width;
+    const glm::vec3 x2 = ((m.alphaColorU2 - lo * m.alphaColorU) - lo * firstFromLo) / (width * width);
+    // sum a w(x) = A_tail c0 exactly (the x-moments of the alphas are 1/2 and 1/3 by construction).
+    return glm::max((b0 * alphaColor + b1 * x1 + b2 * x2) / (c0 * alpha), glm::vec3(0.0f));
+}
+
+glm::vec3 compositeHybridMoments(const PixelSums& s, const TailMoments& m, glm::vec3 background) {
+    return compositeThreeLayersExact(s, background,
+                                     [&](const auto& x) { return (1.0f - x[0]) * momentWeightedTailColor(s, m); });
 }
 
 glm::vec3 compositeDfaoit(const Network& net, const PixelSums& s, glm::vec3 background) {

@@ -35,13 +35,13 @@ public:
     NeuralMethod(const NeuralMethodConfig& config, const SurfaceShader& surface, const MethodOptions& options)
         : MethodBase(surface),
           config_(config),
-          options_(validated(options)),
+          options_(validated(config, options)),
           spatial_(options.neural.spatial.value_or(config.spatialByDefault)),
           corners_(options.neural.inference == NeuralOptions::Inference::Corners),
           network_(loadMethodNetwork(config, options)),
           // Only DFAOIT's inputs read the unweighted colour sum of pass 3 (SPEC 3).
           passes_(surface, config.kind == nn::NetworkKind::DFAOIT, options_.neural.targets,
-                  narrowLayersApply(config, options_, spatial_, corners_)),
+                  narrowLayersApply(config, options_, spatial_, corners_), config.tailMoments),
           temporal_(options_) {
         if (spatial_ || corners_) tiles_ = std::make_unique<tiles::GpuTiles>();
         // Compile up front what the frames will need, so no frame pays for a shader compile: the
@@ -225,12 +225,21 @@ private:
     // The scale guard applies to the adaptive scales only (not to fixed --scales).
     bool guarded() const { return spatial_ && options_.neural.scaleGuard && options_.neural.fixedScale2 == 0.0f; }
 
-    static const MethodOptions& validated(const MethodOptions& o) {
+    static const MethodOptions& validated(const NeuralMethodConfig& config, const MethodOptions& o) {
         auto scaleOk = [](float s) { return s == 0.0f || (s >= float(STARNT_SCALE_MIN) && s <= 1.0f); };
         if (!scaleOk(o.neural.fixedScale2) || !scaleOk(o.neural.fixedScale3) || ((o.neural.fixedScale2 == 0.0f) != (o.neural.fixedScale3 == 0.0f))) {
             throw Error("fixed pass scales must both be 0 (from the tiles) or both within 0.25..1");
         }
         if (o.neural.temporalInterval < 1 || o.neural.temporalInterval > 4) throw Error("temporal interval must be within 1..4");
+        if (config.tailMoments) {
+            // Its moments are relative to pass 2's depth at the same pixel: no reduced pass, no upsampling.
+            const bool reduced = o.neural.fixedScale2 > 0.0f && !(o.neural.fixedScale2 == 1.0f && o.neural.fixedScale3 == 1.0f);
+            if (o.neural.spatial.value_or(config.spatialByDefault) || reduced ||
+                o.neural.inference == NeuralOptions::Inference::Corners || o.neural.upsample == NeuralOptions::Upsample::Joint) {
+                throw Error(config.name + " runs every pass at full resolution: --spatial on, --scales below 100, "
+                            "--inference corners and --upsample joint are not available with it");
+            }
+        }
         return o;
     }
 

@@ -12,12 +12,15 @@
 namespace starnt {
 
 struct NeuralMethodConfig {
-    std::string name;                // "starnt", "dfaoit", "hybrid", "starnt-residual"
+    std::string name;                // "starnt", "dfaoit", "hybrid", "starnt-residual", "hybrid-moments"
     nn::NetworkKind kind;
     std::string compositeShader;     // embedded path of the composite fragment shader
     std::string defaultWeights;      // embedded path of the shipped weights (JSON)
     bool spatialByDefault = false;   // MethodOptions::spatial when unset
     bool evaluatesNetwork = true;    // false for hybrid: it reads no weights file
+    // hybrid-moments: pass 3 also sums the tail's depth moments (NeuralPasses); every pass at full
+    // resolution (tiles, reduced scales, corner inference and joint upsampling are refused).
+    bool tailMoments = false;
 };
 
 std::unique_ptr<OitMethod> createNeuralMethod(const NeuralMethodConfig& config, const SurfaceShader& surface,

@@ -84,8 +84,14 @@ public:
     // `colorSums` pass 3 keeps the fragment count alone in an R32F target instead of sum C and N in
     // an RGBA32F one (STARNT_COUNT_ONLY): the STAR-NT inputs never read sum C, only DFAOIT's do.
     // `narrowLayers` (compact targets only): the narrow layers above.
+    // `tailMoments` (hybrid-moments; every pass at full resolution): pass 3 also sums, over the
+    // fragments behind pass 2's layer, a C u, a u, a C u^2 and a u^2 with u = z - z2 (window depth,
+    // z2 read from pass 2's depth), into two RGBA32F targets (32 bytes a pixel: 16-bit sums cannot
+    // be centred on the tail's mean depth; tail_moments_constants.h), and keeps sum a C, sum a and
+    // the transmittance in 32-bit float (+10 bytes), since the centring and the weights read them.
     explicit NeuralPasses(const SurfaceShader& surface, bool colorSums = true,
-                          NeuralOptions::Targets targets = NeuralOptions::Targets::Compact, bool narrowLayers = false);
+                          NeuralOptions::Targets targets = NeuralOptions::Targets::Compact, bool narrowLayers = false,
+                          bool tailMoments = false);
     // The define the programs that read pass 3 (neural_inputs.glsl, the tail resolve) need.
     const char* countLayoutDefine() const { return colorSums_ ? "" : "#define STARNT_COUNT_ONLY\n"; }
     // "#define STARNT_SPLIT_ALPHA" for the programs that read the narrow layers' alphas apart.
@@ -132,6 +138,7 @@ public:
     const gl::Texture2D& alphaColor() const { return alphaColor_; }
     const gl::Texture2D& colorCount() const { return colorCount_; }
     const gl::Texture2D& transmittance() const { return transmittance_; }
+    bool tailMoments() const { return tailMoments_; }
     Size2 pass2Size() const { return pass2Size_; }
     Size2 pass3Size() const { return pass3Size_; }
 
@@ -145,10 +152,12 @@ private:
     Size2 pass2Size_, pass3Size_;
     gl::Texture2D nearest_, nearestDepth_, second_, secondDepth_, alphaColor_, colorCount_, transmittance_;
     gl::Texture2D layerAlpha_;  // narrow layers only: a1, a2
+    gl::Texture2D tailMoment1_, tailMoment2_;  // tail moments only
     TailResolveCopies esResolveCopies_;  // OpenGL ES only: what the tail resolve reads
     bool colorSums_ = true;
     NeuralOptions::Targets targets_;
     bool narrowLayers_ = false;
+    bool tailMoments_ = false;
     gl::FramebufferHandle pass1Fb_, pass2Fb_, pass3Fb_;
     gl::FramebufferHandle nearestOnlyFb_, secondOnlyFb_, alphaColorOnlyFb_;  // output slots
 };

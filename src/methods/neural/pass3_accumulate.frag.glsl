@@ -4,9 +4,18 @@
 //            (R32F: N alone, with STARNT_COUNT_ONLY: the STAR-NT inputs need no sum of C_i,
 //            which only DFAOIT reads; 12 bytes a pixel less)
 //   target 2 (R32F,    blend ZERO/ONE_MINUS_SRC_ALPHA): prod (1 - a_i)
+//   with STARNT_TAIL_MOMENTS (hybrid-moments, full resolution), over the fragments behind pass 2's
+//   layer only, u = z - z2 in window depth (CPU reference nn::tailMomentsFromFragments):
+//   target 3 (RGBA32F, blend ONE/ONE):                 sum a_i C_i u_i, sum a_i u_i
+//   target 4 (RGBA32F, blend ONE/ONE):                 sum a_i C_i u_i^2, sum a_i u_i^2
 layout(location = 0) out vec4 outAlphaColor;
 layout(location = 1) out vec4 outColorCount;
 layout(location = 2) out vec4 outTransmittance;
+#ifdef STARNT_TAIL_MOMENTS
+layout(location = 3) out vec4 outTailMoment1;
+layout(location = 4) out vec4 outTailMoment2;
+layout(binding = 0) uniform highp sampler2D u_secondDepth;  // pass 2's depth, 1 where it drew nothing
+#endif
 
 void main() {
     vec4 s = fetchSurfaceOrDiscard();
@@ -17,4 +26,10 @@ void main() {
     outColorCount = vec4(s.rgb, 1.0);
 #endif
     outTransmittance = vec4(0.0, 0.0, 0.0, s.a);
+#ifdef STARNT_TAIL_MOMENTS
+    float second = texelFetch(u_secondDepth, ivec2(gl_FragCoord.xy), 0).r;
+    float u = gl_FragCoord.z > second ? gl_FragCoord.z - second : 0.0;
+    outTailMoment1 = vec4(s.rgb * s.a, s.a) * u;
+    outTailMoment2 = outTailMoment1 * u;
+#endif
 }

@@ -1,0 +1,21 @@
+// Constants of hybrid-moments' tail colour (tail_moments.glsl), shared by the shader and its CPU
+// reference nn::momentWeightedTailColor (included from C++ and GLSL; keep it to #defines).
+#ifndef STARNT_TAIL_MOMENTS_CONSTANTS_H
+#define STARNT_TAIL_MOMENTS_CONSTANTS_H
+
+// The moments are 32-bit float sums of u = z - z2 (window depth behind pass 2's layer) and u^2;
+// centring them on the tail's mean depth cancels about (mean / spread)^2 of their precision.
+// Below these spread-to-mean ratios the quadratic weight (then the linear one) is dropped.
+// Chosen on 320x180 captures of 13 scenes with float sums: without the guard the mean-centred
+// quadratic lost 3-5x its double-precision accuracy on chess, tree and magic_stars; with 0.03 it
+// matched it to within 2 % (DESIGN.md, "hybrid-moments").
+#define STARNT_TAIL_MOMENT_LINEAR_BELOW 0.03
+#define STARNT_TAIL_MOMENT_PLAIN_BELOW 0.0009
+// The tail's optical depth -ln t_tail is clamped here (t_tail = 1e-13): beyond, exp(-tau x) is
+// zero to float precision everywhere but at the front.
+#define STARNT_TAIL_MOMENT_MAX_OPTICAL_DEPTH 30.0
+// Below this optical depth the integrals of x^k exp(-tau x) over [0, 1] come from their series
+// (the closed forms cancel there).
+#define STARNT_TAIL_MOMENT_SERIES_BELOW 1.0
+
+#endif
