@@ -136,17 +136,24 @@ TEST(GlNeural, HybridMatchesCpuReferencePerPixel) {
     }
 }
 
-// hybrid-moments: pass 3's depth moments and the weighted tail colour against the CPU reference.
-// Its compact layout keeps sum a C, sum a and the transmittance in 32-bit float (NeuralPasses,
-// tailMoments): the CPU model takes the layers at 16 bits and those from the 32-bit sums.
-TEST(GlNeural, HybridMomentsMatchesCpuReferencePerPixel) {
+// hybrid-moments and starnt-d: pass 3's depth moments and the weighted tail colour (and starnt-d's
+// network) against the CPU reference. Their compact layout keeps sum a C, sum a and the
+// transmittance in 32-bit float (NeuralPasses, tailMoments): the CPU model takes the layers at 16
+// bits and those from the 32-bit sums.
+class GlTailMoments : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(GlTailMoments, MatchesCpuReferencePerPixel) {
+    const std::string method = GetParam();
+    const NeuralMethodConfig* config = neuralConfig(method);
+    ASSERT_NE(config, nullptr);
+    const nn::Network net = loadMethodNetwork(*config, {});
     for (const char* scene : {"tubes", "smoke"}) {
         Case c = makeCase(scene, 75.0f);
         const CapturedFrame frags = c.capture();
         for (auto layout : kLayouts) {
             const bool compact = layout == NeuralOptions::Targets::Compact;
             const bool truncates = compact && halfBlendTruncates();
-            const Image gpu = renderWith(c, "hybrid-moments", withTargets(layout));
+            const Image gpu = renderWith(c, method, withTargets(layout));
             size_t deep = 0, bad = 0, differsFromHybrid = 0;
             for (int y = 0; y < kH; ++y) {
                 for (int x = 0; x < kW; ++x) {
@@ -157,7 +164,8 @@ TEST(GlNeural, HybridMomentsMatchesCpuReferencePerPixel) {
                     sums.sumAlpha = exact.sumAlpha;
                     sums.transmittance = exact.transmittance;
                     const nn::TailMoments m = nn::tailMomentsFromFragments(list);
-                    glm::vec3 want = nn::compositeHybridMoments(sums, m, kBackground);
+                    glm::vec3 want = config->evaluatesNetwork ? nn::compositeNetwork(net, sums, kBackground, &m)
+                                                              : nn::compositeHybridMoments(sums, m, kBackground);
                     if (compact) want = nn::roundToHalf(want);
                     if (sums.count > 3.5f) ++deep;
                     differsFromHybrid += glm::length(want - nn::compositeHybrid(sums, kBackground)) > 1e-2f;
@@ -178,6 +186,8 @@ TEST(GlNeural, HybridMomentsMatchesCpuReferencePerPixel) {
         }
     }
 }
+INSTANTIATE_TEST_SUITE_P(BothMethods, GlTailMoments, ::testing::Values("hybrid-moments", "starnt-d"),
+                         [](const auto& info) { return test::identifier(info.param); });
 
 TEST(GlNeural, DfaoitMatchesCpuReferencePerPixel) {
     Case c = makeCase("tubes", 200.0f);

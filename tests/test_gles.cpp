@@ -67,7 +67,7 @@ void expectSameOnBothApis(const std::string& args, const std::string& tag) {
     fs::remove_all(dir);
 }
 
-const char* const kAllMethods[] = {"abuffer", "peel", "unsorted", "wboit", "mboit", "dfaoit", "starnt", "hybrid", "hybrid-moments"};
+const char* const kAllMethods[] = {"abuffer", "peel", "unsorted", "wboit", "mboit", "dfaoit", "starnt", "hybrid", "hybrid-moments", "starnt-d"};
 
 TEST(Gles, EveryMethodMatchesDesktopOnBuiltinScenes) {
     for (const char* scene : {"builtin:tubes", "builtin:panes"}) {

@@ -186,18 +186,26 @@ TEST(Hardening, WeightsWithAbsurdMagnitudes) {
     EXPECT_FALSE(fs::exists(out));
 }
 
-// hybrid-moments' moments are relative to pass 2's depth at the same pixel: no reduced passes.
-TEST(Hardening, HybridMomentsRefusesReducedPasses) {
+// hybrid-moments' and starnt-d's moments are relative to pass 2's depth at the same pixel: no
+// reduced passes. starnt-d takes its own kind of weights only.
+TEST(Hardening, TailMomentMethodsRefuseReducedPassesAndOtherWeights) {
     const fs::path dir = makeTempDir("hmom");
     const std::string out = (dir / "x.png").string();
-    const std::string base = "render --scene builtin:panes --width 16 --height 12 --method hybrid-moments --out " + out + " ";
-    for (const char* flags : {"--spatial on", "--scales 100,50", "--inference corners", "--upsample joint"}) {
-        expectOneLineError(run(base + flags), {"hybrid-moments", "full resolution"}, flags);
-        EXPECT_FALSE(fs::exists(out)) << flags;
+    for (const std::string method : {"hybrid-moments", "starnt-d"}) {
+        const std::string base = "render --scene builtin:panes --width 16 --height 12 --method " + method + " --out " + out + " ";
+        for (const char* flags : {"--spatial on", "--scales 100,50", "--inference corners", "--upsample joint"}) {
+            expectOneLineError(run(base + flags), {method, "full resolution"}, flags);
+            EXPECT_FALSE(fs::exists(out)) << flags;
+        }
+        // Its default and full-resolution scales render.
+        EXPECT_EQ(run(base + "--scales 100,100").exitCode, 0);
+        EXPECT_TRUE(fs::exists(out));
+        fs::remove(out);
     }
-    // Its default and full-resolution scales render.
-    EXPECT_EQ(run(base + "--scales 100,100").exitCode, 0);
-    EXPECT_TRUE(fs::exists(out));
+    const std::string weights = (fs::path(STARNT_SOURCE_DIR) / "src/methods/starnt_residual/starnt_residual_weights.json").string();
+    expectOneLineError(run("render --scene builtin:panes --width 16 --height 12 --method starnt-d --out " + out + " --weights " + weights),
+                       {"starnt_residual_weights.json", "needs a starnt-d network"}, "starnt-d");
+    EXPECT_FALSE(fs::exists(out));
 }
 
 TEST(Hardening, WeightsForAMethodWithoutNetworkAndNegativeAlpha) {

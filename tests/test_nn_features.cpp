@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "starnt/error.hpp"
 #include "starnt/nn.hpp"
 #include "starnt/train.hpp"
 
@@ -238,6 +239,37 @@ TEST(NnComposite, ResidualIsHybridPlusACorrectionThatFadesWithTheTail) {
     const glm::vec3 moved = compositeStarntResidual(net, s, bg) - compositeHybrid(s, bg);
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(moved[k], 0.25f * opacity, 1e-6f);
     EXPECT_EQ(compositeNetwork(net, s, bg), compositeStarntResidual(net, s, bg));
+}
+
+// starnt-d: with f = 0 it is hybrid-moments' composite bit for bit; with f its exact target the
+// exact composite; compositeNetwork needs the moments for it.
+TEST(NnComposite, StarntDepthIsHybridMomentsPlusACorrection) {
+    Network net = makeUntrained(NetworkKind::StarNTDepth, 5);
+    for (float& w : net.layers.back().weights) w = 0.0f;
+    std::fill(net.layers.back().bias.begin(), net.layers.back().bias.end(), 0.0f);
+    const glm::vec3 bg(0.3f, 0.6f, 0.9f);
+    int deep = 0, weighted = 0;
+    for (const auto& list : syntheticFragmentLists(2000, 17)) {
+        const PixelSums s = sumsFromFragments(list);
+        const TailMoments m = tailMomentsFromFragments(list);
+        ASSERT_EQ(compositeStarntDepth(net, s, m, bg), compositeHybridMoments(s, m, bg));
+        ASSERT_EQ(compositeNetwork(net, s, bg, &m), compositeHybridMoments(s, m, bg));
+        const FragmentList sorted = preparedFragments(list);
+        if (sorted.size() <= 3) continue;
+        ++deep;
+        const auto x = starntDepthFeatures(s, m);
+        weighted += glm::length(glm::vec3(x[5], x[6], x[7]) - glm::vec3(x[2], x[3], x[4])) > 1e-3f;
+        if (1.0f - x[0] < kResidualMinTailOpacity) continue;
+        const glm::vec3 target = starntDepthTarget(sorted, s, m);
+        const float t2 = (1.0f - s.a1) * (1.0f - s.a2);
+        const glm::vec3 rebuilt = s.a1 * s.c1 + (1.0f - s.a1) * s.a2 * s.c2 +
+                                  t2 * (1.0f - x[0]) * glm::max(glm::vec3(x[5], x[6], x[7]) + target, glm::vec3(0.0f)) +
+                                  s.transmittance * bg;
+        expectVec(rebuilt, compositeOver(sorted, bg), 1e-5f, "exact depth residual");
+    }
+    EXPECT_GT(deep, 1000);
+    EXPECT_GT(weighted, deep / 2) << "C_m should differ from C_tilde on most deep synthetic lists";
+    EXPECT_THROW(compositeNetwork(net, sumsFromFragments(syntheticFragmentLists(1, 1)[0]), bg), Error);
 }
 
 TEST(NnComposite, DfaoitAddsBackgroundThroughAllLayers) {

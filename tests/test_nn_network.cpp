@@ -72,11 +72,11 @@ TEST(NnNetwork, NormalisationIsApplied) {
 }
 
 TEST(NnNetwork, UntrainedNetworksHaveTheArchitectureAndAreSeeded) {
-    for (NetworkKind kind : {NetworkKind::StarNT, NetworkKind::StarNTResidual, NetworkKind::DFAOIT}) {
+    for (NetworkKind kind : {NetworkKind::StarNT, NetworkKind::StarNTResidual, NetworkKind::DFAOIT, NetworkKind::StarNTDepth}) {
         const Network a = makeUntrained(kind, 7), b = makeUntrained(kind, 7), c = makeUntrained(kind, 8);
         EXPECT_NO_THROW(validateNetwork(a, "untrained"));
         ASSERT_EQ(a.layers.size(), 3u);
-        EXPECT_EQ(a.layers[0].in, kind == NetworkKind::DFAOIT ? 10 : 5);
+        EXPECT_EQ(a.layers[0].in, kind == NetworkKind::DFAOIT ? 10 : kind == NetworkKind::StarNTDepth ? 8 : 5);
         EXPECT_EQ(a.layers[0].out, 32);
         EXPECT_EQ(a.layers[1].out, 16);
         EXPECT_EQ(a.layers[2].out, 3);
@@ -95,6 +95,8 @@ TEST(NnNetwork, UntrainedNetworksHaveTheArchitectureAndAreSeeded) {
     EXPECT_EQ(parseKind("starnt-residual"), NetworkKind::StarNTResidual);
     EXPECT_STREQ(kindName(NetworkKind::StarNT), "starnt");
     EXPECT_STREQ(kindName(NetworkKind::StarNTResidual), "starnt-residual");
+    EXPECT_EQ(parseKind("starnt-d"), NetworkKind::StarNTDepth);
+    EXPECT_STREQ(kindName(NetworkKind::StarNTDepth), "starnt-d");
     // The residual's linear output starts small (a tenth of Xavier: variance 0.01 * 2 / (16 + 3)),
     // so that training starts near f = 0, the closed form.
     const Network r = makeUntrained(NetworkKind::StarNTResidual, 7);
@@ -106,7 +108,7 @@ TEST(NnNetwork, UntrainedNetworksHaveTheArchitectureAndAreSeeded) {
 }
 
 TEST(NnNetwork, BatchedForwardMatchesNetworkForward) {
-    for (NetworkKind kind : {NetworkKind::StarNT, NetworkKind::StarNTResidual, NetworkKind::DFAOIT}) {
+    for (NetworkKind kind : {NetworkKind::StarNT, NetworkKind::StarNTResidual, NetworkKind::DFAOIT, NetworkKind::StarNTDepth}) {
         Network net = makeUntrained(kind, 3);
         for (float& b : net.layers.back().bias) b = -0.05f;  // some outputs negative before the activation
         const int inputs = net.inputCount();
@@ -134,7 +136,7 @@ TEST_P(NnGradient, AnalyticMatchesFiniteDifferences) {
     detail::Rng rng(99);
     for (auto& b : mlp.b)
         for (Eigen::Index i = 0; i < b.size(); ++i) b(i) = 0.1 * rng.normal();  // non-zero biases
-    const int inputs = kind == NetworkKind::DFAOIT ? 10 : 5;
+    const int inputs = inputCount(kind);
     const int batch = 12;
     M x(inputs, batch), y(3, batch);
     for (Eigen::Index i = 0; i < x.size(); ++i) x.data()[i] = rng.normal();
@@ -167,15 +169,14 @@ TEST_P(NnGradient, AnalyticMatchesFiniteDifferences) {
         for (Eigen::Index i = 0; i < mlp.w[l].size(); ++i) check(mlp.w[l].data()[i], grad.w[l].data()[i]);
         for (Eigen::Index i = 0; i < mlp.b[l].size(); ++i) check(mlp.b[l].data()[i], grad.b[l].data()[i]);
     }
-    EXPECT_EQ(checked, kind == NetworkKind::DFAOIT ? 10 * 32 + 32 + 32 * 16 + 16 + 16 * 3 + 3
-                                                   : 5 * 32 + 32 + 32 * 16 + 16 + 16 * 3 + 3);
+    EXPECT_EQ(checked, inputs * 32 + 32 + 32 * 16 + 16 + 16 * 3 + 3);
     EXPECT_GT(nonZero, checked / 2);  // the check is not vacuous
     RecordProperty("worst_relative_error", std::to_string(worst));
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryKind, NnGradient,
                          ::testing::Combine(::testing::Values(NetworkKind::StarNT, NetworkKind::StarNTResidual,
-                                                              NetworkKind::DFAOIT),
+                                                              NetworkKind::DFAOIT, NetworkKind::StarNTDepth),
                                             ::testing::Bool()),
                          [](const auto& info) {
                              return test::identifier(kindName(std::get<0>(info.param))) +

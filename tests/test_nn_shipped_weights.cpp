@@ -1,6 +1,6 @@
 // The shipped weights are what `starnt train` writes with its defaults, byte for byte (issue 15:
 // retraining must reproduce them). About 5 s of training per network on llvmpipe + CPU. The
-// starnt-residual recipe adds --weighting tail-visibility (docs/DESIGN.md, "Training").
+// starnt-residual and starnt-d recipes add --weighting tail-visibility (docs/DESIGN.md, "Training").
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -47,5 +47,6 @@ TEST_P(ShippedWeights, RetrainingWithTheDefaultsGivesTheSameBytes) {
 
 INSTANTIATE_TEST_SUITE_P(EveryNetwork, ShippedWeights,
                          ::testing::Values(Shipped{"starnt", "starnt", ""}, Shipped{"dfaoit", "dfaoit", ""},
-                                           Shipped{"starnt-residual", "starnt_residual", " --weighting tail-visibility"}),
+                                           Shipped{"starnt-residual", "starnt_residual", " --weighting tail-visibility"},
+                                           Shipped{"starnt-d", "starnt_d", " --weighting tail-visibility"}),
                          [](const auto& info) { return info.param.folder; });

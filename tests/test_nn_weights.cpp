@@ -74,7 +74,7 @@ protected:
 }  // namespace
 
 TEST_F(NnWeightsFile, RoundTripIsExact) {
-    for (NetworkKind kind : {NetworkKind::StarNT, NetworkKind::StarNTResidual, NetworkKind::DFAOIT}) {
+    for (NetworkKind kind : {NetworkKind::StarNT, NetworkKind::StarNTResidual, NetworkKind::DFAOIT, NetworkKind::StarNTDepth}) {
         const Network a = sampleNetwork(kind);
         const fs::path p = dir / (std::string(kindName(kind)) + ".json");
         saveWeights(a, p);

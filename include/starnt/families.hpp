@@ -57,6 +57,7 @@ struct FamilyErrors {
     size_t tailPixels = 0;  // of which more than 3 (where STAR-NT evaluates its network)
     double network = 0.0;   // starnt or dfaoit, the network given
     double hybrid = 0.0;    // STAR-NT's closed-form tail (1 - t_tail) C_tilde
+    double hybridMoments = 0.0;  // hybrid-moments' closed form (1 - t_tail) C_m
     double wboit = 0.0;     // weighted blended OIT, weight eq. 10 (the default)
     // The same means over the tail pixels only (N > 3): where STAR-NT's network decides the colour
     // (below that STAR-NT and hybrid are exact, and the whole-family means flatter them).

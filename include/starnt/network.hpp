@@ -17,14 +17,24 @@ namespace starnt::nn {
 //   tail (hybrid's): tail = (1 - t_tail) * max(C_tilde + f(x), 0). Where the tail is faint the
 //   correction fades with it, and f = 0 is hybrid exactly (see nn.hpp, compositeStarntResidual).
 // DFAOIT: the DFAOIT baseline's network (whole transparent colour, SPEC 3).
-enum class NetworkKind { StarNT, StarNTResidual, DFAOIT };
+// StarNTDepth ("starnt-d", issue 15): STAR-NT's inputs plus the tail colour weighted by the tail's
+//   depth moments (hybrid-moments' C_m, nn::momentWeightedTailColor), 8-32-16-3, a linear output
+//   that corrects it: tail = (1 - t_tail) * max(C_m + f(x), 0).
+enum class NetworkKind { StarNT, StarNTResidual, DFAOIT, StarNTDepth };
 
-// "starnt" / "starnt-residual" / "dfaoit".
+// "starnt" / "starnt-residual" / "dfaoit" / "starnt-d".
 const char* kindName(NetworkKind kind);
-// Parses "starnt" / "starnt-residual" / "dfaoit"; throws starnt::Error otherwise.
+// Parses "starnt" / "starnt-residual" / "dfaoit" / "starnt-d"; throws starnt::Error otherwise.
 NetworkKind parseKind(const std::string& name);
-// Whether the kind reads STAR-NT's five inputs (and composites over STAR-NT's exact two layers).
-inline bool readsStarntInputs(NetworkKind kind) { return kind != NetworkKind::DFAOIT; }
+// Whether the kind reads STAR-NT's five inputs alone.
+inline bool readsStarntInputs(NetworkKind kind) {
+    return kind == NetworkKind::StarNT || kind == NetworkKind::StarNTResidual;
+}
+// Whether the kind's composite is STAR-NT's: the two nearest layers exact, the tail exact for N <= 3,
+// the network beyond (every kind but DFAOIT's).
+inline bool compositesThreeLayers(NetworkKind kind) { return kind != NetworkKind::DFAOIT; }
+// Whether the kind reads pass 3's tail depth moments (its method runs every pass at full resolution).
+inline bool readsTailMoments(NetworkKind kind) { return kind == NetworkKind::StarNTDepth; }
 
 // Feature guards (the inference shaders and the CPU reference in nn.hpp apply the same ones).
 inline constexpr float kTransmittanceEpsilon = 1e-6f;
@@ -33,9 +43,10 @@ inline constexpr float kDefaultAlphaCutoff = 0.03f;
 
 inline constexpr int kStarntInputs = 5;
 inline constexpr int kDfaoitInputs = 10;
+inline constexpr int kStarntDepthInputs = 8;
 
 // Number of inputs, canonical input names (the `input_order` of the weights file) and layer sizes
-// (5-32-16-3 or 10-32-16-3, including the input layer).
+// (5-32-16-3, 10-32-16-3 or 8-32-16-3, including the input layer).
 int inputCount(NetworkKind kind);
 const std::vector<std::string>& canonicalInputNames(NetworkKind kind);
 std::vector<int> layerSizes(NetworkKind kind);
@@ -63,7 +74,7 @@ struct Network {
     glm::vec3 forward(const float* rawInputs) const;
 };
 
-// The output layer's activation of a kind: ReLU (starnt), linear (starnt-residual), sigmoid (dfaoit);
+// The output layer's activation of a kind: ReLU (starnt), linear (starnt-residual, starnt-d), sigmoid (dfaoit);
 // the hidden layers are ReLU.
 Network::Layer::Activation outputActivation(NetworkKind kind);
 

@@ -116,9 +116,18 @@ TailMoments tailMomentsFromFragments(FragmentList fragments, float alphaCutoff =
 glm::vec3 momentWeightedTailColor(const PixelSums& s, const TailMoments& m);
 // hybrid-moments' composite: hybrid's with the deep tail (1 - t_tail) momentWeightedTailColor.
 glm::vec3 compositeHybridMoments(const PixelSums& s, const TailMoments& m, glm::vec3 background);
+// starnt-d (NetworkKind::StarNTDepth) inputs, in this order: STAR-NT's five (t_tail, N, C_tilde),
+// then C_m = momentWeightedTailColor.
+std::array<float, kStarntDepthInputs> starntDepthFeatures(const PixelSums& s, const TailMoments& m);
+// Its target, for a list with N > 3: tail / (1 - t_tail) - C_m (0 below kResidualMinTailOpacity).
+glm::vec3 starntDepthTarget(const FragmentList& sorted, const PixelSums& sums, const TailMoments& m);
+// Its composite: STAR-NT's with the deep tail (1 - t_tail) max(C_m + f(x), 0).
+glm::vec3 compositeStarntDepth(const Network& net, const PixelSums& s, const TailMoments& m, glm::vec3 background);
 // DFAOIT: f(x) + T_all * C_bg; a pixel without fragments (N < 0.5) is the background alone.
 glm::vec3 compositeDfaoit(const Network& net, const PixelSums& s, glm::vec3 background);
-// The composite of net.kind (one of the three above).
-glm::vec3 compositeNetwork(const Network& net, const PixelSums& s, glm::vec3 background);
+// The composite of net.kind. starnt-d reads the tail moments too: `moments` is required for it
+// (starnt::Error without), ignored by the others.
+glm::vec3 compositeNetwork(const Network& net, const PixelSums& s, glm::vec3 background,
+                           const TailMoments* moments = nullptr);
 
 }  // namespace starnt::nn

@@ -113,7 +113,7 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--frame-stats", a->frameStats, "write one JSON line per frame (.jsonl)");
     cmd->add_option("--reference-method", a->referenceMethod,
                     "also render this method (e.g. abuffer) per frame and record MSE/FLIP against it");
-    cmd->add_option("--weights", a->weights, "starnt, starnt-residual, dfaoit: weights file (default: the shipped weights)");
+    cmd->add_option("--weights", a->weights, "starnt, starnt-residual, starnt-d, dfaoit: weights file (default: the shipped weights)");
     cmd->add_option("--out", a->out, "output image (.png, sRGB); frame_%04d.png writes every frame")->required();
     cmd->add_option("--exr", a->exr, "also write linear float EXR");
     cmd->add_option("--stats", a->stats, "write statistics JSON");
@@ -132,7 +132,7 @@ void addRenderCommand(CLI::App& app) {
             const NeuralMethodConfig* config = neuralConfig(a->method);
             if (!config || !config->evaluatesNetwork) {
                 throw Error("--weights " + a->weights + ": method " + a->method +
-                            " has no network (only starnt, starnt-residual and dfaoit read a weights file)");
+                            " has no network (only starnt, starnt-residual, starnt-d and dfaoit read a weights file)");
             }
             nn::loadWeights(a->weights, config->kind);  // a bad file fails before any rendering
         }

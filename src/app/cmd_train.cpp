@@ -94,8 +94,8 @@ void addTrainCommand(CLI::App& app) {
         int captureWidth = 96, captureHeight = 72;
     };
     auto a = std::make_shared<Args>();
-    CLI::App* cmd = app.add_subcommand("train", "train the STAR-NT (or its residual kind) or DFAOIT network and write a weights file");
-    cmd->add_option("--network", a->network, "starnt|starnt-residual|dfaoit")->required();
+    CLI::App* cmd = app.add_subcommand("train", "train the STAR-NT (or its residual or depth kind) or DFAOIT network and write a weights file");
+    cmd->add_option("--network", a->network, "starnt|starnt-residual|starnt-d|dfaoit")->required();
     cmd->add_option("--out", a->out, "weights file to write (.json)")->required();
     cmd->add_option("--samples", a->samples, "training samples seen in total")->capture_default_str();
     cmd->add_option("--seed", a->seed, "random seed (weights, split, synthetic data)")->capture_default_str();
@@ -111,7 +111,7 @@ void addTrainCommand(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--hold-out", a->holdOut, "train on every family but this one (a built-in scene or a procedural family)");
     cmd->add_option("--weighting", a->weighting,
-                    "sample weights: none (default) or tail-visibility (starnt, starnt-residual: times ((1-a1)(1-a2))^2, "
+                    "sample weights: none (default) or tail-visibility (starnt kinds: times ((1-a1)(1-a2))^2, "
                     "the image-space error)")
         ->capture_default_str();
     cmd->add_option("--report", a->report, "write the per-family validation errors to this JSON file");
@@ -207,14 +207,15 @@ void addTrainCommand(CLI::App& app) {
                                  {"samples", a->samples},     {"seed", a->seed}, {"weighting", a->weighting},
                                  {"families", nlohmann::json::array()}};
         // Whole family (every covered pixel), then its tail pixels (N > 3) alone.
-        std::printf("%-10s %-9s %7s %10s %10s %10s %9s %7s %10s %10s %10s %9s\n", "family", "trained", "pixels",
-                    nn::kindName(kind), "hybrid", "wboit", "net/wboit", "tail", "net tail", "hyb tail", "wb tail",
-                    "tail n/w");
+        std::printf("%-10s %-9s %7s %10s %10s %10s %10s %9s %7s %10s %10s %10s %9s\n", "family", "trained", "pixels",
+                    nn::kindName(kind), "hybrid", "hyb-mom", "wboit", "net/wboit", "tail", "net tail", "hyb tail",
+                    "wb tail", "tail n/w");
         for (const nn::TrainingFamily& f : families) {
             const nn::FamilyErrors e = nn::familyErrors(net, f.validation);
             const bool heldOut = f.name == a->holdOut;
-            std::printf("%-10s %-9s %7zu %10.3e %10.3e %10.3e %9.3f %7zu %10.3e %10.3e %10.3e %9.3f\n", f.name.c_str(),
-                        heldOut ? "HELD-OUT" : f.train.empty() ? "no" : "yes", e.pixels, e.network, e.hybrid, e.wboit,
+            std::printf("%-10s %-9s %7zu %10.3e %10.3e %10.3e %10.3e %9.3f %7zu %10.3e %10.3e %10.3e %9.3f\n",
+                        f.name.c_str(), heldOut ? "HELD-OUT" : f.train.empty() ? "no" : "yes", e.pixels, e.network,
+                        e.hybrid, e.hybridMoments, e.wboit,
                         e.wboit > 0.0 ? e.network / e.wboit : 0.0, e.tailPixels, e.networkTail, e.hybridTail,
                         e.wboitTail, e.wboitTail > 0.0 ? e.networkTail / e.wboitTail : 0.0);
             report["families"].push_back({{"family", f.name},
@@ -225,6 +226,7 @@ void addTrainCommand(CLI::App& app) {
                                           {"validation_tail_pixels", e.tailPixels},
                                           {"mse_network", e.network},
                                           {"mse_hybrid", e.hybrid},
+                                          {"mse_hybrid_moments", e.hybridMoments},
                                           {"mse_wboit", e.wboit},
                                           {"tail_mse_network", e.networkTail},
                                           {"tail_mse_hybrid", e.hybridTail},

@@ -50,6 +50,8 @@ const std::vector<Variant>& allVariants() {
                     [](MethodOptions& o) { o.neural.spatial = false; }),
         makeVariant("hybrid-moments", "hybrid-moments",
                     "hybrid with the tail colour weighted by the tail's depth moments (no network; full resolution)"),
+        makeVariant("starnt-d", "starnt-d",
+                    "STAR-NT's passes with the tail depth moments, a network correcting hybrid-moments' tail (full resolution)"),
         makeVariant("starnt-residual-full", "starnt-residual",
                     "STAR-NT's passes and network size, the network correcting hybrid's closed-form tail; spatial off",
                     [](MethodOptions& o) { o.neural.spatial = false; }),

@@ -24,6 +24,7 @@ const std::vector<Entry>& entries() {
         {"hybrid", createHybridMethod},
         {"starnt-residual", createStarntResidualMethod},
         {"hybrid-moments", createHybridMomentsMethod},
+        {"starnt-d", createStarntDepthMethod},
     };
     return all;
 }
@@ -50,7 +51,7 @@ std::unique_ptr<OitMethod> createMethod(const std::string& name, const SurfaceSh
 
 const NeuralMethodConfig* neuralConfig(const std::string& name) {
     for (const NeuralMethodConfig* c : {&starntConfig(), &dfaoitConfig(), &hybridConfig(), &starntResidualConfig(),
-                                             &hybridMomentsConfig()})
+                                             &hybridMomentsConfig(), &starntDepthConfig()})
         if (name == c->name) return c;
     return nullptr;
 }

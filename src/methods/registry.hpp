@@ -16,6 +16,7 @@ std::unique_ptr<OitMethod> createStarntMethod(const SurfaceShader&, const Method
 std::unique_ptr<OitMethod> createHybridMethod(const SurfaceShader&, const MethodOptions&);
 std::unique_ptr<OitMethod> createStarntResidualMethod(const SurfaceShader&, const MethodOptions&);
 std::unique_ptr<OitMethod> createHybridMomentsMethod(const SurfaceShader&, const MethodOptions&);
+std::unique_ptr<OitMethod> createStarntDepthMethod(const SurfaceShader&, const MethodOptions&);
 
 struct NeuralMethodConfig;
 const NeuralMethodConfig& starntConfig();
@@ -23,8 +24,9 @@ const NeuralMethodConfig& dfaoitConfig();
 const NeuralMethodConfig& hybridConfig();
 const NeuralMethodConfig& starntResidualConfig();
 const NeuralMethodConfig& hybridMomentsConfig();
-// The neural method called `name` (starnt, dfaoit, hybrid, starnt-residual, hybrid-moments), null
-// for the others.
+const NeuralMethodConfig& starntDepthConfig();
+// The neural method called `name` (starnt, dfaoit, hybrid, starnt-residual, hybrid-moments,
+// starnt-d), null for the others.
 const NeuralMethodConfig* neuralConfig(const std::string& name);
 
 // True when `name` with `options` runs the adaptive tiles (a neural method with spatial on, by

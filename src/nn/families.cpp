@@ -239,11 +239,13 @@ FamilyErrors familyErrors(const Network& net, const std::vector<FragmentList>& l
         e.tailPixels += sorted.size() > 3;
         const glm::vec3 exact = compositeOver(sorted, black);
         const PixelSums sums = sumsFromFragments(list, alphaCutoff);
-        const glm::vec3 predicted = compositeNetwork(net, sums, black);
+        const TailMoments moments = tailMomentsFromFragments(list, alphaCutoff);
+        const glm::vec3 predicted = compositeNetwork(net, sums, black, &moments);
         const double network = squaredError(predicted, exact), hybrid = squaredError(compositeHybrid(sums, black), exact),
                      wboit = squaredError(compositeWboit(sorted, black, alphaCutoff), exact);
         e.network += network;
         e.hybrid += hybrid;
+        e.hybridMoments += squaredError(compositeHybridMoments(sums, moments, black), exact);
         e.wboit += wboit;
         if (sorted.size() > 3) {
             e.networkTail += network;
@@ -252,7 +254,7 @@ FamilyErrors familyErrors(const Network& net, const std::vector<FragmentList>& l
         }
     }
     const auto mean = [](double& sum, size_t n) { sum = n > 0 ? sum / static_cast<double>(n) : 0.0; };
-    for (double* sum : {&e.network, &e.hybrid, &e.wboit}) mean(*sum, e.pixels);
+    for (double* sum : {&e.network, &e.hybrid, &e.hybridMoments, &e.wboit}) mean(*sum, e.pixels);
     for (double* sum : {&e.networkTail, &e.hybridTail, &e.wboitTail}) mean(*sum, e.tailPixels);
     return e;
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "starnt/error.hpp"
 #include "starnt/nn.hpp"
 #include "methods/hybrid_moments/tail_moments_constants.h"
 
@@ -253,6 +254,26 @@ glm::vec3 compositeHybridMoments(const PixelSums& s, const TailMoments& m, glm::
                                      [&](const auto& x) { return (1.0f - x[0]) * momentWeightedTailColor(s, m); });
 }
 
+std::array<float, kStarntDepthInputs> starntDepthFeatures(const PixelSums& s, const TailMoments& m) {
+    const auto x = starntFeatures(s);
+    const glm::vec3 moment = momentWeightedTailColor(s, m);
+    return {x[0], x[1], x[2], x[3], x[4], moment.r, moment.g, moment.b};
+}
+
+glm::vec3 starntDepthTarget(const FragmentList& sorted, const PixelSums& sums, const TailMoments& m) {
+    const auto x = starntDepthFeatures(sums, m);
+    const float tailOpacity = 1.0f - x[0];
+    if (tailOpacity < kResidualMinTailOpacity) return glm::vec3(0.0f);
+    return starntTarget(sorted) / tailOpacity - glm::vec3(x[5], x[6], x[7]);
+}
+
+glm::vec3 compositeStarntDepth(const Network& net, const PixelSums& s, const TailMoments& m, glm::vec3 background) {
+    return compositeThreeLayersExact(s, background, [&](const auto& x) {
+        const auto d = starntDepthFeatures(s, m);
+        return (1.0f - x[0]) * glm::max(glm::vec3(d[5], d[6], d[7]) + net.forward(d.data()), glm::vec3(0.0f));
+    });
+}
+
 glm::vec3 compositeDfaoit(const Network& net, const PixelSums& s, glm::vec3 background) {
     glm::vec3 transparent(0.0f);
     if (s.count > 0.5f) {
@@ -262,8 +283,11 @@ glm::vec3 compositeDfaoit(const Network& net, const PixelSums& s, glm::vec3 back
     return transparent + s.transmittance * background;
 }
 
-glm::vec3 compositeNetwork(const Network& net, const PixelSums& s, glm::vec3 background) {
+glm::vec3 compositeNetwork(const Network& net, const PixelSums& s, glm::vec3 background, const TailMoments* moments) {
     switch (net.kind) {
+        case NetworkKind::StarNTDepth:
+            if (!moments) throw Error("a starnt-d network needs the tail moments");
+            return compositeStarntDepth(net, s, *moments, background);
         case NetworkKind::StarNT: return compositeStarnt(net, s, background);
         case NetworkKind::StarNTResidual: return compositeStarntResidual(net, s, background);
         case NetworkKind::DFAOIT: return compositeDfaoit(net, s, background);

@@ -12,6 +12,7 @@ const char* kindName(NetworkKind kind) {
         case NetworkKind::StarNT: return "starnt";
         case NetworkKind::StarNTResidual: return "starnt-residual";
         case NetworkKind::DFAOIT: return "dfaoit";
+        case NetworkKind::StarNTDepth: return "starnt-d";
     }
     return "?";
 }
@@ -20,17 +21,22 @@ NetworkKind parseKind(const std::string& name) {
     if (name == "starnt") return NetworkKind::StarNT;
     if (name == "starnt-residual") return NetworkKind::StarNTResidual;
     if (name == "dfaoit") return NetworkKind::DFAOIT;
-    throw Error("unknown network kind '" + name + "' (expected starnt, starnt-residual or dfaoit)");
+    if (name == "starnt-d") return NetworkKind::StarNTDepth;
+    throw Error("unknown network kind '" + name + "' (expected starnt, starnt-residual, dfaoit or starnt-d)");
 }
 
-int inputCount(NetworkKind kind) { return readsStarntInputs(kind) ? kStarntInputs : kDfaoitInputs; }
+int inputCount(NetworkKind kind) {
+    return readsStarntInputs(kind) ? kStarntInputs : kind == NetworkKind::StarNTDepth ? kStarntDepthInputs : kDfaoitInputs;
+}
 
 const std::vector<std::string>& canonicalInputNames(NetworkKind kind) {
     static const std::vector<std::string> starnt = {"t_tail", "count", "c_tilde_r", "c_tilde_g", "c_tilde_b"};
     static const std::vector<std::string> dfaoit = {
         "alpha_avg",           "c_avg_r",             "c_avg_g",   "c_avg_b",   "sum_alpha_color_r",
         "sum_alpha_color_g",   "sum_alpha_color_b",   "c_exact2_r", "c_exact2_g", "c_exact2_b"};
-    return readsStarntInputs(kind) ? starnt : dfaoit;
+    static const std::vector<std::string> depth = {"t_tail",    "count",      "c_tilde_r",  "c_tilde_g",
+                                                   "c_tilde_b", "c_moment_r", "c_moment_g", "c_moment_b"};
+    return readsStarntInputs(kind) ? starnt : kind == NetworkKind::StarNTDepth ? depth : dfaoit;
 }
 
 std::vector<int> layerSizes(NetworkKind kind) {
@@ -64,6 +70,7 @@ Network::Layer::Activation outputActivation(NetworkKind kind) {
         case NetworkKind::StarNT: return Network::Layer::ReLU;
         case NetworkKind::StarNTResidual: return Network::Layer::Linear;
         case NetworkKind::DFAOIT: return Network::Layer::Sigmoid;
+        case NetworkKind::StarNTDepth: return Network::Layer::Linear;
     }
     return Network::Layer::ReLU;
 }

@@ -50,24 +50,28 @@ TrainingSet buildTrainingSet(NetworkKind kind, const std::vector<FragmentList>& 
     for (const FragmentList& list : lists) {
         const FragmentList sorted = preparedFragments(list, alphaCutoff);
         const size_t n = sorted.size();
-        if (readsStarntInputs(kind) ? n <= 3 : n < 1) continue;
+        if (compositesThreeLayers(kind) ? n <= 3 : n < 1) continue;
         // Already cut off and sorted, so the cut-off cannot drop anything more here.
         const PixelSums sums = sumsFromFragments(sorted, alphaCutoff);
         glm::vec3 target;
-        if (readsStarntInputs(kind)) {
+        if (compositesThreeLayers(kind)) {
             const auto f = starntFeatures(sums);
-            set.x.insert(set.x.end(), f.begin(), f.end());
-            // How much an error of the prediction weighs in the tail colour (the residual's is
+            // How much an error of the prediction weighs in the tail colour (the residuals' are
             // scaled by the tail opacity), then in the image (through T2).
             float tailScale = 1.0f;
-            if (kind == NetworkKind::StarNTResidual) {
-                target = starntResidualTarget(sorted, sums);
-                tailScale = 1.0f - f[0];
+            if (kind == NetworkKind::StarNTDepth) {
+                const TailMoments moments = tailMomentsFromFragments(sorted, alphaCutoff);
+                const auto d = starntDepthFeatures(sums, moments);
+                set.x.insert(set.x.end(), d.begin(), d.end());
+                target = starntDepthTarget(sorted, sums, moments);
             } else {
-                target = starntTarget(sorted);
+                set.x.insert(set.x.end(), f.begin(), f.end());
+                target = kind == NetworkKind::StarNTResidual ? starntResidualTarget(sorted, sums) : starntTarget(sorted);
             }
+            const bool residual = outputActivation(kind) == Network::Layer::Linear;
+            if (residual) tailScale = 1.0f - f[0];
             const float visibility = weighting == SampleWeighting::TailVisibility ? (1.0f - sums.a1) * (1.0f - sums.a2) : 1.0f;
-            if (weighting == SampleWeighting::TailVisibility || kind == NetworkKind::StarNTResidual)
+            if (weighting == SampleWeighting::TailVisibility || residual)
                 set.w.push_back(tailScale * tailScale * visibility * visibility);
         } else {
             const auto f = dfaoitFeatures(sums);
@@ -180,8 +184,8 @@ Network train(NetworkKind kind, const TrainingSet& set, const TrainOptions& opti
     }
 
     // Output bias: the mean training target (through the inverse sigmoid for DFAOIT), so training
-    // starts from the constant predictor. The residual kind starts from f = 0, the closed form.
-    if (kind != NetworkKind::StarNTResidual) {
+    // starts from the constant predictor. The residual kinds start from f = 0, the closed form.
+    if (outputActivation(kind) != Network::Layer::Linear) {
         double mean[3] = {0.0, 0.0, 0.0};
         for (size_t s : training)
             for (int k = 0; k < 3; ++k) mean[k] += set.y[s * 3 + k];

@@ -1,0 +1,31 @@
+// starnt-d composite (CPU reference nn::compositeStarntDepth): STAR-NT's five inputs plus C_m, the
+// tail colour weighted by the tail's depth moments (hybrid-moments' closed form,
+// methods/hybrid_moments/tail_moments.glsl), and a network of 8-32-16-3 that corrects C_m:
+//   tail = 0 (N <= 2), the third fragment exactly (N == 3), (1 - t_tail) max(C_m + f(x), 0) otherwise,
+//   C = a1 C1 + (1 - a1) a2 C2 + T2 * tail + T_all * C_bg.
+// f(x) = 0 is hybrid-moments' composite. nnEvaluate() (linear output) is generated from the weights
+// file and prepended.
+#include "methods/neural/neural_inputs.glsl"
+#include "methods/hybrid_moments/tail_moments.glsl"
+
+uniform vec3 u_background;
+
+bool networkApplies(PixelSums s) { return s.count >= 3.5; }
+
+void networkInputs(PixelSums s, out float x[STARNT_NN_INPUTS]) {
+    float starnt[5];
+    starntInputs(s, starnt);
+    for (int i = 0; i < 5; ++i) x[i] = starnt[i];
+    vec3 moment = momentWeightedTailColor(s, ivec2(gl_FragCoord.xy));
+    x[5] = moment.r;
+    x[6] = moment.g;
+    x[7] = moment.b;
+}
+
+// `networkOutput` is f(x) where networkApplies(s), unused elsewhere (threeLayerComposite ignores the
+// deep tail for N <= 3).
+vec3 compositePixel(PixelSums s, vec3 networkOutput) {
+    vec3 moment = momentWeightedTailColor(s, ivec2(gl_FragCoord.xy));
+    vec3 deepTail = (1.0 - tailTransmittance(s)) * max(moment + networkOutput, vec3(0.0));
+    return threeLayerComposite(s, deepTail, u_background);
+}
