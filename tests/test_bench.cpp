@@ -51,7 +51,7 @@ const std::string kTinyArgs = "bench --preset quick --suite-dir /nonexistent/sui
 
 // The default methods of bench: unsorted, wboit, mboit, mboit-t3, dfaoit, starnt-full, hybrid,
 // starnt-residual-full, starnt, starnt-paper, starnt-total, starnt-total-warp, starnt-corners.
-constexpr size_t kDefaultVariants = 14;
+constexpr size_t kDefaultVariants = 15;
 
 json readJson(const fs::path& p) {
     std::ifstream f(p);

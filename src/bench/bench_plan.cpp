@@ -96,7 +96,7 @@ const std::vector<Variant>& allVariants() {
 }
 
 std::vector<std::string> defaultVariantNames() {
-    return {"unsorted", "wboit", "mboit", "mboit-t3", "dfaoit", "starnt-full", "hybrid", "hybrid-moments", "starnt-residual-full", "starnt",
+    return {"unsorted", "wboit", "mboit", "mboit-t3", "dfaoit", "starnt-full", "hybrid", "hybrid-moments", "starnt-d", "starnt-residual-full", "starnt",
             "starnt-paper", "starnt-total",
             "starnt-total-warp", "starnt-corners"};
 }
