@@ -22,9 +22,9 @@ done
 python3 - "$out" "$networks" $families <<'PY'
 import json, sys
 out, networks, families = sys.argv[1], sys.argv[2].split(), sys.argv[3:]
-# Columns: each network, hybrid and wboit (whole family), each network / wboit, then the tail
+# Columns: each network, hybrid, hybrid-moments and wboit (whole family), each network / wboit, then the tail
 # pixels (N > 3) of each network, hybrid and wboit.
-head = ["held-out family", "pixels (tail)"] + networks + ["hybrid", "wboit"] + [f"{n}/wboit" for n in networks]
+head = ["held-out family", "pixels (tail)"] + networks + ["hybrid", "hybrid-moments", "wboit"] + [f"{n}/wboit" for n in networks]
 head += [f"tail: {n}" for n in networks] + ["tail: hybrid", "tail: wboit"]
 print("| " + " | ".join(head) + " |")
 print("|" + "---|" * len(head))
@@ -35,7 +35,8 @@ for fam in families:
         row[net] = next(f for f in rep["families"] if f["family"] == fam and f["held_out"])
     first = row[networks[0]]
     cells = [fam, f"{first['validation_pixels']} ({first['validation_tail_pixels']})"]
-    cells += [f"{row[n]['mse_network']:.3e}" for n in networks] + [f"{first['mse_hybrid']:.3e}", f"{first['mse_wboit']:.3e}"]
+    cells += [f"{row[n]['mse_network']:.3e}" for n in networks] + [f"{first['mse_hybrid']:.3e}",
+                                                                   f"{first['mse_hybrid_moments']:.3e}", f"{first['mse_wboit']:.3e}"]
     cells += [f"{row[n]['mse_network'] / row[n]['mse_wboit']:.3f}" for n in networks]
     cells += [f"{row[n]['tail_mse_network']:.3e}" for n in networks]
     cells += [f"{first['tail_mse_hybrid']:.3e}", f"{first['tail_mse_wboit']:.3e}"]
