@@ -202,6 +202,16 @@ TEST(NnComposite, NetworkTailIsUsedBeyondThreeFragments) {
               "constant tail");
 }
 
+namespace {
+// The three-layer composite written out with a deep tail of colour `tailColor` (clamped at 0) under
+// the tail's opacity 1 - tTail: what a residual kind's exact target must rebuild.
+glm::vec3 deepTailComposite(const PixelSums& s, float tTail, glm::vec3 tailColor, glm::vec3 bg) {
+    const float t2 = (1.0f - s.a1) * (1.0f - s.a2);
+    return s.a1 * s.c1 + (1.0f - s.a1) * s.a2 * s.c2 + t2 * (1.0f - tTail) * glm::max(tailColor, glm::vec3(0.0f)) +
+           s.transmittance * bg;
+}
+}  // namespace
+
 // The residual kind: with f = 0 it is hybrid's composite bit for bit; with f the exact residual
 // target it is the exact composite; its correction is scaled by the tail opacity, so a faint tail
 // cannot move the pixel much whatever the network says.
@@ -222,11 +232,8 @@ TEST(NnComposite, ResidualIsHybridPlusACorrectionThatFadesWithTheTail) {
         const auto x = starntFeatures(s);
         if (1.0f - x[0] < kResidualMinTailOpacity) continue;
         const glm::vec3 target = starntResidualTarget(sorted, s);
-        const float t2 = (1.0f - s.a1) * (1.0f - s.a2);
-        const glm::vec3 rebuilt = s.a1 * s.c1 + (1.0f - s.a1) * s.a2 * s.c2 +
-                                  t2 * (1.0f - x[0]) * glm::max(glm::vec3(x[2], x[3], x[4]) + target, glm::vec3(0.0f)) +
-                                  s.transmittance * bg;
-        expectVec(rebuilt, compositeOver(sorted, bg), 1e-5f, "exact residual");
+        expectVec(deepTailComposite(s, x[0], glm::vec3(x[2], x[3], x[4]) + target, bg), compositeOver(sorted, bg), 1e-5f,
+                  "exact residual");
     }
     EXPECT_GT(deep, 1000);
     // A large constant correction (+1 per channel) moves a deep pixel by at most T2 (1 - t_tail).
@@ -261,11 +268,8 @@ TEST(NnComposite, StarntDepthIsHybridMomentsPlusACorrection) {
         weighted += glm::length(glm::vec3(x[5], x[6], x[7]) - glm::vec3(x[2], x[3], x[4])) > 1e-3f;
         if (1.0f - x[0] < kResidualMinTailOpacity) continue;
         const glm::vec3 target = starntDepthTarget(sorted, s, m);
-        const float t2 = (1.0f - s.a1) * (1.0f - s.a2);
-        const glm::vec3 rebuilt = s.a1 * s.c1 + (1.0f - s.a1) * s.a2 * s.c2 +
-                                  t2 * (1.0f - x[0]) * glm::max(glm::vec3(x[5], x[6], x[7]) + target, glm::vec3(0.0f)) +
-                                  s.transmittance * bg;
-        expectVec(rebuilt, compositeOver(sorted, bg), 1e-5f, "exact depth residual");
+        expectVec(deepTailComposite(s, x[0], glm::vec3(x[5], x[6], x[7]) + target, bg), compositeOver(sorted, bg), 1e-5f,
+                  "exact depth residual");
     }
     EXPECT_GT(deep, 1000);
     EXPECT_GT(weighted, deep / 2) << "C_m should differ from C_tilde on most deep synthetic lists";
