@@ -29,14 +29,17 @@ struct MboitOptions {
     std::string moments = "6";  // "4" or "6" power moments, "t2" or "t3" trigonometric moments
 };
 
-// starnt, dfaoit and hybrid: the neural methods (three passes, SPEC 1-3) and their acceleration
-// (SPEC 4-6).
+// starnt, dfaoit, hybrid, starnt-residual, hybrid-moments and starnt-d: the neural methods (three
+// passes, SPEC 1-3) and their acceleration (SPEC 4-6; hybrid-moments and starnt-d run every pass at
+// full resolution and refuse tiles, reduced scales, corner inference and joint upsampling).
 struct NeuralOptions {
-    // Weights file; empty = the shipped default for the method. hybrid has no network.
+    // Weights file; empty = the shipped default for the method. hybrid and hybrid-moments have no
+    // network.
     std::string weightsPath;
 
     // Adaptive screen-space tiles evaluated after every real frame; their level histogram (w_bar)
-    // sets the pass 2/3 scales of the next real frame. Unset: on for starnt, off for dfaoit.
+    // sets the pass 2/3 scales of the next real frame. Unset: on for starnt (and hybrid,
+    // starnt-residual), off for dfaoit, hybrid-moments and starnt-d.
     std::optional<bool> spatial;
     // Fixed pass 2/3 scales per axis in [0.25, 1] for ablations; 0 = chosen by the tiles (1 when
     // spatial is off).

@@ -7,9 +7,10 @@
 //   - a DrawCallback, called once per geometry pass with the pass's program already bound and the
 //     pass's GL state set; the engine sets its own uniforms on that program and issues its draws.
 // After render() the result is in outputTexture(): linear RGBA float, composited over the background,
-// alpha 1, at the frame size; RGBA32F for most methods, RGBA16F for starnt, dfaoit and hybrid with
-// their default compact targets (NeuralOptions::Targets), which may hand out one of their pass
-// targets, written over in place. Read it before the next render().
+// alpha 1, at the frame size; RGBA32F for most methods, RGBA16F for starnt, dfaoit, hybrid and
+// starnt-residual with their default compact targets (NeuralOptions::Targets; hybrid-moments and
+// starnt-d: 16-bit values in an RGBA32F texture), which may hand out one of their pass targets,
+// written over in place. Read it before the next render().
 //
 //   auto method = starnt::createMethod("wboit", engineSurface, {});
 //   method->render(frame, [&](const starnt::GeometryPass& pass) { engine.drawTransparent(pass.program); });
