@@ -83,6 +83,19 @@ bool narrowLayersUsed(NeuralOptions::Targets targets, bool narrowLayers) {
     return narrowLayers && targets == NeuralOptions::Targets::Compact;
 }
 
+// The define of pass 3 with the tail moments, after checking that the context has the 5 colour
+// targets it writes (ES 3.2 guarantees 4): a clear error rather than a shader that fails to link.
+std::string tailMomentsDefine(bool tailMoments) {
+    if (!tailMoments) return "";
+    GLint drawBuffers = 0;
+    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &drawBuffers);
+    if (drawBuffers < 5) {
+        throw Error("the tail moments need 5 colour targets in pass 3; this GL context allows " +
+                    std::to_string(drawBuffers) + " (GL_MAX_DRAW_BUFFERS)");
+    }
+    return "#define STARNT_TAIL_MOMENTS\n";
+}
+
 // The defines of passes 1 and 2, which write the layers.
 std::string layerPassDefines(NeuralOptions::Targets targets, bool narrowLayers) {
     return std::string(NeuralPasses::targetsDefine(targets)) +
@@ -99,22 +112,13 @@ NeuralPasses::NeuralPasses(const SurfaceShader& surface, bool colorSums, NeuralO
                                  layerPassDefines(targets, narrowLayers))),
       pass3_(buildSurfaceProgram(surface, "neural_pass3", "methods/neural/pass3_accumulate.frag.glsl",
                                  std::string(colorSums ? "" : "#define STARNT_COUNT_ONLY\n") +
-                                     (tailMoments ? "#define STARNT_TAIL_MOMENTS\n" : ""))),
+                                     tailMomentsDefine(tailMoments))),
       tailResolve_(buildTailResolveProgram(std::string(colorSums ? "" : "#define STARNT_COUNT_ONLY\n") + targetsDefine(targets))),
       emptyVao_(gl::makeEmptyVertexArray()),
       colorSums_(colorSums),
       targets_(targets),
       narrowLayers_(narrowLayersUsed(targets, narrowLayers)),
-      tailMoments_(tailMoments) {
-    if (tailMoments_) {
-        GLint drawBuffers = 0;
-        glGetIntegerv(GL_MAX_DRAW_BUFFERS, &drawBuffers);
-        if (drawBuffers < 5) {
-            throw Error("the tail moments need 5 colour targets in pass 3; this GL context allows " +
-                        std::to_string(drawBuffers) + " (GL_MAX_DRAW_BUFFERS)");
-        }
-    }
-}
+      tailMoments_(tailMoments) {}
 
 // The compact layout's transmittance, prod (1 - a) blended over up to hundreds of fragments. In a
 // 16-bit float target every blended multiply loses up to a step of 2^-11 relative, and llvmpipe
