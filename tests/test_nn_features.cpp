@@ -347,18 +347,24 @@ TEST(NnTailMoments, FlatWeightsGiveThePlainMean) {
     expectVec(momentWeightedTailColor(f, tailMomentsFromFragments(flat)), plainMean(f), 0.0f, "one depth");
 }
 
-// The moments count only what lies behind the second layer, relative to it, and a tail whose
-// spread is tiny next to its distance (32-bit sums could not centre it) falls back to the plain mean.
-TEST(NnTailMoments, MomentsAreRelativeToTheSecondLayerAndGuarded) {
+// The moments count only what lies behind the second layer, in a logarithmic depth behind it, and a
+// tail whose spread is tiny next to its distance (32-bit sums could not centre it) falls back to the
+// plain mean.
+TEST(NnTailMoments, MomentsAreLogarithmicBehindTheSecondLayerAndGuarded) {
     const FragmentList list = {frag({1, 0, 0}, 0.5f, 0.4f), frag({0, 1, 0}, 0.5f, 0.2f), frag({0, 0, 1}, 0.5f, 0.5f),
                                frag({1, 1, 1}, 0.5f, 0.7f), frag({1, 1, 0}, 0.01f, 0.9f)};  // the last below the cut-off
     const TailMoments m = tailMomentsFromFragments(list);
-    // Tail: blue at u = 0.1, white at u = 0.3 (z2 = 0.4).
-    EXPECT_NEAR(m.alphaU, 0.5f * 0.1f + 0.5f * 0.3f, 1e-6f);
-    EXPECT_NEAR(m.alphaU2, 0.5f * 0.01f + 0.5f * 0.09f, 1e-6f);
-    expectVec(m.alphaColorU, glm::vec3(0.15f, 0.15f, 0.2f), 1e-6f, "sum a C u");
-    expectVec(m.alphaColorU2, glm::vec3(0.045f, 0.045f, 0.05f), 1e-6f, "sum a C u^2");
-    // Spread 1e-4 behind a gap of 0.3: below STARNT_TAIL_MOMENT_PLAIN_BELOW of the mean.
+    // Tail: blue 0.1 and white 0.3 behind z2 = 0.4 in window depth, with 0.6 of the range left:
+    // u = ln(1 + 0.1 / 6e-4) = ln(167.67) and ln(1 + 0.3 / 6e-4) = ln(501) (tail_moments_constants.h).
+    const float u1 = std::log(1.0f + 0.1f / 6e-4f), u2 = std::log(501.0f);
+    EXPECT_NEAR(u1, 5.1220f, 1e-4f);
+    EXPECT_NEAR(m.alphaU, 0.5f * (u1 + u2), 1e-3f);
+    EXPECT_NEAR(m.alphaU2, 0.5f * (u1 * u1 + u2 * u2), 1e-2f);
+    expectVec(m.alphaColorU, 0.5f * glm::vec3(u2, u2, u1 + u2), 1e-3f, "sum a C u");
+    expectVec(m.alphaColorU2, 0.5f * glm::vec3(u2 * u2, u2 * u2, u1 * u1 + u2 * u2), 1e-2f, "sum a C u^2");
+    // Far fragments are pulled in: twice as far behind adds about ln 2 to u, not twice u.
+    EXPECT_LT(u2 - u1, 1.2f);
+    // Spread 1e-5 in depth 0.3 behind z2: below STARNT_TAIL_MOMENT_PLAIN_BELOW of the mean.
     FragmentList far = graded(20, 0.3f, 0.5f, 0.50001f, {1, 0, 0}, {0, 0, 1});
     const PixelSums s = sumsFromFragments(far);
     const glm::vec3 plain(starntFeatures(s)[2], starntFeatures(s)[3], starntFeatures(s)[4]);

@@ -96,7 +96,8 @@ glm::vec3 compositeStarntResidual(const Network& net, const PixelSums& s, glm::v
 // hybrid (SPEC 7): STAR-NT's composite with the tail in closed form, (1 - t_tail) C_tilde.
 glm::vec3 compositeHybrid(const PixelSums& s, glm::vec3 background);
 // hybrid-moments: hybrid with the tail's colour weighted by where its opacity lies in depth.
-// Pass 3 also sums, over the fragments behind the second layer (u = z - z2 > 0, window depth):
+// Pass 3 also sums, over the fragments behind the second layer (window depth z > z2), with u =
+// ln(1 + (z - z2) / (s (1 - z2))) a logarithmic depth behind it (s: tail_moments_constants.h):
 struct TailMoments {
     glm::vec3 alphaColorU{0.0f};   // sum a C u
     float alphaU = 0.0f;           // sum a u
@@ -111,8 +112,10 @@ TailMoments tailMomentsFromFragments(FragmentList fragments, float alphaCutoff =
 // exp(-tau x) of the tail in front of it, tau = -ln t_tail. That weight's least-squares quadratic
 // on [0, 1] (Legendre coefficients of closed-form integrals) turns the moments into the weighted
 // mean colour sum a C w(x) / sum a w(x) in closed form: one additive pass, no second pass over the
-// fragments. The quadratic (then the linear) term is dropped where 32-bit sums cannot centre it
-// (tail_moments_constants.h); C_tilde where the spread is zero. Zero when A_tail <= kTailAlphaEpsilon.
+// fragments. The linear weight replaces a quadratic that would rise again before x = 2 (far
+// fragments weighted as if in front); the quadratic (then the linear) term is dropped where 32-bit
+// sums cannot centre it (tail_moments_constants.h); C_tilde where the spread is zero. Zero when
+// A_tail <= kTailAlphaEpsilon.
 glm::vec3 momentWeightedTailColor(const PixelSums& s, const TailMoments& m);
 // hybrid-moments' composite: hybrid's with the deep tail (1 - t_tail) momentWeightedTailColor.
 glm::vec3 compositeHybridMoments(const PixelSums& s, const TailMoments& m, glm::vec3 background);

@@ -188,7 +188,9 @@ TailMoments tailMomentsFromFragments(FragmentList fragments, float alphaCutoff) 
     for (size_t i = 2; i < fragments.size(); ++i) {
         const Fragment& f = fragments[i];
         if (!(f.depth > second)) continue;  // u = 0 adds nothing
-        const double u = double(f.depth - second);  // the float difference pass 3 computes
+        // The float operations pass 3 does (tail_moments_constants.h).
+        const float behind = (f.depth - second) / (float(STARNT_TAIL_MOMENT_DEPTH_SCALE) * (1.0f - second));
+        const double u = double(std::log(1.0f + behind));
         const glm::dvec4 term = glm::dvec4(glm::dvec3(f.color) * double(f.alpha), double(f.alpha)) * u;
         m1 += term;
         m2 += term * u;
@@ -238,7 +240,10 @@ glm::vec3 momentWeightedTailColor(const PixelSums& s, const TailMoments& m) {
     exponentialMoments(tau, integral);
     // Shifted Legendre coefficients of exp(-tau x), then the same polynomial in powers of x.
     const float c0 = integral[0], c1 = 3.0f * (2.0f * integral[1] - integral[0]);
-    const float c2 = quadratic ? 5.0f * (6.0f * integral[2] - 6.0f * integral[1] + integral[0]) : 0.0f;
+    float c2 = quadratic ? 5.0f * (6.0f * integral[2] - 6.0f * integral[1] + integral[0]) : 0.0f;
+    // A convex quadratic whose minimum lies before STARNT_TAIL_MOMENT_MIN_VERTEX rises again at the
+    // back: the linear weight then (its minimum -b1 / 2 b2 < X, i.e. b1 + 2 X b2 > 0).
+    if (c2 > 0.0f && (2.0f * c1 - 6.0f * c2) + 2.0f * float(STARNT_TAIL_MOMENT_MIN_VERTEX) * (6.0f * c2) > 0.0f) c2 = 0.0f;
     const float b0 = c0 - c1 + c2, b1 = 2.0f * c1 - 6.0f * c2, b2 = 6.0f * c2;
     // x = (u - lo) / width over the uniform interval with this mean and spread.
     const float halfWidth = std::sqrt(3.0f) * spread, lo = mean - halfWidth, width = 2.0f * halfWidth;

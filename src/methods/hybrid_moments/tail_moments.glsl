@@ -36,6 +36,8 @@ vec3 momentWeightedTailColor(PixelSums s, ivec2 p) {
     vec3 integral = exponentialMoments(tau);
     float c0 = integral.x, c1 = 3.0 * (2.0 * integral.y - integral.x);
     float c2 = quadratic ? 5.0 * (6.0 * integral.z - 6.0 * integral.y + integral.x) : 0.0;
+    // A convex quadratic whose minimum lies before STARNT_TAIL_MOMENT_MIN_VERTEX: the linear weight.
+    if (c2 > 0.0 && (2.0 * c1 - 6.0 * c2) + 2.0 * float(STARNT_TAIL_MOMENT_MIN_VERTEX) * (6.0 * c2) > 0.0) c2 = 0.0;
     float b0 = c0 - c1 + c2, b1 = 2.0 * c1 - 6.0 * c2, b2 = 6.0 * c2;
     float halfWidth = sqrt(3.0) * spread, lo = mean - halfWidth, width = 2.0 * halfWidth;
     vec3 firstFromLo = m1.rgb - lo * alphaColor;

@@ -3,7 +3,18 @@
 #ifndef STARNT_TAIL_MOMENTS_CONSTANTS_H
 #define STARNT_TAIL_MOMENTS_CONSTANTS_H
 
-// The moments are 32-bit float sums of u = z - z2 (window depth behind pass 2's layer) and u^2;
+// The depth coordinate of the moments: u = ln(1 + (z - z2) / (s (1 - z2))) for a fragment at window
+// depth z behind pass 2's layer at z2, s this fraction of the window-depth range left behind z2.
+// Logarithmic (as MBOIT warps its depth) so that a few fragments far behind a dense tail do not
+// stretch the interval the tail's opacity is spread over (DESIGN.md, "hybrid-moments": hair seen
+// from above, the head shell far behind the strands); linear below s.
+#define STARNT_TAIL_MOMENT_DEPTH_SCALE 1e-3
+// The quadratic weight must keep falling over the interval [0, 1] and as far again beyond its
+// middle: where its minimum lies before this x the linear weight is used instead (a convex
+// least-squares fit of a steep exp(-tau x) rises again at the back, weighting far fragments as if
+// they were in front).
+#define STARNT_TAIL_MOMENT_MIN_VERTEX 2.0
+// The moments are 32-bit float sums of u and u^2;
 // centring them on the tail's mean depth multiplies their rounding (about N 2^-24 relative after N
 // additions) by (mean / spread)^2 for the quadratic term and mean / spread for the linear one.
 // Below these spread-to-mean ratios the quadratic weight (then the linear one) is dropped: for a

@@ -85,8 +85,8 @@ public:
     // an RGBA32F one (STARNT_COUNT_ONLY): the STAR-NT inputs never read sum C, only DFAOIT's do.
     // `narrowLayers` (compact targets only): the narrow layers above.
     // `tailMoments` (hybrid-moments; every pass at full resolution): pass 3 also sums, over the
-    // fragments behind pass 2's layer, a C u, a u, a C u^2 and a u^2 with u = z - z2 (window depth,
-    // z2 read from pass 2's depth), into two RGBA32F targets (32 bytes a pixel: 16-bit sums cannot
+    // fragments behind pass 2's layer, a C u, a u, a C u^2 and a u^2 with u a logarithmic depth behind
+    // z2 (window depth, z2 read from pass 2's depth; tail_moments_constants.h), into two RGBA32F targets (32 bytes a pixel: 16-bit sums cannot
     // be centred on the tail's mean depth; tail_moments_constants.h), and keeps sum a C, sum a and
     // the transmittance in 32-bit float (+10 bytes), since the centring and the weights read them.
     explicit NeuralPasses(const SurfaceShader& surface, bool colorSums = true,

@@ -5,7 +5,8 @@
 //            which only DFAOIT reads; 12 bytes a pixel less)
 //   target 2 (R32F,    blend ZERO/ONE_MINUS_SRC_ALPHA): prod (1 - a_i)
 //   with STARNT_TAIL_MOMENTS (hybrid-moments, full resolution), over the fragments behind pass 2's
-//   layer only, u = z - z2 in window depth (CPU reference nn::tailMomentsFromFragments):
+//   layer only, u a logarithmic depth behind z2 (tail_moments_constants.h; CPU reference
+//   nn::tailMomentsFromFragments):
 //   target 3 (RGBA32F, blend ONE/ONE):                 sum a_i C_i u_i, sum a_i u_i
 //   target 4 (RGBA32F, blend ONE/ONE):                 sum a_i C_i u_i^2, sum a_i u_i^2
 layout(location = 0) out vec4 outAlphaColor;
@@ -15,6 +16,7 @@ layout(location = 2) out vec4 outTransmittance;
 layout(location = 3) out vec4 outTailMoment1;
 layout(location = 4) out vec4 outTailMoment2;
 layout(binding = 0) uniform highp sampler2D u_secondDepth;  // pass 2's depth, 1 where it drew nothing
+#include "methods/hybrid_moments/tail_moments_constants.h"
 #endif
 
 void main() {
@@ -28,7 +30,10 @@ void main() {
     outTransmittance = vec4(0.0, 0.0, 0.0, s.a);
 #ifdef STARNT_TAIL_MOMENTS
     float second = texelFetch(u_secondDepth, ivec2(gl_FragCoord.xy), 0).r;
-    float u = gl_FragCoord.z > second ? gl_FragCoord.z - second : 0.0;
+    // tail_moments_constants.h: a logarithmic depth behind z2 (1 - second > 0 wherever z > second).
+    float u = gl_FragCoord.z > second
+                  ? log(1.0 + (gl_FragCoord.z - second) / (float(STARNT_TAIL_MOMENT_DEPTH_SCALE) * (1.0 - second)))
+                  : 0.0;
     outTailMoment1 = vec4(s.rgb * s.a, s.a) * u;
     outTailMoment2 = outTailMoment1 * u;
 #endif
