@@ -12,11 +12,23 @@ uniform vec3 u_background;
 
 bool networkApplies(PixelSums s) { return s.count >= 3.5; }
 
+// C_m of this pixel, computed once: networkInputs and compositePixel both need it (each call reads
+// two moment texels and evaluates the weight's integrals).
+vec3 tailMomentColor;
+bool tailMomentColorKnown = false;
+vec3 pixelTailMomentColor(PixelSums s) {
+    if (!tailMomentColorKnown) {
+        tailMomentColor = momentWeightedTailColor(s, ivec2(gl_FragCoord.xy));
+        tailMomentColorKnown = true;
+    }
+    return tailMomentColor;
+}
+
 void networkInputs(PixelSums s, out float x[STARNT_NN_INPUTS]) {
     float starnt[5];
     starntInputs(s, starnt);
     for (int i = 0; i < 5; ++i) x[i] = starnt[i];
-    vec3 moment = momentWeightedTailColor(s, ivec2(gl_FragCoord.xy));
+    vec3 moment = pixelTailMomentColor(s);
     x[5] = moment.r;
     x[6] = moment.g;
     x[7] = moment.b;
@@ -25,7 +37,7 @@ void networkInputs(PixelSums s, out float x[STARNT_NN_INPUTS]) {
 // `networkOutput` is f(x) where networkApplies(s), unused elsewhere (threeLayerComposite ignores the
 // deep tail for N <= 3).
 vec3 compositePixel(PixelSums s, vec3 networkOutput) {
-    vec3 moment = momentWeightedTailColor(s, ivec2(gl_FragCoord.xy));
+    vec3 moment = pixelTailMomentColor(s);
     vec3 deepTail = (1.0 - tailTransmittance(s)) * max(moment + networkOutput, vec3(0.0));
     return threeLayerComposite(s, deepTail, u_background);
 }
