@@ -150,6 +150,35 @@ TEST(ScaleGuard, ThinStrandsLoseAndSmoothGradientsDoNot) {
     EXPECT_EQ(guardScales(flat, STARNT_SCALE_GUARD_BUDGET).pass3, 0.25f);
 }
 
+// Per-tile sums (the runtime's subset, and every pixel for the per-tile study): the tiles of the
+// sampled subset add up to scaleGuardSums, every pixel counts 256 occupied pixels in a whole tile,
+// and only the tiles that hold strands predict a loss.
+TEST(ScaleGuard, PerTileSumsLocateTheLoss) {
+    const int w = 64, h = 48;  // 4 x 3 tiles
+    const Layers l = layered(w, h, [](int x, int y) {
+        return x >= 32 && y < 16 && x % 4 == 1 ? glm::vec3(1.0f, 0.1f, 0.1f) : glm::vec3(0.1f);  // strands in tiles 2, 3
+    });
+    const std::vector<ScaleGuard> sampled = scaleGuardTiles(w, h, l.composite, l.nearest, l.second, GuardPixels::Sampled);
+    const std::vector<ScaleGuard> every = scaleGuardTiles(w, h, l.composite, l.nearest, l.second, GuardPixels::Every);
+    ASSERT_EQ(sampled.size(), 12u);
+    ASSERT_EQ(every.size(), 12u);
+    ScaleGuard summed;
+    for (const ScaleGuard& t : sampled) {
+        summed.occupied += t.occupied;
+        summed.loss2[0] += t.loss2[0];
+    }
+    const ScaleGuard total = scaleGuardSums(w, h, l.composite, l.nearest, l.second);
+    EXPECT_EQ(summed.occupied, total.occupied);
+    EXPECT_EQ(summed.loss2[0], total.loss2[0]);
+    for (size_t t = 0; t < every.size(); ++t) {
+        EXPECT_EQ(every[t].occupied, 256.0f) << t;
+        // Tiles 2 and 3 hold the strands; tile 1 only reaches them through the bilinear corners at
+        // its right edge (x = 32 is the next tile's first column: no strand there, x % 4 == 0).
+        if (t == 2 || t == 3) EXPECT_GT(every[t].loss2[0] / 256.0f, 100.0 * STARNT_SCALE_GUARD_BUDGET) << t;
+        else EXPECT_EQ(every[t].loss2[0], 0.0f) << t;
+    }
+}
+
 // The guard's pixel subset: a quarter of the pixels, evenly over the four classes of a 2x2 sample
 // grid (no alignment with the reduced passes' samples), and over the 16 classes of a 4x4 grid.
 TEST(ScaleGuard, SubsetIsAnEvenQuarter) {

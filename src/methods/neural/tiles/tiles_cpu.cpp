@@ -164,62 +164,89 @@ glm::ivec2 guardPixelOfBlock(int blockX, int blockY) {
 
 bool guardSamples(int x, int y) { return guardPixelOfBlock(x / 2, y / 2) == glm::ivec2(x, y); }
 
-ScaleGuard scaleGuardSums(int width, int height, const std::vector<glm::vec4>& composite,
-                          const std::vector<glm::vec4>& nearest, const std::vector<glm::vec4>& second) {
+std::vector<ScaleGuard> scaleGuardTiles(int width, int height, const std::vector<glm::vec4>& composite,
+                                        const std::vector<glm::vec4>& nearest, const std::vector<glm::vec4>& second,
+                                        GuardPixels pixels) {
     const TileGrid grid = TileGrid::forImage(width, height);
     auto index = [&](int x, int y) { return size_t(y) * size_t(width) + size_t(x); };
     auto shares = [&](int x, int y) { return sharesAt(composite[index(x, y)], nearest[index(x, y)], second[index(x, y)]); };
-    ScaleGuard total;
+    std::vector<ScaleGuard> tiles;
+    tiles.reserve(size_t(grid.tilesX) * size_t(grid.tilesY));
     for (int ty = 0; ty < grid.tilesY; ++ty) {
         for (int tx = 0; tx < grid.tilesX; ++tx) {
             std::array<float, STARNT_GUARD_VALUES> tile{};
-            // One pixel per 2x2 block, blocks in the shader's local invocation order.
-            for (int by = 0; by < STARNT_TILE_SIZE / 2; ++by) {
-                for (int bx = 0; bx < STARNT_TILE_SIZE / 2; ++bx) {
-                    const glm::ivec2 chosen = guardPixelOfBlock(tx * STARNT_TILE_SIZE / 2 + bx, ty * STARNT_TILE_SIZE / 2 + by);
-                    const int x = chosen.x, y = chosen.y;
-                    if (x >= width || y >= height) continue;
-                    const glm::vec4 n = nearest[index(x, y)], sec = second[index(x, y)];
-                    if (!(n.a > 0.0f)) continue;
-                    const glm::vec3 c = glm::vec3(composite[index(x, y)]);
-                    const glm::vec3 front1 = n.a * glm::vec3(n), front2 = front1 + (1.0f - n.a) * sec.a * glm::vec3(sec);
-                    const float t1 = 1.0f - n.a, t2 = t1 * (1.0f - sec.a);
-                    tile[STARNT_GUARD_OCCUPIED] += 1.0f;
-                    tile[STARNT_GUARD_ENERGY_PASS2] += srgbSquaredError(c, front1);
-                    tile[STARNT_GUARD_ENERGY_PASS3] += srgbSquaredError(c, front2);
-                    for (int k = 0; k < 2; ++k) {
-                        const int step = k == 0 ? 2 : 4;
-                        const int lastX = (width - 1) / step * step, lastY = (height - 1) / step * step;
-                        const int x0 = x / step * step, y0 = y / step * step;
-                        const int x1 = std::min(x0 + step, lastX), y1 = std::min(y0 + step, lastY);
-                        const float fx = x1 > x0 ? float(x - x0) / float(step) : 0.0f;
-                        const float fy = y1 > y0 ? float(y - y0) / float(step) : 0.0f;
-                        const int sx[4] = {x0, x1, x0, x1}, sy[4] = {y0, y0, y1, y1};
-                        const float w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
-                        glm::vec3 sum1(0.0f), sum2(0.0f);
-                        float weight1 = 0.0f, weight2 = 0.0f;
-                        for (int i = 0; i < 4; ++i) {
-                            const Shares s = shares(sx[i], sy[i]);
-                            if (s.valid1) sum1 += w[i] * s.behind1, weight1 += w[i];
-                            if (s.valid2) sum2 += w[i] * s.behind2, weight2 += w[i];
-                        }
-                        const Shares own = shares(x, y);
-                        const glm::vec3 behind1 = weight1 > 0.0f ? sum1 / weight1 : own.behind1;
-                        const glm::vec3 behind2 = weight2 > 0.0f ? sum2 / weight2 : own.behind2;
-                        const glm::vec3 rebuilt2 = own.valid1 ? front1 + t1 * behind1 : c;
-                        const glm::vec3 rebuilt3 = own.valid2 ? front2 + t2 * behind2 : c;
-                        tile[size_t(STARNT_GUARD_LOSS_PASS2_HALF + k)] += srgbSquaredError(c, rebuilt2);
-                        tile[size_t(STARNT_GUARD_LOSS_PASS3_HALF + k)] += srgbSquaredError(c, rebuilt3);
+            auto addPixel = [&](int x, int y) {
+                if (x >= width || y >= height) return;
+                const glm::vec4 n = nearest[index(x, y)], sec = second[index(x, y)];
+                if (!(n.a > 0.0f)) return;
+                const glm::vec3 c = glm::vec3(composite[index(x, y)]);
+                const glm::vec3 front1 = n.a * glm::vec3(n), front2 = front1 + (1.0f - n.a) * sec.a * glm::vec3(sec);
+                const float t1 = 1.0f - n.a, t2 = t1 * (1.0f - sec.a);
+                tile[STARNT_GUARD_OCCUPIED] += 1.0f;
+                tile[STARNT_GUARD_ENERGY_PASS2] += srgbSquaredError(c, front1);
+                tile[STARNT_GUARD_ENERGY_PASS3] += srgbSquaredError(c, front2);
+                for (int k = 0; k < 2; ++k) {
+                    const int step = k == 0 ? 2 : 4;
+                    const int lastX = (width - 1) / step * step, lastY = (height - 1) / step * step;
+                    const int x0 = x / step * step, y0 = y / step * step;
+                    const int x1 = std::min(x0 + step, lastX), y1 = std::min(y0 + step, lastY);
+                    const float fx = x1 > x0 ? float(x - x0) / float(step) : 0.0f;
+                    const float fy = y1 > y0 ? float(y - y0) / float(step) : 0.0f;
+                    const int sx[4] = {x0, x1, x0, x1}, sy[4] = {y0, y0, y1, y1};
+                    const float w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+                    glm::vec3 sum1(0.0f), sum2(0.0f);
+                    float weight1 = 0.0f, weight2 = 0.0f;
+                    for (int i = 0; i < 4; ++i) {
+                        const Shares s = shares(sx[i], sy[i]);
+                        if (s.valid1) sum1 += w[i] * s.behind1, weight1 += w[i];
+                        if (s.valid2) sum2 += w[i] * s.behind2, weight2 += w[i];
+                    }
+                    const Shares own = shares(x, y);
+                    const glm::vec3 behind1 = weight1 > 0.0f ? sum1 / weight1 : own.behind1;
+                    const glm::vec3 behind2 = weight2 > 0.0f ? sum2 / weight2 : own.behind2;
+                    const glm::vec3 rebuilt2 = own.valid1 ? front1 + t1 * behind1 : c;
+                    const glm::vec3 rebuilt3 = own.valid2 ? front2 + t2 * behind2 : c;
+                    tile[size_t(STARNT_GUARD_LOSS_PASS2_HALF + k)] += srgbSquaredError(c, rebuilt2);
+                    tile[size_t(STARNT_GUARD_LOSS_PASS3_HALF + k)] += srgbSquaredError(c, rebuilt3);
+                }
+            };
+            if (pixels == GuardPixels::Sampled) {
+                // One pixel per 2x2 block, blocks in the shader's local invocation order.
+                for (int by = 0; by < STARNT_TILE_SIZE / 2; ++by) {
+                    for (int bx = 0; bx < STARNT_TILE_SIZE / 2; ++bx) {
+                        const glm::ivec2 chosen = guardPixelOfBlock(tx * STARNT_TILE_SIZE / 2 + bx, ty * STARNT_TILE_SIZE / 2 + by);
+                        addPixel(chosen.x, chosen.y);
                     }
                 }
+            } else {
+                for (int y = ty * STARNT_TILE_SIZE; y < (ty + 1) * STARNT_TILE_SIZE; ++y) {
+                    for (int x = tx * STARNT_TILE_SIZE; x < (tx + 1) * STARNT_TILE_SIZE; ++x) addPixel(x, y);
+                }
             }
-            total.occupied += tile[STARNT_GUARD_OCCUPIED];
-            total.energy2 += tile[STARNT_GUARD_ENERGY_PASS2];
-            total.energy3 += tile[STARNT_GUARD_ENERGY_PASS3];
+            ScaleGuard g;
+            g.occupied = tile[STARNT_GUARD_OCCUPIED];
+            g.energy2 = tile[STARNT_GUARD_ENERGY_PASS2];
+            g.energy3 = tile[STARNT_GUARD_ENERGY_PASS3];
             for (int k = 0; k < 2; ++k) {
-                total.loss2[size_t(k)] += tile[size_t(STARNT_GUARD_LOSS_PASS2_HALF + k)];
-                total.loss3[size_t(k)] += tile[size_t(STARNT_GUARD_LOSS_PASS3_HALF + k)];
+                g.loss2[size_t(k)] = tile[size_t(STARNT_GUARD_LOSS_PASS2_HALF + k)];
+                g.loss3[size_t(k)] = tile[size_t(STARNT_GUARD_LOSS_PASS3_HALF + k)];
             }
+            tiles.push_back(g);
+        }
+    }
+    return tiles;
+}
+
+ScaleGuard scaleGuardSums(int width, int height, const std::vector<glm::vec4>& composite,
+                          const std::vector<glm::vec4>& nearest, const std::vector<glm::vec4>& second) {
+    ScaleGuard total;
+    for (const ScaleGuard& tile : scaleGuardTiles(width, height, composite, nearest, second, GuardPixels::Sampled)) {
+        total.occupied += tile.occupied;
+        total.energy2 += tile.energy2;
+        total.energy3 += tile.energy3;
+        for (size_t k = 0; k < 2; ++k) {
+            total.loss2[k] += tile.loss2[k];
+            total.loss3[k] += tile.loss3[k];
         }
     }
     return total;

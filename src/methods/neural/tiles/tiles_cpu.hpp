@@ -51,6 +51,13 @@ glm::ivec2 guardPixelOfBlock(int blockX, int blockY);
 // True for the pixels the guard evaluates.
 bool guardSamples(int x, int y);
 
+// The guard's sums of each 16x16 tile (row-major from the bottom), in pixel order, over the pixels
+// guardSamples() picks (as the GPU does) or over every pixel (`Every`: offline studies, e.g.
+// benchmarks/per_tile_scale_study.cpp).
+enum class GuardPixels { Sampled, Every };
+std::vector<ScaleGuard> scaleGuardTiles(int width, int height, const std::vector<glm::vec4>& composite,
+                                        const std::vector<glm::vec4>& nearest, const std::vector<glm::vec4>& second,
+                                        GuardPixels pixels);
 // Pixels in GL order (rows bottom-first): composite (rgb), pass-1 colour + alpha, pass-2 colour +
 // alpha, all at full resolution. Sums per 16x16 tile in pixel order, then over tiles in order (as
 // the GPU does).

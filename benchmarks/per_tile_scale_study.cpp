@@ -1,0 +1,190 @@
+// Offline study (issue 13): how many pass-2 + pass-3 fragments per-tile scales would save under the
+// scale guard's own loss budget, against the global scales the guard picks today. Not a test and
+// not part of the library: it measures what a per-tile shading rate could buy before anyone builds
+// one (docs/DESIGN.md, "Scale guard", says why the runtime keeps global scales).
+//
+//   starnt_per_tile_study [--width W] [--scenes a,b,...] [--budgets b1,b2,...]
+//
+// For each suite scene (bench::suiteScenes(), read from ../shared/scenes, default camera orbit
+// 0/15) it captures every fragment (A-buffer), composites each pixel exactly, and evaluates the
+// guard's per-pixel prediction (tiles::scaleGuardTiles, the CPU reference of
+// tile_scale_guard.comp.glsl) at EVERY pixel, summed per 16x16 tile, with the tile's fragment count
+// (every rasterised fragment: passes 2 and 3 shade each of them at full resolution). Then:
+//   global:   tiles::guardScales on the sums over all tiles (what the runtime does);
+//   per tile: one pair (s2, s3), s3 <= s2 in {1, 1/2, 1/4}, per tile, minimising the fragments of
+//             passes 2 + 3 (N (s2^2 + s3^2) per tile) with the summed predicted loss (the guard's
+//             rule, tiles::guardPredictedLoss, per tile) within budget x occupied pixels, by a
+//             Lagrangian search (exact for this separable problem up to the convex hull);
+//   joint:    the same with s2 = s3 in every tile (one stride map for both passes).
+// Prints the fragment saving against full resolution and the predicted added MSE over the image.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bench/bench_plan.hpp"
+#include "methods/neural/tiles/tile_constants.h"
+#include "methods/neural/tiles/tile_rules.hpp"
+#include "methods/neural/tiles/tiles_cpu.hpp"
+#include "reference/fragment_capture.hpp"
+#include "render/scene_gpu.hpp"
+#include "starnt/camera.hpp"
+#include "starnt/error.hpp"
+#include "starnt/gl_context.hpp"
+#include "starnt/nn.hpp"
+
+using namespace starnt;
+
+namespace {
+
+std::vector<std::string> splitList(const std::string& text) {
+    std::vector<std::string> out;
+    std::stringstream in(text);
+    for (std::string item; std::getline(in, item, ',');) {
+        if (!item.empty()) out.push_back(item);
+    }
+    return out;
+}
+
+struct Choice {
+    double fragments = 0.0, loss = 0.0;
+};
+
+// The pairs a tile may take, as (s2, s3).
+struct Pair {
+    float s2, s3;
+};
+const Pair kPairs[] = {{1.0f, 1.0f}, {1.0f, 0.5f}, {1.0f, 0.25f}, {0.5f, 0.5f}, {0.5f, 0.25f}, {0.25f, 0.25f}};
+
+// Per tile, the pair minimising fragments + lambda x loss; the smallest lambda whose total loss is
+// within `allowed` (bisection in log lambda).
+Choice perTileChoice(const std::vector<tiles::ScaleGuard>& tiles, const std::vector<double>& fragments, double allowed,
+                     bool joint) {
+    auto solve = [&](double lambda) {
+        Choice c;
+        for (size_t t = 0; t < tiles.size(); ++t) {
+            double bestValue = 1e300, bestFragments = 0.0, bestLoss = 0.0;
+            for (const Pair& p : kPairs) {
+                if (joint && p.s2 != p.s3) continue;
+                const double f = fragments[t] * (double(p.s2) * p.s2 + double(p.s3) * p.s3);
+                const double l = tiles::guardPredictedLoss(tiles[t], p.s2, p.s3);
+                if (f + lambda * l < bestValue) bestValue = f + lambda * l, bestFragments = f, bestLoss = l;
+            }
+            c.fragments += bestFragments;
+            c.loss += bestLoss;
+        }
+        return c;
+    };
+    double low = 1e-3, high = 1e15;
+    Choice best = solve(high);  // (nearly) full resolution wherever anything is lost
+    for (int i = 0; i < 100 && high / low > 1.0001; ++i) {
+        const double mid = std::sqrt(low * high);
+        const Choice c = solve(mid);
+        if (c.loss <= allowed) high = mid, best = c;
+        else low = mid;
+    }
+    return best;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    int width = 1280;
+    std::vector<std::string> names = {"engine", "tree", "powerplant", "gearbox", "hair", "hairball", "smoke",
+                                      "chess", "magic_stars"};
+    std::vector<double> budgets = {2.5e-5, 1e-4, 4e-4};
+    for (int i = 1; i + 1 < argc; i += 2) {
+        const std::string key = argv[i], value = argv[i + 1];
+        if (key == "--width") width = std::atoi(value.c_str());
+        else if (key == "--scenes") names = splitList(value);
+        else if (key == "--budgets") {
+            budgets.clear();
+            for (const auto& b : splitList(value)) budgets.push_back(std::atof(b.c_str()));
+        } else {
+            std::fprintf(stderr, "per_tile_study: unknown option %s\n", key.c_str());
+            return 2;
+        }
+    }
+    if (width < 16 || width > 4096) {
+        std::fprintf(stderr, "per_tile_study: --width must be within 16..4096\n");
+        return 2;
+    }
+    const int height = width * 9 / 16;
+    const std::filesystem::path suite = std::filesystem::path(STARNT_SHARED_SCENES);
+    try {
+        HeadlessGlContext context(GlApi::Desktop);
+        std::printf("budget = allowed added MSE per occupied pixel (the runtime's STARNT_SCALE_GUARD_BUDGET is %.1e)\n",
+                    double(STARNT_SCALE_GUARD_BUDGET));
+        std::printf("%-12s %9s %10s | %-8s %12s | %-14s %14s\n", "scene", "budget", "fragments", "global", "saving",
+                    "per-tile saving", "joint saving");
+        for (const std::string& name : names) {
+            const auto& specs = bench::suiteScenes();
+            const auto spec = std::find_if(specs.begin(), specs.end(), [&](const auto& s) { return s.name == name; });
+            if (spec == specs.end()) throw Error("unknown suite scene '" + name + "'");
+            Scene scene = loadScene((suite / spec->source).string());
+            const float aspect = float(width) / float(height);
+            const Camera camera = orbitCamera(scene.bounds(), 0.0f, 15.0f, aspect);
+            SceneGpu gpu(scene);
+            FrameDesc frame;
+            frame.width = width;
+            frame.height = height;
+            frame.background = glm::vec3(1.0f);
+            frame.view = camera.view();
+            frame.projection = camera.projection(aspect);
+            frame.alphaCutoff = spec->alphaCutoff;
+            FragmentCapture capturer(SceneGpu::surfaceShader());
+            const CapturedFrame fragments = capturer.capture(frame, gpu.callback(frame.view, frame.projection,
+                                                                                 bench::surfaceOptionsFor(*spec)));
+            // Exact composite, nearest and second layer per pixel, in GL order (rows bottom-first).
+            const size_t pixels = size_t(width) * size_t(height);
+            std::vector<glm::vec4> composite(pixels), nearest(pixels), second(pixels);
+            const tiles::TileGrid grid = tiles::TileGrid::forImage(width, height);
+            std::vector<double> tileFragments(size_t(grid.tilesX) * size_t(grid.tilesY), 0.0);
+            for (int y = 0; y < height; ++y) {
+                for (int x = 0; x < width; ++x) {
+                    const FragmentList& raw = fragments.at(x, height - 1 - y);
+                    const size_t i = size_t(y) * size_t(width) + size_t(x);
+                    tileFragments[size_t(y / STARNT_TILE_SIZE) * size_t(grid.tilesX) + size_t(x / STARNT_TILE_SIZE)] +=
+                        double(raw.size());
+                    const FragmentList list = nn::preparedFragments(raw, spec->alphaCutoff);
+                    composite[i] = glm::vec4(compositeOver(list, frame.background), 1.0f);
+                    if (list.size() > 0) nearest[i] = glm::vec4(list[0].color, list[0].alpha);
+                    if (list.size() > 1) second[i] = glm::vec4(list[1].color, list[1].alpha);
+                }
+            }
+            const std::vector<tiles::ScaleGuard> tileSums =
+                tiles::scaleGuardTiles(width, height, composite, nearest, second, tiles::GuardPixels::Every);
+            tiles::ScaleGuard total;
+            double allFragments = 0.0;
+            for (size_t t = 0; t < tileSums.size(); ++t) {
+                total.occupied += tileSums[t].occupied;
+                for (size_t k = 0; k < 2; ++k) {
+                    total.loss2[k] += tileSums[t].loss2[k];
+                    total.loss3[k] += tileSums[t].loss3[k];
+                }
+                allFragments += tileFragments[t];
+            }
+            for (double budget : budgets) {
+                const double allowed = budget * double(total.occupied);
+                const tiles::PassScales global = tiles::guardScales(total, budget);
+                const double globalSaving = 1.0 - (double(global.pass2) * global.pass2 + double(global.pass3) * global.pass3) / 2.0;
+                const Choice separate = perTileChoice(tileSums, tileFragments, allowed, false);
+                const Choice joint = perTileChoice(tileSums, tileFragments, allowed, true);
+                char globalText[32];
+                std::snprintf(globalText, sizeof globalText, "%g/%g", double(global.pass2), double(global.pass3));
+                std::printf("%-12s %9.1e %10.0f | %-8s %11.1f%% | %6.1f%% (+%.1e) %6.1f%% (+%.1e)\n", name.c_str(), budget,
+                            allFragments, globalText, 100.0 * globalSaving,
+                            100.0 * (1.0 - separate.fragments / (2.0 * allFragments)), separate.loss / double(pixels),
+                            100.0 * (1.0 - joint.fragments / (2.0 * allFragments)), joint.loss / double(pixels));
+            }
+        }
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "per_tile_study: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
