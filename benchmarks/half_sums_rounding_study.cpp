@@ -1,0 +1,121 @@
+// Offline study (issue 17): how much of the compact layout's change in MSE comes from llvmpipe's
+// truncating blends, and what a GPU's round-to-nearest blending would give. Not a test and not
+// part of the library.
+//
+//   starnt_rounding_study [--width W] [--scenes a,b,...]
+//
+// For each suite scene (bench::suiteScenes(), default camera orbit 0/15) it captures every fragment
+// and composites each pixel three ways on the CPU with the shipped networks: from 32-bit sums
+// (nn::sumsFromFragments: the fp32 layout), and from the compact targets' model
+// (nn::sumsInHalfTargets: 16-bit sums, R16 transmittance; DFAOIT with its narrow layers) with the
+// blended additions rounded to nearest (GPUs) or toward zero (llvmpipe). It prints each one's MSE
+// against the exact composite (sRGB, as the bench) and the change against 32-bit sums.
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bench/bench_plan.hpp"
+#include "methods/neural/neural_method.hpp"
+#include "methods/registry.hpp"
+#include "reference/fragment_capture.hpp"
+#include "render/scene_gpu.hpp"
+#include "starnt/camera.hpp"
+#include "starnt/error.hpp"
+#include "starnt/gl_context.hpp"
+#include "starnt/metrics.hpp"
+#include "starnt/nn.hpp"
+
+using namespace starnt;
+
+namespace {
+
+std::vector<std::string> splitList(const std::string& text) {
+    std::vector<std::string> out;
+    std::stringstream in(text);
+    for (std::string item; std::getline(in, item, ',');) {
+        if (!item.empty()) out.push_back(item);
+    }
+    return out;
+}
+
+void setPixel(Image& image, int x, int y, const glm::vec3& c) {
+    float* p = image.pixel(x, y);
+    p[0] = c.r, p[1] = c.g, p[2] = c.b, p[3] = 1.0f;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    int width = 1280;
+    std::vector<std::string> names = {"smoke", "hair", "hairball", "tree"};
+    for (int i = 1; i + 1 < argc; i += 2) {
+        const std::string key = argv[i], value = argv[i + 1];
+        if (key == "--width") width = std::atoi(value.c_str());
+        else if (key == "--scenes") names = splitList(value);
+        else {
+            std::fprintf(stderr, "rounding_study: unknown option %s\n", key.c_str());
+            return 2;
+        }
+    }
+    if (width < 16 || width > 4096) {
+        std::fprintf(stderr, "rounding_study: --width must be within 16..4096\n");
+        return 2;
+    }
+    const int height = width * 9 / 16;
+    const std::filesystem::path suite = std::filesystem::path(STARNT_SHARED_SCENES);
+    try {
+        HeadlessGlContext context(GlApi::Desktop);
+        const nn::Network dfaoit = loadMethodNetwork(dfaoitConfig(), {});
+        const nn::Network starnt = loadMethodNetwork(starntConfig(), {});
+        std::printf("%-12s %-7s %12s %12s %9s %12s %9s\n", "scene", "method", "fp32 sums", "half nearest", "change",
+                    "half trunc", "change");
+        for (const std::string& name : names) {
+            const auto& specs = bench::suiteScenes();
+            const auto spec = std::find_if(specs.begin(), specs.end(), [&](const auto& s) { return s.name == name; });
+            if (spec == specs.end()) throw Error("unknown suite scene '" + name + "'");
+            Scene scene = loadScene((suite / spec->source).string());
+            const float aspect = float(width) / float(height);
+            const Camera camera = orbitCamera(scene.bounds(), 0.0f, 15.0f, aspect);
+            SceneGpu gpu(scene);
+            FrameDesc frame;
+            frame.width = width;
+            frame.height = height;
+            frame.background = glm::vec3(1.0f);
+            frame.view = camera.view();
+            frame.projection = camera.projection(aspect);
+            frame.alphaCutoff = spec->alphaCutoff;
+            FragmentCapture capturer(SceneGpu::surfaceShader());
+            const CapturedFrame fragments = capturer.capture(frame, gpu.callback(frame.view, frame.projection,
+                                                                                 bench::surfaceOptionsFor(*spec)));
+            for (const bool isDfaoit : {true, false}) {
+                Image exact(width, height), full(width, height), nearest(width, height), truncated(width, height);
+                for (int y = 0; y < height; ++y) {
+                    for (int x = 0; x < width; ++x) {
+                        const FragmentList& raw = fragments.at(x, y);
+                        auto composite = [&](const nn::PixelSums& s) {
+                            return isDfaoit ? nn::compositeDfaoit(dfaoit, s, frame.background)
+                                            : nn::compositeStarnt(starnt, s, frame.background);
+                        };
+                        setPixel(exact, x, y, compositeOver(nn::preparedFragments(raw, spec->alphaCutoff), frame.background));
+                        setPixel(full, x, y, composite(nn::sumsFromFragments(raw, spec->alphaCutoff)));
+                        setPixel(nearest, x, y, composite(nn::sumsInHalfTargets(raw, false, spec->alphaCutoff, isDfaoit)));
+                        setPixel(truncated, x, y, composite(nn::sumsInHalfTargets(raw, true, spec->alphaCutoff, isDfaoit)));
+                    }
+                }
+                const double mseFull = mseSrgb(exact, full), mseNearest = mseSrgb(exact, nearest),
+                             mseTruncated = mseSrgb(exact, truncated);
+                std::printf("%-12s %-7s %12.4e %12.4e %+8.2f%% %12.4e %+8.2f%%\n", name.c_str(), isDfaoit ? "dfaoit" : "starnt",
+                            mseFull, mseNearest, 100.0 * (mseNearest / mseFull - 1.0), mseTruncated,
+                            100.0 * (mseTruncated / mseFull - 1.0));
+            }
+        }
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "rounding_study: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
