@@ -13,17 +13,12 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include "bench/bench_plan.hpp"
+#include "study_support.hpp"
 #include "methods/neural/neural_method.hpp"
 #include "methods/registry.hpp"
-#include "reference/fragment_capture.hpp"
-#include "render/scene_gpu.hpp"
-#include "starnt/camera.hpp"
 #include "starnt/error.hpp"
 #include "starnt/gl_context.hpp"
 #include "starnt/metrics.hpp"
@@ -32,15 +27,6 @@
 using namespace starnt;
 
 namespace {
-
-std::vector<std::string> splitList(const std::string& text) {
-    std::vector<std::string> out;
-    std::stringstream in(text);
-    for (std::string item; std::getline(in, item, ',');) {
-        if (!item.empty()) out.push_back(item);
-    }
-    return out;
-}
 
 void setPixel(Image& image, int x, int y, const glm::vec3& c) {
     float* p = image.pixel(x, y);
@@ -55,7 +41,7 @@ int main(int argc, char** argv) {
     for (int i = 1; i + 1 < argc; i += 2) {
         const std::string key = argv[i], value = argv[i + 1];
         if (key == "--width") width = std::atoi(value.c_str());
-        else if (key == "--scenes") names = splitList(value);
+        else if (key == "--scenes") names = study::splitList(value);
         else {
             std::fprintf(stderr, "rounding_study: unknown option %s\n", key.c_str());
             return 2;
@@ -66,7 +52,6 @@ int main(int argc, char** argv) {
         return 2;
     }
     const int height = width * 9 / 16;
-    const std::filesystem::path suite = std::filesystem::path(STARNT_SHARED_SCENES);
     try {
         HeadlessGlContext context(GlApi::Desktop);
         const nn::Network dfaoit = loadMethodNetwork(dfaoitConfig(), {});
@@ -74,23 +59,10 @@ int main(int argc, char** argv) {
         std::printf("%-12s %-7s %12s %12s %9s %12s %9s\n", "scene", "method", "fp32 sums", "half nearest", "change",
                     "half trunc", "change");
         for (const std::string& name : names) {
-            const auto& specs = bench::suiteScenes();
-            const auto spec = std::find_if(specs.begin(), specs.end(), [&](const auto& s) { return s.name == name; });
-            if (spec == specs.end()) throw Error("unknown suite scene '" + name + "'");
-            Scene scene = loadScene((suite / spec->source).string());
-            const float aspect = float(width) / float(height);
-            const Camera camera = orbitCamera(scene.bounds(), 0.0f, 15.0f, aspect);
-            SceneGpu gpu(scene);
-            FrameDesc frame;
-            frame.width = width;
-            frame.height = height;
-            frame.background = glm::vec3(1.0f);
-            frame.view = camera.view();
-            frame.projection = camera.projection(aspect);
-            frame.alphaCutoff = spec->alphaCutoff;
-            FragmentCapture capturer(SceneGpu::surfaceShader());
-            const CapturedFrame fragments = capturer.capture(frame, gpu.callback(frame.view, frame.projection,
-                                                                                 bench::surfaceOptionsFor(*spec)));
+            const study::CapturedScene captured = study::captureSuiteScene(name, width, height);
+            const bench::SceneSpec* spec = &captured.spec;
+            const FrameDesc& frame = captured.frame;
+            const CapturedFrame& fragments = captured.fragments;
             for (const bool isDfaoit : {true, false}) {
                 Image exact(width, height), full(width, height), nearest(width, height), truncated(width, height);
                 for (int y = 0; y < height; ++y) {

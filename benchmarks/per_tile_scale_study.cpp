@@ -21,18 +21,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include "bench/bench_plan.hpp"
+#include "study_support.hpp"
 #include "methods/neural/tiles/tile_constants.h"
 #include "methods/neural/tiles/tile_rules.hpp"
 #include "methods/neural/tiles/tiles_cpu.hpp"
-#include "reference/fragment_capture.hpp"
-#include "render/scene_gpu.hpp"
-#include "starnt/camera.hpp"
 #include "starnt/error.hpp"
 #include "starnt/gl_context.hpp"
 #include "starnt/nn.hpp"
@@ -40,15 +35,6 @@
 using namespace starnt;
 
 namespace {
-
-std::vector<std::string> splitList(const std::string& text) {
-    std::vector<std::string> out;
-    std::stringstream in(text);
-    for (std::string item; std::getline(in, item, ',');) {
-        if (!item.empty()) out.push_back(item);
-    }
-    return out;
-}
 
 struct Choice {
     double fragments = 0.0, loss = 0.0;
@@ -100,10 +86,10 @@ int main(int argc, char** argv) {
     for (int i = 1; i + 1 < argc; i += 2) {
         const std::string key = argv[i], value = argv[i + 1];
         if (key == "--width") width = std::atoi(value.c_str());
-        else if (key == "--scenes") names = splitList(value);
+        else if (key == "--scenes") names = study::splitList(value);
         else if (key == "--budgets") {
             budgets.clear();
-            for (const auto& b : splitList(value)) budgets.push_back(std::atof(b.c_str()));
+            for (const auto& b : study::splitList(value)) budgets.push_back(std::atof(b.c_str()));
         } else {
             std::fprintf(stderr, "per_tile_study: unknown option %s\n", key.c_str());
             return 2;
@@ -114,7 +100,6 @@ int main(int argc, char** argv) {
         return 2;
     }
     const int height = width * 9 / 16;
-    const std::filesystem::path suite = std::filesystem::path(STARNT_SHARED_SCENES);
     try {
         HeadlessGlContext context(GlApi::Desktop);
         std::printf("budget = allowed added MSE per occupied pixel (the runtime's STARNT_SCALE_GUARD_BUDGET is %.1e)\n",
@@ -122,23 +107,10 @@ int main(int argc, char** argv) {
         std::printf("%-12s %9s %10s | %-8s %12s | %-14s %14s\n", "scene", "budget", "fragments", "global", "saving",
                     "per-tile saving", "joint saving");
         for (const std::string& name : names) {
-            const auto& specs = bench::suiteScenes();
-            const auto spec = std::find_if(specs.begin(), specs.end(), [&](const auto& s) { return s.name == name; });
-            if (spec == specs.end()) throw Error("unknown suite scene '" + name + "'");
-            Scene scene = loadScene((suite / spec->source).string());
-            const float aspect = float(width) / float(height);
-            const Camera camera = orbitCamera(scene.bounds(), 0.0f, 15.0f, aspect);
-            SceneGpu gpu(scene);
-            FrameDesc frame;
-            frame.width = width;
-            frame.height = height;
-            frame.background = glm::vec3(1.0f);
-            frame.view = camera.view();
-            frame.projection = camera.projection(aspect);
-            frame.alphaCutoff = spec->alphaCutoff;
-            FragmentCapture capturer(SceneGpu::surfaceShader());
-            const CapturedFrame fragments = capturer.capture(frame, gpu.callback(frame.view, frame.projection,
-                                                                                 bench::surfaceOptionsFor(*spec)));
+            const study::CapturedScene captured = study::captureSuiteScene(name, width, height);
+            const bench::SceneSpec* spec = &captured.spec;
+            const FrameDesc& frame = captured.frame;
+            const CapturedFrame& fragments = captured.fragments;
             // Exact composite, nearest and second layer per pixel, in GL order (rows bottom-first).
             const size_t pixels = size_t(width) * size_t(height);
             std::vector<glm::vec4> composite(pixels), nearest(pixels), second(pixels);

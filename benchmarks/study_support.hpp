@@ -1,0 +1,57 @@
+// What the offline studies (per_tile_scale_study.cpp, half_sums_rounding_study.cpp) share: their
+// list options and one suite scene captured at the default camera (every fragment, A-buffer).
+#pragma once
+#include <algorithm>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bench/bench_plan.hpp"
+#include "reference/fragment_capture.hpp"
+#include "render/scene_gpu.hpp"
+#include "starnt/camera.hpp"
+#include "starnt/error.hpp"
+#include "starnt/scene.hpp"
+
+namespace starnt::study {
+
+inline std::vector<std::string> splitList(const std::string& text) {
+    std::vector<std::string> out;
+    std::stringstream in(text);
+    for (std::string item; std::getline(in, item, ',');) {
+        if (!item.empty()) out.push_back(item);
+    }
+    return out;
+}
+
+struct CapturedScene {
+    bench::SceneSpec spec;
+    FrameDesc frame;  // white background, the bench's alpha cut-off
+    CapturedFrame fragments;  // row 0 = top
+};
+
+// Suite scene `name` (bench::suiteScenes(), read from STARNT_SHARED_SCENES) at width x height, camera
+// orbit 0 / elevation 15 (the default camera). Needs a current GL context; throws starnt::Error.
+inline CapturedScene captureSuiteScene(const std::string& name, int width, int height) {
+    const auto& specs = bench::suiteScenes();
+    const auto spec = std::find_if(specs.begin(), specs.end(), [&](const auto& s) { return s.name == name; });
+    if (spec == specs.end()) throw Error("unknown suite scene '" + name + "'");
+    const Scene scene = loadScene((std::filesystem::path(STARNT_SHARED_SCENES) / spec->source).string());
+    const float aspect = float(width) / float(height);
+    const Camera camera = orbitCamera(scene.bounds(), 0.0f, 15.0f, aspect);
+    SceneGpu gpu(scene);
+    CapturedScene out;
+    out.spec = *spec;
+    out.frame.width = width;
+    out.frame.height = height;
+    out.frame.background = glm::vec3(1.0f);
+    out.frame.view = camera.view();
+    out.frame.projection = camera.projection(aspect);
+    out.frame.alphaCutoff = spec->alphaCutoff;
+    FragmentCapture capturer(SceneGpu::surfaceShader());
+    out.fragments = capturer.capture(out.frame, gpu.callback(out.frame.view, out.frame.projection, bench::surfaceOptionsFor(*spec)));
+    return out;
+}
+
+}  // namespace starnt::study
