@@ -50,8 +50,9 @@ const std::string kTinyArgs = "bench --preset quick --suite-dir /nonexistent/sui
 
 
 // The default methods of bench: unsorted, wboit, mboit, mboit-t3, dfaoit, starnt-full, hybrid,
-// starnt-residual-full, starnt, starnt-paper, starnt-total, starnt-total-warp, starnt-corners.
-constexpr size_t kDefaultVariants = 15;
+// starnt-residual-full, starnt, starnt-paper, starnt-total, starnt-total-refresh, starnt-total-warp,
+// starnt-corners.
+constexpr size_t kDefaultVariants = 16;
 
 json readJson(const fs::path& p) {
     std::ifstream f(p);
@@ -70,7 +71,8 @@ TEST(BenchPlan, VariantsCarryTheirOptions) {
     EXPECT_FALSE(paper.options.neural.scaleGuard);
     EXPECT_EQ(bench::findVariant("starnt").options.neural.scaleRule, NeuralOptions::ScaleRule::Snapped);
     EXPECT_EQ(bench::findVariant("starnt-total-warp").options.neural.temporalMode, NeuralOptions::TemporalMode::Warp);
-    EXPECT_EQ(bench::findVariant("starnt-total").options.neural.temporalMode, NeuralOptions::TemporalMode::Refresh);
+    EXPECT_EQ(bench::findVariant("starnt-total").options.neural.temporalMode, NeuralOptions::TemporalMode::Correct);
+    EXPECT_EQ(bench::findVariant("starnt-total-refresh").options.neural.temporalMode, NeuralOptions::TemporalMode::Refresh);
     EXPECT_EQ(bench::findVariant("starnt-full").options.neural.spatial, std::optional<bool>(false));
     EXPECT_EQ(bench::findVariant("starnt").options.neural.spatial, std::optional<bool>(true));
     EXPECT_EQ(bench::findVariant("starnt").options.neural.temporalInterval, 1);

@@ -87,6 +87,7 @@ TEST(Gles, ReducedPassesTilesAndInterpolatedFramesMatchDesktop) {
     expectSameOnBothApis(base + "--method dfaoit --spatial on --inference corners --frames 6", "corners");
     expectSameOnBothApis(base + "--method starnt --temporal 2 --temporal-mode refresh --frames 5", "refresh");
     expectSameOnBothApis(base + "--method starnt --temporal 2 --temporal-mode warp --frames 5", "warp");
+    expectSameOnBothApis(base + "--method starnt --temporal 2 --temporal-mode correct --frames 5", "correct");
 }
 
 TEST(Gles, EveryMethodMatchesDesktopOnSuiteScenes) {

@@ -149,6 +149,7 @@ TEST(TemporalRefresh, SingleLayerPixelsMatchARealRenderAfterAMove) {
     const float move = 1.5f;
     MethodOptions refresh, real;
     refresh.neural.temporalInterval = 2;
+    refresh.neural.temporalMode = NeuralOptions::TemporalMode::Refresh;
     refresh.neural.spatial = real.neural.spatial = false;
     const auto seq = renderSequence(c, refresh, {0.0f, move});
     const auto truth = renderSequence(c, real, {move});

@@ -59,7 +59,7 @@ TEST(TilesCli, BadSpatialOptionsFailCleanly) {
     expectCleanFailure(common + " --scale-rule round", out, "snapped, continuous or step");
     expectCleanFailure(common + " --tile-signal depth", out, "back or composite");
     expectCleanFailure(common + " --scale-guard maybe", out, "--scale-guard");
-    expectCleanFailure(common + " --temporal 2 --temporal-mode blend", out, "warp or refresh");
+    expectCleanFailure(common + " --temporal 2 --temporal-mode blend", out, "warp, refresh or correct");
     expectCleanFailure("render --scene builtin:panes --method wboit --width 32 --height 32 --temporal-mode refresh --out " +
                            out.string(),
                        out, "no nearest-layer pass");

@@ -77,9 +77,13 @@ struct NeuralOptions {
     bool temporalAuto = false;
     // What an interpolated frame renders (SPEC 6): Warp = the paper (the last real frame's
     // composite reprojected; no geometry pass); Refresh = pass 1 at the current camera, so the
-    // nearest layer is exact, over what lay behind it in the last real frame, reprojected.
-    enum class TemporalMode { Warp, Refresh };
-    TemporalMode temporalMode = TemporalMode::Refresh;
+    // nearest layer is exact, over what lay behind it in the last real frame, reprojected;
+    // Correct = passes 1 and 3 at the current camera, what lies behind the nearest layer in closed
+    // form from those sums plus the network's correction of the last real frame, reprojected
+    // (beyond the paper and SPEC 6; docs/DESIGN.md, "Corrected frames").
+    enum class TemporalMode { Warp, Refresh, Correct };
+    // The default: Correct, which measured best on quality against time (docs/DESIGN.md, "Corrected frames").
+    TemporalMode temporalMode = TemporalMode::Correct;
     double targetFps = 60.0;
     // Precision of the pass targets and the output (issue 17): Compact (default) = 16-bit float
     // colours, sums and count, a 16-bit unsigned normalised transmittance, 32-bit depths, and the

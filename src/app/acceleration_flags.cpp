@@ -21,7 +21,7 @@ void addAccelerationOptions(CLI::App* command, AccelerationFlags& flags) {
                         "starnt/dfaoit: reduced passes back to full resolution: bilinear | joint (bilateral, guided by pass-1 depth)")
         ->capture_default_str();
     command->add_option("--temporal-mode", flags.temporalMode,
-                        "starnt/dfaoit: interpolated frames: warp (the paper) | refresh (fresh pass 1)")
+                        "starnt/dfaoit: interpolated frames: warp (the paper) | refresh (fresh pass 1) | correct (fresh passes 1 and 3, the last real frame's network correction)")
         ->capture_default_str();
     command->add_option("--targets", flags.targets,
                         "starnt/dfaoit/hybrid: pass-target precision: compact (16-bit colours and sums, 36 B/pixel) | fp32")

@@ -25,7 +25,7 @@ struct AccelerationFlags {
     std::string scaleRule = "snapped";      // snapped | continuous | step
     std::string tileSignal = "back";        // back | composite
     std::string scaleGuard = "on";          // on | off
-    std::string temporalMode = "refresh";   // warp | refresh
+    std::string temporalMode = "correct";   // warp | refresh | correct
     std::string upsample = "bilinear";      // bilinear | joint
     std::string targets = "compact";        // compact | fp32
 };

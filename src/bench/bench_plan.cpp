@@ -65,7 +65,14 @@ const std::vector<Variant>& allVariants() {
                         o.neural.scaleRule = NeuralOptions::ScaleRule::Continuous;
                         o.neural.scaleGuard = false;
                     }),
-        makeVariant("starnt-total", "starnt", "STAR-NT, tiles on + temporal K = 2, refresh frames (\"Total STAR\")",
+        makeVariant("starnt-total", "starnt",
+                    "STAR-NT, tiles on + temporal K = 2, corrected frames (\"Total STAR\"; fresh passes 1 and 3, the network's correction kept)",
+                    [](MethodOptions& o) {
+                        o.neural.spatial = true;
+                        o.neural.temporalInterval = 2;
+                        o.neural.temporalMode = NeuralOptions::TemporalMode::Correct;
+                    }),
+        makeVariant("starnt-total-refresh", "starnt", "STAR-NT, tiles on + temporal K = 2, refresh frames (fresh pass 1 over the reprojected back)",
                     [](MethodOptions& o) {
                         o.neural.spatial = true;
                         o.neural.temporalInterval = 2;
@@ -97,7 +104,7 @@ const std::vector<Variant>& allVariants() {
 
 std::vector<std::string> defaultVariantNames() {
     return {"unsorted", "wboit", "mboit", "mboit-t3", "dfaoit", "starnt-full", "hybrid", "hybrid-moments", "starnt-d", "starnt-residual-full", "starnt",
-            "starnt-paper", "starnt-total",
+            "starnt-paper", "starnt-total", "starnt-total-refresh",
             "starnt-total-warp", "starnt-corners"};
 }
 

@@ -33,7 +33,7 @@ const NeuralMethodConfig* neuralConfig(const std::string& name);
 // option or by default, or with corner inference): the methods with a tile overlay.
 bool methodUsesTiles(const std::string& name, const MethodOptions& options);
 // True for the methods built on the three neural passes (pass 1 = the nearest layer): the ones
-// with temporal reprojection (warp or refresh frames).
+// with temporal reprojection (warp, refresh or corrected frames).
 bool methodHasNearestPass(const std::string& name);
 
 }  // namespace starnt

@@ -82,7 +82,8 @@ void parseScaleGuardOption(const std::string& text, MethodOptions& options) {
 void parseTemporalModeOption(const std::string& text, MethodOptions& options) {
     if (text == "warp") options.neural.temporalMode = NeuralOptions::TemporalMode::Warp;
     else if (text == "refresh") options.neural.temporalMode = NeuralOptions::TemporalMode::Refresh;
-    else throw Error("--temporal-mode '" + text + "': expected warp or refresh");
+    else if (text == "correct") options.neural.temporalMode = NeuralOptions::TemporalMode::Correct;
+    else throw Error("--temporal-mode '" + text + "': expected warp, refresh or correct");
 }
 
 void parseTargetsOption(const std::string& text, MethodOptions& options) {
@@ -142,7 +143,12 @@ std::string targetsText(NeuralOptions::Targets targets) {
 }
 
 std::string temporalModeText(NeuralOptions::TemporalMode mode) {
-    return mode == NeuralOptions::TemporalMode::Refresh ? "refresh" : "warp";
+    switch (mode) {
+        case NeuralOptions::TemporalMode::Refresh: return "refresh";
+        case NeuralOptions::TemporalMode::Correct: return "correct";
+        case NeuralOptions::TemporalMode::Warp: break;
+    }
+    return "warp";
 }
 
 }  // namespace starnt

@@ -24,7 +24,7 @@ void parseTileSignalOption(const std::string& text, MethodOptions& options);
 void parseScaleGuardOption(const std::string& text, MethodOptions& options);
 // "bilinear" | "joint" (SPEC 5).
 void parseUpsampleOption(const std::string& text, MethodOptions& options);
-// "warp" | "refresh" (SPEC 6).
+// "warp" | "refresh" (SPEC 6) | "correct" (beyond it).
 void parseTemporalModeOption(const std::string& text, MethodOptions& options);
 // "compact" | "fp32" (issue 17: pass-target precision).
 void parseTargetsOption(const std::string& text, MethodOptions& options);

@@ -120,7 +120,7 @@ void accelerationSection(ViewerSettings& next, std::string& problem) {
     std::string temporal = temporalText(next.options);
     if (combo("temporal", {"off", "auto", "2", "3", "4"}, temporal)) setOrReport(next, "temporal", temporal, problem);
     std::string mode = temporalModeText(next.options.neural.temporalMode);
-    if (combo("interpolated frames", {"refresh", "warp"}, mode)) setOrReport(next, "temporal-mode", mode, problem);
+    if (combo("interpolated frames", {"refresh", "correct", "warp"}, mode)) setOrReport(next, "temporal-mode", mode, problem);
     static float targetFps = 60.0f;  // edited locally; applied when the drag ends (a rebuild each step would stall)
     if (!ImGui::IsAnyItemActive()) targetFps = float(next.options.neural.targetFps);
     ImGui::SliderFloat("target FPS", &targetFps, 1.0f, 240.0f, "%.0f");

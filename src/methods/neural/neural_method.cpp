@@ -86,7 +86,7 @@ public:
         n.cornerInferenceUsed = cornersUsed_;
         n.interpolated = temporal_.lastWasInterpolated();
         n.temporalInterval = temporal_.interval();
-        n.temporalMode = temporal_.refreshes() ? NeuralOptions::TemporalMode::Refresh : NeuralOptions::TemporalMode::Warp;
+        n.temporalMode = temporal_.mode();
         n.realFrameMsAverage = temporal_.averageRealFrameMs();
         n.interpolatedFrameMsAverage = temporal_.averageInterpolatedFrameMs();
         n.scalePass2 = scale2_;
@@ -143,7 +143,14 @@ public:
         }
         const glm::mat4 viewProjection = frame.projection * frame.view;
         if (!temporal_.beginFrame(frame.width, frame.height)) {
-            if (temporal_.refreshes()) {
+            if (temporal_.corrects()) {
+                // Corrected: passes 1 and 3 fresh at this camera, the closed form behind the
+                // nearest layer, the last real frame's network correction reprojected.
+                passes_.runNearestAndSums(frame, draw);
+                temporal_.interpolateCorrected(viewProjection, passes_.nearest().id(), passes_.nearestDepth().id(),
+                                               passes_.alphaColor().id(), passes_.transmittance().id(), frame.background,
+                                               out_.texture, frame.timing);
+            } else if (temporal_.refreshes()) {
                 // Refresh: the nearest layer fresh at this camera, what lay behind it reprojected.
                 passes_.runNearest(frame, draw);
                 temporal_.interpolateRefresh(viewProjection, passes_.nearest().id(), passes_.nearestDepth().id(),
@@ -156,8 +163,11 @@ public:
         renderReal(frame, draw);
         if (temporal_.interpolates()) {
             gl::ScopedPass timing(frame.timing, "temporal_capture");
+            // Corrected frames need this frame's pass-3 sums at full resolution (none when it ran reduced).
+            const bool sums = temporal_.corrects() && passes_.pass3Size() == Size2{frame.width, frame.height};
             temporal_.endRealFrame(out_.texture, passes_.nearestDepth().id(), viewProjection, frame.width, frame.height,
-                                   passes_.nearest().id());
+                                   passes_.nearest().id(), sums ? passes_.alphaColor().id() : 0,
+                                   sums ? passes_.transmittance().id() : 0, frame.background);
         }
     }
 
@@ -184,8 +194,12 @@ private:
     // Where this real frame's output goes (NeuralPasses::outputSlot): in place over a pass target
     // when one is free, else a texture of its own, allocated on first need and kept (so the memory
     // reported is the peak).
+    // With corrected frames the output has a texture of its own: their capture reads pass 3's sums
+    // after the inference, the probe frames' tiles read pass 2's colour after it, and the corrected
+    // frames render passes 1 and 3 again while the output must stay.
     void chooseOutput(bool nearestFree) {
-        out_ = passes_.outputSlot(nearestFree);
+        const bool corrected = temporal_.interpolates() && temporal_.corrects();
+        out_ = corrected ? NeuralPasses::OutputSlot{} : passes_.outputSlot(nearestFree);
         if (!out_.texture) {
             allocateOutput(passes_.outputFormat());
             out_ = {output_.id(), outputFb_.id(), "output"};

@@ -226,7 +226,7 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
     const Size2 full{width_, height_};
     pass2Size_ = pass2Size;
     pass3Size_ = pass3Size;
-    const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1}, farDepth = 1.0f;
+    const float zero[4] = {0, 0, 0, 0}, farDepth = 1.0f;
     const bool reduced2 = !(pass2Size == full);
     {
         gl::ScopedPass timing(frame.timing, "pass2");
@@ -245,34 +245,48 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
         MethodBase::runGeometryPass("pass2", pass2_, frame, draw);
         resetPassState();
     }
-    {
-        gl::ScopedPass timing(frame.timing, "pass3");
-        useReducedRectangle(pass3Size, full);
-        glBindFramebuffer(GL_FRAMEBUFFER, pass3Fb_.id());
-        glClearBufferfv(GL_COLOR, 0, zero);
-        glClearBufferfv(GL_COLOR, 1, zero);
-        glClearBufferfv(GL_COLOR, 2, one);
-        glEnable(GL_BLEND);
-        // Per-target blend functions: core in GL 4.0 and GLES 3.2 (EXT_draw_buffers_indexed on 3.1).
-        glBlendFunci(0, GL_ONE, GL_ONE);
-        glBlendFunci(1, GL_ONE, GL_ONE);
-        glBlendFunci(2, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
-        if (tailMoments_) {
-            glClearBufferfv(GL_COLOR, 3, zero);
-            glClearBufferfv(GL_COLOR, 4, zero);
-            glBlendFunci(3, GL_ONE, GL_ONE);
-            glBlendFunci(4, GL_ONE, GL_ONE);
-            gl::bindTexture(0, secondDepth_.id());  // z2 (tail moments run at full resolution only)
-        }
-        MethodBase::runGeometryPass("pass3", pass3_, frame, draw);
-        resetPassState();
-    }
+    runSums(frame, draw, pass3Size);
     if (reduced2 || !(pass3Size == full)) {
         gl::ScopedPass timing(frame.timing, "tail_resolve");
         resolveTails({&tailResolve_, nearest_.id(), second_.id(), alphaColor_.id(), colorCount_.id(), transmittance_.id(),
                       full, pass2Size, pass3Size},
                      pass3Fb_.id(), emptyVao_, esResolveCopies_);
     }
+    glViewport(0, 0, width_, height_);
+}
+
+void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Size2 pass3Size) {
+    const Size2 full{width_, height_};
+    const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1};
+    gl::ScopedPass timing(frame.timing, "pass3");
+    useReducedRectangle(pass3Size, full);
+    glBindFramebuffer(GL_FRAMEBUFFER, pass3Fb_.id());
+    glClearBufferfv(GL_COLOR, 0, zero);
+    glClearBufferfv(GL_COLOR, 1, zero);
+    glClearBufferfv(GL_COLOR, 2, one);
+    glEnable(GL_BLEND);
+    // Per-target blend functions: core in GL 4.0 and GLES 3.2 (EXT_draw_buffers_indexed on 3.1).
+    glBlendFunci(0, GL_ONE, GL_ONE);
+    glBlendFunci(1, GL_ONE, GL_ONE);
+    glBlendFunci(2, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
+    if (tailMoments_) {
+        glClearBufferfv(GL_COLOR, 3, zero);
+        glClearBufferfv(GL_COLOR, 4, zero);
+        glBlendFunci(3, GL_ONE, GL_ONE);
+        glBlendFunci(4, GL_ONE, GL_ONE);
+        gl::bindTexture(0, secondDepth_.id());  // z2 (tail moments run at full resolution only)
+    }
+    MethodBase::runGeometryPass("pass3", pass3_, frame, draw);
+    resetPassState();
+}
+
+void NeuralPasses::runNearestAndSums(const FrameDesc& frame, const DrawCallback& draw) {
+    runNearest(frame, draw);
+    pass3Size_ = {width_, height_};
+    // Only sum a C, sum a and the transmittance are read: the count (or sum C) target is masked.
+    glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    runSums(frame, draw, pass3Size_);
+    glColorMaski(1, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glViewport(0, 0, width_, height_);
 }
 

@@ -109,6 +109,9 @@ public:
     void run(const FrameDesc& frame, const DrawCallback& draw, float peelEpsilon, Size2 pass2Size, Size2 pass3Size);
     // Pass 1 alone (nearest() and nearestDepth()), for refresh frames.
     void runNearest(const FrameDesc& frame, const DrawCallback& draw);
+    // Pass 1 and pass 3, both at full resolution (alphaColor() and transmittance() hold the sums
+    // over every fragment), for corrected interpolated frames (no pass 2, no tail resolve).
+    void runNearestAndSums(const FrameDesc& frame, const DrawCallback& draw);
     // Binds the pass outputs to the NeuralInputUnit units and sets the upsample uniforms of
     // `program` (which includes neural_inputs.glsl).
     void bindInputs(const gl::Program& program) const;
@@ -143,6 +146,7 @@ public:
     Size2 pass3Size() const { return pass3Size_; }
 
 private:
+    void runSums(const FrameDesc& frame, const DrawCallback& draw, Size2 pass3Size);  // pass 3
     gl::Program pass1_;
     gl::Program pass2_;
     gl::Program pass3_;

@@ -20,4 +20,8 @@
 // source's surface: those whose view depth differs from the source texel's by at most this fraction.
 #define STARNT_TEMPORAL_SAME_SURFACE 0.01
 
+// Corrected interpolated frames (closed_form_behind.glsl): below this alpha sum behind the nearest
+// layer there is nothing there to average; the background stands in for the mean colour.
+#define STARNT_TEMPORAL_MIN_BEHIND_ALPHA 1e-4
+
 #endif

@@ -14,4 +14,11 @@ Reprojection makeReprojection(const glm::mat4& oldViewProj, const glm::mat4& new
     return out;
 }
 
+CorrectionMatrices makeCorrectionMatrices(const glm::mat4& oldViewProj, const glm::mat4& newViewProj) {
+    CorrectionMatrices m;
+    m.newToOld = glm::mat4(glm::dmat4(oldViewProj) * glm::inverse(glm::dmat4(newViewProj)));
+    m.sourceScale = makeReprojection(oldViewProj, newViewProj).sourceScale;
+    return m;
+}
+
 }  // namespace starnt::temporal

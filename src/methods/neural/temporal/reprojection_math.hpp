@@ -12,4 +12,12 @@ struct Reprojection {
 };
 Reprojection makeReprojection(const glm::mat4& oldViewProj, const glm::mat4& newViewProj);
 
+// Corrected frames (correction_reference.hpp): the matrices of the composite,
+// oldViewProj * inverse(newViewProj) and row 3 of inverse(oldViewProj), in double, rounded once.
+struct CorrectionMatrices {
+    glm::mat4 newToOld{1.0f};
+    glm::vec4 sourceScale{0, 0, 0, 1};
+};
+CorrectionMatrices makeCorrectionMatrices(const glm::mat4& oldViewProj, const glm::mat4& newViewProj);
+
 }  // namespace starnt::temporal

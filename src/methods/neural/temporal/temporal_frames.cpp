@@ -7,7 +7,7 @@ namespace starnt {
 TemporalFrames::TemporalFrames(const MethodOptions& options)
     : schedule_(options),
       clock_(gl::wallClockTimingNeeded()),
-      refresh_(options.neural.temporalMode == NeuralOptions::TemporalMode::Refresh),
+      mode_(options.neural.temporalMode),
       skipEmptyPixels_(options.neural.skipEmptyPixels) {}
 
 bool TemporalFrames::beginFrame(int width, int height) {
@@ -16,10 +16,12 @@ bool TemporalFrames::beginFrame(int width, int height) {
         else schedule_.recordInterpolatedFrameMs(m->ms);
     }
     // A frame of another size cannot be reprojected from the kept one.
-    if (reprojector_.hasFrame() && (width != reprojector_.width() || height != reprojector_.height())) reset();
+    const int keptWidth = corrects() ? corrected_.width() : reprojector_.width();
+    const int keptHeight = corrects() ? corrected_.height() : reprojector_.height();
+    if (hasKeptFrame() && (width != keptWidth || height != keptHeight)) reset();
     bool real = schedule_.nextFrameIsReal();
     // The schedule cannot know whether the kept frame exists (e.g. a real frame that threw).
-    if (!real && !reprojector_.hasFrame()) {
+    if (!real && !hasKeptFrame()) {
         schedule_.reset();
         real = schedule_.nextFrameIsReal();
     }
@@ -30,11 +32,19 @@ bool TemporalFrames::beginFrame(int width, int height) {
 }
 
 void TemporalFrames::endRealFrame(GLuint compositeTexture, GLuint nearestDepthTexture, const glm::mat4& viewProj,
-                                  int width, int height, GLuint nearestTexture) {
+                                  int width, int height, GLuint nearestTexture, GLuint sumAlphaColor,
+                                  GLuint transmittance, const glm::vec3& background) {
     if (lastInterpolated_) throw Error("internal: TemporalFrames::endRealFrame on an interpolated frame");
     if (!interpolates()) return;  // every frame is real: nothing to keep
-    if (refresh_ && !nearestTexture) throw Error("internal: refresh frames need the real frame's nearest layer");
-    reprojector_.capture(compositeTexture, nearestDepthTexture, width, height, viewProj, refresh_ ? nearestTexture : 0);
+    if ((refreshes() || corrects()) && !nearestTexture) {
+        throw Error("internal: refresh and corrected frames need the real frame's nearest layer");
+    }
+    if (corrects()) {
+        corrected_.capture(compositeTexture, nearestDepthTexture, nearestTexture, sumAlphaColor, transmittance, width, height,
+                           viewProj, background);
+    } else {
+        reprojector_.capture(compositeTexture, nearestDepthTexture, width, height, viewProj, refreshes() ? nearestTexture : 0);
+    }
     clock_.stop();
 }
 
@@ -58,9 +68,21 @@ void TemporalFrames::interpolateRefresh(const glm::mat4& viewProj, GLuint neares
     clock_.stop();
 }
 
+void TemporalFrames::interpolateCorrected(const glm::mat4& viewProj, GLuint nearest, GLuint nearestDepth, GLuint sumAlphaColor,
+                                          GLuint transmittance, const glm::vec3& background, GLuint outputTexture,
+                                          PassTimingHook* timer) {
+    if (!lastInterpolated_) throw Error("internal: TemporalFrames::interpolateCorrected on a real frame");
+    {
+        gl::ScopedPass timing(timer, "reproject");
+        corrected_.composite(viewProj, nearest, nearestDepth, sumAlphaColor, transmittance, background, outputTexture);
+    }
+    clock_.stop();
+}
+
 void TemporalFrames::reset() {
     schedule_.reset();
     reprojector_.reset();
+    corrected_.reset();
     clock_.take();  // a measurement of before the reset no longer applies
     lastInterpolated_ = false;
 }

@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "core/gpu_timer.hpp"
+#include "methods/neural/temporal/corrected_frames.hpp"
 #include "methods/neural/temporal/frame_clock.hpp"
 #include "methods/neural/temporal/reprojector.hpp"
 #include "methods/neural/temporal/temporal_schedule.hpp"
@@ -31,9 +32,12 @@ public:
     // After a real frame: keeps copies of its composite (RGBA32F) and pass-1 depth
     // (DEPTH_COMPONENT32F, 1 = far plane where no transparent fragment) with the view-projection it
     // used, and ends the real-frame time measurement (which includes this copy).
-    // In refresh mode `nearestTexture` (pass-1 colour + alpha, RGBA32F) is kept too (required).
+    // In refresh and correct modes `nearestTexture` (pass-1 colour + alpha) is required. In correct
+    // mode `sumAlphaColor` / `transmittance` are pass 3's full-resolution sums (0 when pass 3 ran
+    // reduced: the frame is kept without a correction) and `background` the frame's.
     void endRealFrame(GLuint compositeTexture, GLuint nearestDepthTexture, const glm::mat4& viewProj, int width,
-                      int height, GLuint nearestTexture = 0);
+                      int height, GLuint nearestTexture = 0, GLuint sumAlphaColor = 0, GLuint transmittance = 0,
+                      const glm::vec3& background = glm::vec3(0.0f));
     // An interpolated frame: the kept real frame reprojected to `viewProj`, rendered into
     // `outputTexture` (a colour-renderable RGBA texture of the frame size; the framebuffer binding is
     // 0 afterwards). Timed as pass "reproject" when a timer is given.
@@ -43,8 +47,16 @@ public:
     // what lay behind the kept frame's nearest layer is reprojected under it. Timed as "reproject".
     void interpolateRefresh(const glm::mat4& viewProj, GLuint nearestTexture, GLuint nearestDepth,
                             const glm::vec3& background, GLuint outputTexture, PassTimingHook* timer = nullptr);
-    // Interpolated frames render pass 1 fresh (NeuralOptions::TemporalMode::Refresh).
-    bool refreshes() const { return refresh_; }
+    // A corrected frame (correct mode): `nearest` / `nearestDepth` pass 1 and `sumAlphaColor` /
+    // `transmittance` pass 3 at full resolution, rendered at `viewProj` by the caller. Timed as
+    // "reproject".
+    void interpolateCorrected(const glm::mat4& viewProj, GLuint nearest, GLuint nearestDepth, GLuint sumAlphaColor,
+                              GLuint transmittance, const glm::vec3& background, GLuint outputTexture,
+                              PassTimingHook* timer = nullptr);
+    NeuralOptions::TemporalMode mode() const { return mode_; }
+    // Interpolated frames render pass 1 fresh (refresh, correct) and pass 3 too (correct).
+    bool refreshes() const { return mode_ == NeuralOptions::TemporalMode::Refresh; }
+    bool corrects() const { return mode_ == NeuralOptions::TemporalMode::Correct; }
 
     // False for a fixed interval of 1: then nothing is kept (no copy, no memory).
     bool interpolates() const { return schedule_.isAuto() || schedule_.interval() > 1; }
@@ -58,15 +70,20 @@ public:
     double averageInterpolatedFrameMs() const { return schedule_.averageInterpolatedFrameMs(); }
     // Forgets the kept frame and the timing; the next frame is real.
     void reset();
-    size_t gpuMemoryBytes() const { return reprojector_.gpuMemoryBytes(); }
-    void addMemoryTargets(OitMethod::MemoryTargets& out) const { reprojector_.addMemoryTargets(out); }
+    size_t gpuMemoryBytes() const { return reprojector_.gpuMemoryBytes() + corrected_.gpuMemoryBytes(); }
+    void addMemoryTargets(OitMethod::MemoryTargets& out) const {
+        if (corrects()) corrected_.addMemoryTargets(out);
+        else reprojector_.addMemoryTargets(out);
+    }
 
 private:
     TemporalSchedule schedule_;
-    temporal::Reprojector reprojector_;
+    bool hasKeptFrame() const { return corrects() ? corrected_.hasFrame() : reprojector_.hasFrame(); }
+    temporal::Reprojector reprojector_;     // warp and refresh modes
+    temporal::CorrectedFrames corrected_;  // correct mode
     temporal::FrameClock clock_;
     bool lastInterpolated_ = false;
-    bool refresh_ = false;
+    NeuralOptions::TemporalMode mode_;
     bool skipEmptyPixels_ = true;  // NeuralOptions::skipEmptyPixels
 };
 

@@ -1,0 +1,61 @@
+// Corrected interpolated frames on the GPU (`--temporal-mode correct`; correction_reference.hpp
+// states the method and is its CPU reference): what a real frame keeps (one RGBA texture: the
+// network's correction of the closed form behind the nearest layer, and the texel's inverse view
+// depth), and the composite of an interpolated frame from its own pass 1 and pass 3.
+#pragma once
+#include <glm/glm.hpp>
+
+#include "core/gl_util.hpp"
+#include "core/shader.hpp"
+#include "methods/neural/empty_pixels.hpp"
+#include "starnt/oit_method.hpp"
+
+namespace starnt::temporal {
+
+class CorrectedFrames {
+public:
+    CorrectedFrames();  // builds the programs; needs a current GL context
+
+    // After a real frame: `composite` its output (RGBA16F or RGBA32F; the kept texture takes the same
+    // format), `depth` its pass-1 depth (DEPTH_COMPONENT32F), `nearest` its pass-1 colour + alpha,
+    // `sumAlphaColor` / `transmittance` its pass-3 sums at full resolution, all width x height.
+    // Without sums (0: pass 3 ran reduced) the frame is kept without a correction: the interpolated
+    // frames that follow composite the closed form alone.
+    void capture(GLuint composite, GLuint depth, GLuint nearest, GLuint sumAlphaColor, GLuint transmittance, int width,
+                 int height, const glm::mat4& viewProj, const glm::vec3& background);
+    bool hasFrame() const { return hasFrame_; }
+    bool hasCorrection() const { return hasFrame_ && hasCorrection_; }
+    int width() const { return width_; }
+    int height() const { return height_; }
+
+    // An interpolated frame at `newViewProj` from its own pass 1 (`nearest`, `depth`) and pass 3
+    // (`sumAlphaColor`, `transmittance`, full resolution), into `output` (a colour-renderable RGBA
+    // texture of the captured size; framebuffer binding 0 afterwards). Only the pixels pass 1
+    // covered are shaded (empty_pixels.hpp), the background goes elsewhere; as the composite samples
+    // pass 1's depth, the early test runs against a copy of it (a texture both sampled and attached
+    // would be a rendering feedback loop, GL 4.5 section 9.3.1).
+    void composite(const glm::mat4& newViewProj, GLuint nearest, GLuint depth, GLuint sumAlphaColor, GLuint transmittance,
+                   const glm::vec3& background, GLuint output);
+
+    void reset() { hasFrame_ = false; }
+    size_t gpuMemoryBytes() const { return correction_.bytes() + coverDepth_.bytes(); }
+    void addMemoryTargets(OitMethod::MemoryTargets& out) const {
+        out.emplace_back("history_correction", correction_.bytes());
+        out.emplace_back("corrected_cover_depth", coverDepth_.bytes());
+    }
+
+private:
+    void drawInto(GLuint texture);
+
+    gl::Program capture_, composite_;
+    gl::VertexArrayHandle emptyVao_;
+    gl::FramebufferHandle framebuffer_;
+    gl::Texture2D correction_;
+    gl::Texture2D coverDepth_;  // the copy of pass 1's depth the empty-pixel test runs against
+    EmptyPixelSkip emptyPixels_;
+    int width_ = 0, height_ = 0;
+    glm::mat4 viewProj_{1.0f};
+    bool hasFrame_ = false, hasCorrection_ = false;
+};
+
+}  // namespace starnt::temporal

@@ -1,0 +1,63 @@
+// A corrected interpolated frame (`--temporal-mode correct`; temporal::correctedPixel states the
+// rule and is its CPU reference): pass 1 and pass 3 rendered at the new camera, no pass 2, no
+// inference, no search. What lies behind the fresh nearest layer is the closed form of the fresh
+// sums plus the network's correction of the last real frame, resampled where the fresh nearest
+// point lay in that frame: bilinearly over the texels whose kept nearest surface is the same one
+// (inverse view depth within STARNT_TEMPORAL_SAME_SURFACE). Where none is (the surface was hidden
+// or off screen), the closed form alone.
+#include "methods/neural/temporal/reprojection_constants.h"
+#include "methods/neural/temporal/closed_form_behind.glsl"
+#include "methods/neural/half_targets.glsl"
+
+layout(binding = 0) uniform highp sampler2D u_nearest;        // fresh pass 1: C1, a1
+layout(binding = 1) uniform highp sampler2D u_depth;          // fresh pass-1 window depth
+layout(binding = 2) uniform highp sampler2D u_sumAlphaColor;  // fresh pass 3: sum a C, sum a
+layout(binding = 3) uniform highp sampler2D u_transmittance;  // fresh pass 3: prod (1 - a)
+layout(binding = 4) uniform highp sampler2D u_correction;     // correction_capture.frag.glsl
+uniform ivec2 u_size;
+uniform mat4 u_newToOld;        // oldViewProj * inverse(newViewProj)
+uniform vec4 u_sourceScale;     // row 3 of inverse(oldViewProj)
+uniform vec3 u_background;
+uniform bool u_halfOutput;
+uniform bool u_useCorrection;  // false: the last real frame kept no correction (pass 3 ran reduced)
+
+out vec4 o_color;
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    vec4 fresh = texelFetch(u_nearest, p, 0);
+    vec3 color = u_background;
+    if (fresh.a > 0.0) {
+        float open = 1.0 - fresh.a;
+        vec3 behind = u_background;
+        if (open > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE)) {
+            behind = closedFormBehind(fresh, texelFetch(u_sumAlphaColor, p, 0), texelFetch(u_transmittance, p, 0).r,
+                                      u_background);
+            vec2 c = (vec2(p) + 0.5) / vec2(u_size) * 2.0 - 1.0;
+            vec4 old = u_newToOld * vec4(c, texelFetch(u_depth, p, 0).r * 2.0 - 1.0, 1.0);
+            if (u_useCorrection && old.w > 0.0) {
+                vec3 ndc = old.xyz / old.w;
+                float reference = dot(u_sourceScale, vec4(ndc, 1.0));
+                vec2 f = (ndc.xy * 0.5 + 0.5) * vec2(u_size) - 0.5;
+                if (reference > 0.0 && f.x > -1.0 && f.y > -1.0 && f.x < float(u_size.x) && f.y < float(u_size.y)) {
+                    ivec2 base = ivec2(floor(f));
+                    vec2 w = f - vec2(base);
+                    vec3 sum = vec3(0.0);
+                    float weight = 0.0;
+                    for (int k = 0; k < 4; ++k) {
+                        ivec2 t = base + ivec2(k & 1, k >> 1);
+                        if (t.x < 0 || t.y < 0 || t.x >= u_size.x || t.y >= u_size.y) continue;
+                        vec4 d = texelFetch(u_correction, t, 0);
+                        if (!(d.a > 0.0) || abs(d.a / reference - 1.0) > float(STARNT_TEMPORAL_SAME_SURFACE)) continue;
+                        float wk = ((k & 1) != 0 ? w.x : 1.0 - w.x) * ((k >> 1) != 0 ? w.y : 1.0 - w.y);
+                        sum += wk * d.rgb;
+                        weight += wk;
+                    }
+                    if (weight > 0.0) behind += sum / weight;
+                }
+            }
+        }
+        color = fresh.a * fresh.rgb + open * max(behind, vec3(0.0));
+    }
+    o_color = outputValue(vec4(color, 1.0), u_halfOutput);
+}

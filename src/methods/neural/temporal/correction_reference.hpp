@@ -1,0 +1,52 @@
+// Corrected interpolated frames (`--temporal-mode correct`, beyond the paper; docs/DESIGN.md,
+// "Corrected frames"): the CPU reference of correction_capture.frag.glsl and
+// correction_composite.frag.glsl, in the shaders' float operations. Pixel grids in GL order (index
+// y * width + x, row 0 at the bottom).
+//
+// A real frame keeps, per texel, D = B_net - B_cf: what the network put behind the nearest layer,
+// B_net = (C - a1 C1) / (1 - a1), minus what the closed form of the same frame's pass-3 sums puts
+// there (closedFormBehind), with the texel's inverse view depth. An interpolated frame renders pass
+// 1 and pass 3 at its own camera (no pass 2, no inference) and composites
+//   C = a1 C1 + (1 - a1) max(B_cf + D(q), 0)
+// with B_cf from its own sums and D resampled bilinearly at q, where the fresh nearest point (its
+// pass-1 depth, unprojected) lay in the kept frame, over the texels whose kept nearest surface is
+// the same one (inverse view depth within STARNT_TEMPORAL_SAME_SURFACE); without such a texel,
+// D = 0. Why: the closed form is right for the sums at this camera (no parallax, no disocclusion:
+// every fragment is fresh), and what the network adds to it varies more slowly than the image, so
+// moving it by the nearest layer's depth costs less than moving the whole back.
+#pragma once
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "methods/neural/temporal/reprojection_math.hpp"
+
+namespace starnt::temporal {
+
+// What lies behind the nearest layer from the sums over every fragment: the fragments behind it
+// cover 1 - T' of the pixel, T' = clamp(T / (1 - a1), 0, 1), with the mean colour
+// (sum a C - a1 C1) / (sum a - a1) (clamped at 0; the background when sum a - a1 <=
+// STARNT_TEMPORAL_MIN_BEHIND_ALPHA), the background the rest. Needs 1 - a1 > 0.
+glm::vec3 closedFormBehind(const glm::vec4& nearest, const glm::vec4& sums, float transmittance, const glm::vec3& background);
+
+// One real frame as the capture reads it (all width x height, GL order).
+struct CorrectionSource {
+    int width = 0, height = 0;
+    std::vector<glm::vec4> composite;   // the real frame's output (rgb)
+    std::vector<float> depth;           // its pass-1 window depth
+    std::vector<glm::vec4> nearest;     // pass 1: C1, a1
+    std::vector<glm::vec4> sums;        // pass 3 at full resolution: sum a C, sum a
+    std::vector<float> transmittance;   // pass 3: prod (1 - a)
+};
+// The kept texels: (D, inverse view depth), alpha -1 where the nearest layer's transmittance was at
+// most STARNT_TEMPORAL_MIN_TRANSMITTANCE. `viewProj` of the real frame.
+std::vector<glm::vec4> correctionOnCpu(const CorrectionSource& real, const glm::mat4& viewProj, const glm::vec3& background);
+
+// One interpolated pixel (x, y): `nearest`, `depth`, `sums`, `transmittance` of the fresh passes at
+// that pixel; `correction` the kept texels of a frame rendered with `oldViewProj` (empty: the frame
+// was kept without a correction, the closed form alone).
+glm::vec3 correctedPixel(int x, int y, int width, int height, const glm::vec4& nearest, float depth, const glm::vec4& sums,
+                         float transmittance, const std::vector<glm::vec4>& correction, const glm::mat4& oldViewProj,
+                         const glm::mat4& newViewProj, const glm::vec3& background);
+
+}  // namespace starnt::temporal
