@@ -16,53 +16,18 @@
 #include "starnt/error.hpp"
 #include "starnt/nn.hpp"
 #include "starnt/scene.hpp"
+#include "temporal_test_support.hpp"
 #include "test_support.hpp"
 
 using namespace starnt;
 using namespace starnt::temporal;
+using starnt::test::readRgba;
+using starnt::test::renderSequence;
+using starnt::test::uploadRgba;
 
 namespace {
 
 const glm::vec3 kBackground(0.9f, 0.85f, 0.8f);
-
-gl::Texture2D uploadRgba(const std::vector<glm::vec4>& p, int w, int h) {
-    gl::Texture2D t(GL_RGBA32F, w, h);
-    starnt::gl::uploadTexture(t.id(), w, h, GL_RGBA, GL_FLOAT, p.data());
-    return t;
-}
-
-std::vector<glm::vec4> readRgba(GLuint texture, int w, int h) {
-    std::vector<glm::vec4> out(size_t(w) * size_t(h));
-    const std::vector<float> floats = starnt::gl::readTextureFloats(texture, w, h, 4);
-    std::memcpy(out.data(), floats.data(), floats.size() * sizeof(float));
-    return out;
-}
-
-glm::mat4 viewProj(int w, int h, float yawDeg) {
-    const glm::mat4 proj = glm::perspective(glm::radians(50.0f), float(w) / float(h), 0.5f, 20.0f);
-    const glm::mat4 view = glm::rotate(glm::mat4(1.0f), glm::radians(yawDeg), glm::vec3(0, 1, 0)) *
-                           glm::translate(glm::mat4(1.0f), glm::vec3(0.2f, -0.1f, -4.0f));
-    return proj * view;
-}
-
-// Renders `frames` frames of `method` with `options` along the yaw angles, returns each output.
-std::vector<std::vector<glm::vec4>> renderSequence(test::TestScene& c, const MethodOptions& options,
-                                                   const std::vector<float>& yaws) {
-    auto method = createMethod("starnt", SceneGpu::surfaceShader(), options);
-    std::vector<std::vector<glm::vec4>> out;
-    for (float yaw : yaws) {
-        Camera cam = c.camera;
-        const glm::vec3 offset = cam.position - cam.target;
-        cam.position = cam.target + glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(yaw), glm::vec3(0, 1, 0)) * glm::vec4(offset, 0.0f));
-        FrameDesc f = c.frame();
-        f.view = cam.view();
-        f.projection = cam.projection(c.aspect());
-        method->render(f, c.gpu->callback(f.view, f.projection, {}));
-        glFinish();
-        out.push_back(readRgba(method->outputTexture(), c.width, c.height));
-    }
-    return out;
-}
 
 }  // namespace
 
@@ -95,7 +60,7 @@ TEST(TemporalRefresh, GpuMatchesCpuReference) {
     options.neural.temporalInterval = 2;
     options.neural.temporalMode = NeuralOptions::TemporalMode::Refresh;
     TemporalFrames temporal(options);
-    const glm::mat4 oldVP = viewProj(w, h, 0.0f), newVP = viewProj(w, h, 3.0f);
+    const glm::mat4 oldVP = test::turnedViewProj(w, h, 0.0f), newVP = test::turnedViewProj(w, h, 3.0f);
     ASSERT_TRUE(temporal.beginFrame(w, h));
     EXPECT_THROW(temporal.endRealFrame(color.id(), depth.id(), oldVP, w, h), Error) << "refresh needs the nearest layer";
     temporal.endRealFrame(color.id(), depth.id(), oldVP, w, h, kn.id());
@@ -156,35 +121,19 @@ TEST(TemporalRefresh, SingleLayerPixelsMatchARealRenderAfterAMove) {
     MethodOptions warp = refresh;
     warp.neural.temporalMode = NeuralOptions::TemporalMode::Warp;
     const auto warped = renderSequence(c, warp, {0.0f, move});
-    // Layer counts at both cameras, GL order.
-    auto counts = [&](float yaw) {
-        test::TestScene moved(makeBuiltinScene("random", 5), w, h, 25.0f + yaw, 10.0f, kBackground);
-        const CapturedFrame f = moved.capture();
-        std::vector<int> n(size_t(w * h));
-        for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x) n[size_t(h - 1 - y) * size_t(w) + size_t(x)] = int(nn::sumsFromFragments(f.at(x, y)).count + 0.5f);
-        return n;
-    };
     // renderSequence turns the camera about the target by +yaw around y; TestScene's azimuth does
     // the same turn, so the captures see the same views.
-    const std::vector<int> before = counts(0.0f), after = counts(move);
-    size_t checked = 0, warpOff = 0;
-    for (int y = 3; y < h - 3; ++y)
-        for (int x = 3; x < w - 3; ++x) {
-            const size_t i = size_t(y) * size_t(w) + size_t(x);
-            if (after[i] != 1) continue;
-            bool oneAround = true;
-            for (int dy = -2; dy <= 2 && oneAround; ++dy)
-                for (int dx = -2; dx <= 2; ++dx) oneAround = oneAround && before[size_t((y + dy) * w + x + dx)] <= 1;
-            if (!oneAround) continue;
-            ++checked;
-            // Exact up to the output's last bit: with the compact targets (16-bit float output) the
-            // refresh composite and the real frame's round the same value computed two ways (one 16-bit
-            // step is 2^-11 to 2^-10 of the value).
-            for (int ch = 0; ch < 3; ++ch) ASSERT_NEAR(seq[1][i][ch], truth[0][i][ch], 1e-5f + std::abs(truth[0][i][ch]) / 1024.0f) << x << "," << y;
-            warpOff += glm::length(glm::vec3(warped[1][i] - truth[0][i])) > 1e-3f;
-        }
-    EXPECT_GT(checked, 50u);  // 89 on llvmpipe: the large triangles overlap almost everywhere
+    const std::vector<size_t> pixels = test::singleLayerPixels(test::layerCounts("random", 5, w, h, 25.0f, 10.0f, kBackground),
+                                                               test::layerCounts("random", 5, w, h, 25.0f + move, 10.0f, kBackground), w, h);
+    size_t warpOff = 0;
+    for (size_t i : pixels) {
+        // Exact up to the output's last bit: with the compact targets (16-bit float output) the
+        // refresh composite and the real frame's round the same value computed two ways (one 16-bit
+        // step is 2^-11 to 2^-10 of the value).
+        for (int ch = 0; ch < 3; ++ch) ASSERT_NEAR(seq[1][i][ch], truth[0][i][ch], 1e-5f + std::abs(truth[0][i][ch]) / 1024.0f) << i;
+        warpOff += glm::length(glm::vec3(warped[1][i] - truth[0][i])) > 1e-3f;
+    }
+    EXPECT_GT(pixels.size(), 50u);  // 89 on llvmpipe: the large triangles overlap almost everywhere
     EXPECT_GT(warpOff, 0u) << "warp frames do not re-render the layer: some of these pixels differ there";
 }
 

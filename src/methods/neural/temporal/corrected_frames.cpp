@@ -2,35 +2,16 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include "methods/neural/temporal/correction_reference.hpp"
+#include "methods/neural/temporal/reprojection_math.hpp"
+#include "methods/neural/temporal/temporal_passes.hpp"
 #include "starnt/error.hpp"
 
 namespace starnt::temporal {
-namespace {
-
-gl::Program buildPass(const char* label, const char* file) {
-    return gl::buildProgram(label, gl::embeddedSource("methods/common/fullscreen.vert.glsl"),
-                            gl::embeddedSource(std::string("methods/neural/temporal/") + file));
-}
-
-}  // namespace
 
 CorrectedFrames::CorrectedFrames()
-    : capture_(buildPass("correction_capture", "correction_capture.frag.glsl")),
-      composite_(buildPass("correction_composite", "correction_composite.frag.glsl")),
+    : capture_(buildTemporalPass("correction_capture", "reprojection_behind.frag.glsl", "#define STARNT_BEHIND_CORRECTION 1\n")),
+      composite_(buildTemporalPass("correction_composite", "correction_composite.frag.glsl")),
       emptyVao_(gl::makeEmptyVertexArray()) {}
-
-void CorrectedFrames::drawInto(GLuint texture) {
-    if (!framebuffer_) framebuffer_ = gl::makeFramebufferName();
-    if (gl::attachTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, texture) != GL_FRAMEBUFFER_COMPLETE) {
-        throw Error("corrected frames: the output texture is not colour-renderable");
-    }
-    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
-    glViewport(0, 0, width_, height_);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
-    glDisable(GL_SCISSOR_TEST);
-}
 
 void CorrectedFrames::capture(GLuint composite, GLuint depth, GLuint nearest, GLuint sumAlphaColor, GLuint transmittance,
                               int width, int height, const glm::mat4& viewProj, const glm::vec3& background) {
@@ -46,13 +27,14 @@ void CorrectedFrames::capture(GLuint composite, GLuint depth, GLuint nearest, GL
     if (correction_.width() != width || correction_.height() != height || correction_.format() != format) {
         correction_ = gl::Texture2D(format, width, height);
     }
-    drawInto(correction_.id());
+    drawIntoTexture(framebuffer_, correction_.id(), width_, height_);
     glUseProgram(capture_.id());
     glUniform2i(capture_.uniform("u_size"), width, height);
     glUniform4fv(capture_.uniform("u_sourceScale"), 1, glm::value_ptr(makeCorrectionMatrices(viewProj, viewProj).sourceScale));
     glUniform3fv(capture_.uniform("u_background"), 1, glm::value_ptr(background));
-    const GLuint inputs[] = {composite, depth, nearest, sumAlphaColor, transmittance};
-    for (GLuint unit = 0; unit < 5; ++unit) gl::bindTexture(unit, inputs[unit]);
+    // reprojection_behind.frag.glsl's units: 0 composite, 1 depth, 3 nearest, 4 and 5 the sums.
+    const GLuint inputs[] = {composite, depth, 0, nearest, sumAlphaColor, transmittance};
+    for (GLuint unit = 0; unit < 6; ++unit) gl::bindTexture(unit, inputs[unit]);
     gl::drawFullscreenTriangle(emptyVao_);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }

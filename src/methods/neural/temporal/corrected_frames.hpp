@@ -45,7 +45,6 @@ public:
     }
 
 private:
-    void drawInto(GLuint texture);
 
     gl::Program capture_, composite_;
     gl::VertexArrayHandle emptyVao_;

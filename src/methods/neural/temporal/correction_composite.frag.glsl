@@ -13,7 +13,7 @@ layout(binding = 0) uniform highp sampler2D u_nearest;        // fresh pass 1: C
 layout(binding = 1) uniform highp sampler2D u_depth;          // fresh pass-1 window depth
 layout(binding = 2) uniform highp sampler2D u_sumAlphaColor;  // fresh pass 3: sum a C, sum a
 layout(binding = 3) uniform highp sampler2D u_transmittance;  // fresh pass 3: prod (1 - a)
-layout(binding = 4) uniform highp sampler2D u_correction;     // correction_capture.frag.glsl
+layout(binding = 4) uniform highp sampler2D u_correction;     // reprojection_behind.frag.glsl, STARNT_BEHIND_CORRECTION
 uniform ivec2 u_size;
 uniform mat4 u_newToOld;        // oldViewProj * inverse(newViewProj)
 uniform vec4 u_sourceScale;     // row 3 of inverse(oldViewProj)

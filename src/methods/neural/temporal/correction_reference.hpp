@@ -1,5 +1,5 @@
 // Corrected interpolated frames (`--temporal-mode correct`, beyond the paper; docs/DESIGN.md,
-// "Corrected frames"): the CPU reference of correction_capture.frag.glsl and
+// "Corrected frames"): the CPU reference of reprojection_behind.frag.glsl (STARNT_BEHIND_CORRECTION) and
 // correction_composite.frag.glsl, in the shaders' float operations. Pixel grids in GL order (index
 // y * width + x, row 0 at the bottom).
 //

@@ -4,40 +4,18 @@
 
 #include "methods/neural/temporal/reprojection_constants.h"
 #include "methods/neural/temporal/reprojection_math.hpp"
+#include "methods/neural/temporal/temporal_passes.hpp"
 #include "starnt/error.hpp"
 
 namespace starnt::temporal {
-namespace {
-
-gl::Program buildPass(const char* label, const char* file, const std::string& defines = {}) {
-    return gl::buildProgram(label, gl::embeddedSource("methods/common/fullscreen.vert.glsl"),
-                            gl::embeddedSource(std::string("methods/neural/temporal/") + file), defines);
-}
-
-}  // namespace
 
 Reprojector::Reprojector()
-    : blockSeeds_(buildPass("reprojection_block_seeds", "reprojection_seeds.frag.glsl", "#define STARNT_SEEDS_BLOCK 1\n")),
-      dilateSeeds_(buildPass("reprojection_dilate_seeds", "reprojection_seeds.frag.glsl")),
-      search_(buildPass("reprojection_search", "reprojection_search.frag.glsl")),
-      searchRefresh_(buildPass("reprojection_refresh", "reprojection_search.frag.glsl", "#define STARNT_REFRESH 1\n")),
-      behindProgram_(buildPass("reprojection_behind", "reprojection_behind.frag.glsl")),
+    : blockSeeds_(buildTemporalPass("reprojection_block_seeds", "reprojection_seeds.frag.glsl", "#define STARNT_SEEDS_BLOCK 1\n")),
+      dilateSeeds_(buildTemporalPass("reprojection_dilate_seeds", "reprojection_seeds.frag.glsl")),
+      search_(buildTemporalPass("reprojection_search", "reprojection_search.frag.glsl")),
+      searchRefresh_(buildTemporalPass("reprojection_refresh", "reprojection_search.frag.glsl", "#define STARNT_REFRESH 1\n")),
+      behindProgram_(buildTemporalPass("reprojection_behind", "reprojection_behind.frag.glsl")),
       emptyVao_(gl::makeEmptyVertexArray()) {}
-
-// Binds a framebuffer drawing into `texture` (attached on every call: a texture name cached
-// across calls could have been deleted and reused) with a full viewport and no depth, blending or
-// scissor.
-void Reprojector::drawInto(GLuint texture, int width, int height) {
-    if (!framebuffer_) framebuffer_ = gl::makeFramebufferName();
-    if (gl::attachTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, texture) != GL_FRAMEBUFFER_COMPLETE) {
-        throw Error("temporal reprojection: the output texture is not colour-renderable");
-    }
-    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
-    glViewport(0, 0, width, height);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
-    glDisable(GL_SCISSOR_TEST);
-}
 
 void Reprojector::capture(GLuint colorTexture, GLuint depthTexture, int width, int height, const glm::mat4& viewProj,
                           GLuint nearestTexture) {
@@ -77,12 +55,12 @@ void Reprojector::capture(GLuint colorTexture, GLuint depthTexture, int width, i
     glCopyImageSubData(depthTexture, GL_TEXTURE_2D, 0, 0, 0, 0, depth_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width, height, 1);
     // The seeds: (min, max) depth per block, then over the 3x3 blocks around.
     const int blocksX = seeds_.width(), blocksY = seeds_.height();
-    drawInto(blockMinMax_.id(), blocksX, blocksY);
+    drawIntoTexture(framebuffer_, blockMinMax_.id(), blocksX, blocksY);
     glUseProgram(blockSeeds_.id());
     glUniform2i(blockSeeds_.uniform("u_sourceSize"), width, height);
     gl::bindTexture(0, depth_.id());
     gl::drawFullscreenTriangle(emptyVao_);
-    drawInto(seeds_.id(), blocksX, blocksY);
+    drawIntoTexture(framebuffer_, seeds_.id(), blocksX, blocksY);
     glUseProgram(dilateSeeds_.id());
     glUniform2i(dilateSeeds_.uniform("u_sourceSize"), blocksX, blocksY);
     gl::bindTexture(0, blockMinMax_.id());
@@ -91,7 +69,7 @@ void Reprojector::capture(GLuint colorTexture, GLuint depthTexture, int width, i
         if (behind_.width() != width || behind_.height() != height || behind_.format() != colorFormat) {
             behind_ = gl::Texture2D(colorFormat, width, height);
         }
-        drawInto(behind_.id(), width, height);
+        drawIntoTexture(framebuffer_, behind_.id(), width, height);
         glUseProgram(behindProgram_.id());
         glUniform2i(behindProgram_.uniform("u_size"), width, height);
         const Reprojection r = makeReprojection(viewProj, viewProj);
@@ -123,7 +101,7 @@ void Reprojector::reproject(const glm::mat4& newViewProj, GLuint outputTexture) 
     if (!hasFrame_) throw Error("internal: temporal reprojection before any real frame was captured");
     // Queried before any binding: on OpenGL ES the query binds the texture to the active unit.
     const bool halfOutput = gl::textureInternalFormat(outputTexture) == GL_RGBA16F;
-    drawInto(outputTexture, width_, height_);
+    drawIntoTexture(framebuffer_, outputTexture, width_, height_);
     setSearchUniforms(search_, newViewProj);
     glUniform1i(search_.uniform("u_halfOutput"), halfOutput);
     gl::drawFullscreenTriangle(emptyVao_);
@@ -136,7 +114,7 @@ void Reprojector::reprojectRefresh(const glm::mat4& newViewProj, GLuint nearestT
     if (!hasNearest_) throw Error("internal: a refresh frame needs the kept frame's nearest layer");
     const bool halfOutput = gl::textureInternalFormat(outputTexture) == GL_RGBA16F;  // before any binding (ES)
     if (nearestDepth) emptyPixels_.bindCovered(outputTexture, nearestDepth, width_, height_);
-    else drawInto(outputTexture, width_, height_);
+    else drawIntoTexture(framebuffer_, outputTexture, width_, height_);
     setSearchUniforms(searchRefresh_, newViewProj);
     gl::bindTexture(3, keptNearest_.id());
     gl::bindTexture(4, nearestTexture);

@@ -52,7 +52,6 @@ public:
     }
 
 private:
-    void drawInto(GLuint texture, int width, int height);
     void setSearchUniforms(const gl::Program& program, const glm::mat4& newViewProj) const;
 
     gl::Program blockSeeds_, dilateSeeds_, search_, searchRefresh_, behindProgram_;
