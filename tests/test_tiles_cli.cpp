@@ -60,9 +60,11 @@ TEST(TilesCli, BadSpatialOptionsFailCleanly) {
     expectCleanFailure(common + " --tile-signal depth", out, "back or composite");
     expectCleanFailure(common + " --scale-guard maybe", out, "--scale-guard");
     expectCleanFailure(common + " --temporal 2 --temporal-mode blend", out, "warp, refresh or correct");
-    expectCleanFailure("render --scene builtin:panes --method wboit --width 32 --height 32 --temporal-mode refresh --out " +
-                           out.string(),
-                       out, "no nearest-layer pass");
+    for (const char* mode : {"refresh", "correct"}) {
+        expectCleanFailure("render --scene builtin:panes --method wboit --width 32 --height 32 --temporal-mode " +
+                               std::string(mode) + " --out " + out.string(),
+                           out, "no interpolated frames");
+    }
     expectCleanFailure(common + " --tiles-image " + (dir / "t.jpg").string(), out, ".png");
     expectCleanFailure("render --scene builtin:panes --method wboit --width 32 --height 32 --out " + out.string() +
                            " --tiles-image " + (dir / "t.png").string(),

@@ -141,7 +141,7 @@ void addRenderCommand(CLI::App& app) {
         if (!a->camera.empty() && !a->cameraPath.empty()) throw Error("--camera and --camera-path exclude each other");
         if (temporalModeOption->count() > 0 && !methodHasNearestPass(a->method)) {
             throw Error("--temporal-mode: method " + a->method +
-                        " has no nearest-layer pass to refresh or frames to warp (use starnt, hybrid or dfaoit)");
+                        " has no interpolated frames to correct, refresh or warp (use starnt, hybrid or dfaoit)");
         }
         const bool numbered = isFramePattern(a->out);
         if (numbered) checkFramePattern(a->out, "--out");
