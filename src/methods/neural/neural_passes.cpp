@@ -283,10 +283,10 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
 void NeuralPasses::runNearestAndSums(const FrameDesc& frame, const DrawCallback& draw) {
     runNearest(frame, draw);
     pass3Size_ = {width_, height_};
-    // Only sum a C, sum a and the transmittance are read: the count (or sum C) target is masked.
+    // Only sum a C, sum a and the transmittance are read: the count (or sum C) target is masked
+    // (runSums ends with resetPassState, which unmasks it).
     glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     runSums(frame, draw, pass3Size_);
-    glColorMaski(1, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glViewport(0, 0, width_, height_);
 }
 

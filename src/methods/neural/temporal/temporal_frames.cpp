@@ -8,7 +8,11 @@ TemporalFrames::TemporalFrames(const MethodOptions& options)
     : schedule_(options),
       clock_(gl::wallClockTimingNeeded()),
       mode_(options.neural.temporalMode),
-      skipEmptyPixels_(options.neural.skipEmptyPixels) {}
+      skipEmptyPixels_(options.neural.skipEmptyPixels) {
+    if (!interpolates()) return;
+    if (corrects()) corrected_ = std::make_unique<temporal::CorrectedFrames>();
+    else reprojector_ = std::make_unique<temporal::Reprojector>();
+}
 
 bool TemporalFrames::beginFrame(int width, int height) {
     if (auto m = clock_.take()) {
@@ -16,8 +20,8 @@ bool TemporalFrames::beginFrame(int width, int height) {
         else schedule_.recordInterpolatedFrameMs(m->ms);
     }
     // A frame of another size cannot be reprojected from the kept one.
-    const int keptWidth = corrects() ? corrected_.width() : reprojector_.width();
-    const int keptHeight = corrects() ? corrected_.height() : reprojector_.height();
+    const int keptWidth = corrected_ ? corrected_->width() : reprojector_ ? reprojector_->width() : 0;
+    const int keptHeight = corrected_ ? corrected_->height() : reprojector_ ? reprojector_->height() : 0;
     if (hasKeptFrame() && (width != keptWidth || height != keptHeight)) reset();
     bool real = schedule_.nextFrameIsReal();
     // The schedule cannot know whether the kept frame exists (e.g. a real frame that threw).
@@ -40,10 +44,10 @@ void TemporalFrames::endRealFrame(GLuint compositeTexture, GLuint nearestDepthTe
         throw Error("internal: refresh and corrected frames need the real frame's nearest layer");
     }
     if (corrects()) {
-        corrected_.capture(compositeTexture, nearestDepthTexture, nearestTexture, sumAlphaColor, transmittance, width, height,
+        corrected_->capture(compositeTexture, nearestDepthTexture, nearestTexture, sumAlphaColor, transmittance, width, height,
                            viewProj, background);
     } else {
-        reprojector_.capture(compositeTexture, nearestDepthTexture, width, height, viewProj, refreshes() ? nearestTexture : 0);
+        reprojector_->capture(compositeTexture, nearestDepthTexture, width, height, viewProj, refreshes() ? nearestTexture : 0);
     }
     clock_.stop();
 }
@@ -52,7 +56,7 @@ void TemporalFrames::interpolate(const glm::mat4& viewProj, GLuint outputTexture
     if (!lastInterpolated_) throw Error("internal: TemporalFrames::interpolate on a real frame");
     {
         gl::ScopedPass timing(timer, "reproject");
-        reprojector_.reproject(viewProj, outputTexture);
+        reprojector_->reproject(viewProj, outputTexture);
     }
     clock_.stop();
 }
@@ -62,7 +66,7 @@ void TemporalFrames::interpolateRefresh(const glm::mat4& viewProj, GLuint neares
     if (!lastInterpolated_) throw Error("internal: TemporalFrames::interpolateRefresh on a real frame");
     {
         gl::ScopedPass timing(timer, "reproject");
-        reprojector_.reprojectRefresh(viewProj, nearestTexture, skipEmptyPixels_ ? nearestDepth : 0, background,
+        reprojector_->reprojectRefresh(viewProj, nearestTexture, skipEmptyPixels_ ? nearestDepth : 0, background,
                                       outputTexture);
     }
     clock_.stop();
@@ -74,15 +78,15 @@ void TemporalFrames::interpolateCorrected(const glm::mat4& viewProj, GLuint near
     if (!lastInterpolated_) throw Error("internal: TemporalFrames::interpolateCorrected on a real frame");
     {
         gl::ScopedPass timing(timer, "reproject");
-        corrected_.composite(viewProj, nearest, nearestDepth, sumAlphaColor, transmittance, background, outputTexture);
+        corrected_->composite(viewProj, nearest, nearestDepth, sumAlphaColor, transmittance, background, outputTexture);
     }
     clock_.stop();
 }
 
 void TemporalFrames::reset() {
     schedule_.reset();
-    reprojector_.reset();
-    corrected_.reset();
+    if (reprojector_) reprojector_->reset();
+    if (corrected_) corrected_->reset();
     clock_.take();  // a measurement of before the reset no longer applies
     lastInterpolated_ = false;
 }

@@ -10,6 +10,8 @@
 //       temporal.interpolate(proj * view, output, frame.timing);   // no geometry, no inference
 //   }
 #pragma once
+#include <memory>
+
 #include <glm/glm.hpp>
 
 #include "core/gpu_timer.hpp"
@@ -70,17 +72,22 @@ public:
     double averageInterpolatedFrameMs() const { return schedule_.averageInterpolatedFrameMs(); }
     // Forgets the kept frame and the timing; the next frame is real.
     void reset();
-    size_t gpuMemoryBytes() const { return reprojector_.gpuMemoryBytes() + corrected_.gpuMemoryBytes(); }
+    size_t gpuMemoryBytes() const {
+        return (reprojector_ ? reprojector_->gpuMemoryBytes() : 0) + (corrected_ ? corrected_->gpuMemoryBytes() : 0);
+    }
     void addMemoryTargets(OitMethod::MemoryTargets& out) const {
-        if (corrects()) corrected_.addMemoryTargets(out);
-        else reprojector_.addMemoryTargets(out);
+        if (corrected_) corrected_->addMemoryTargets(out);
+        if (reprojector_) reprojector_->addMemoryTargets(out);
     }
 
 private:
     TemporalSchedule schedule_;
-    bool hasKeptFrame() const { return corrects() ? corrected_.hasFrame() : reprojector_.hasFrame(); }
-    temporal::Reprojector reprojector_;     // warp and refresh modes
-    temporal::CorrectedFrames corrected_;  // correct mode
+    bool hasKeptFrame() const {
+        return corrected_ ? corrected_->hasFrame() : reprojector_ && reprojector_->hasFrame();
+    }
+    // The one the mode uses, built only when frames are interpolated (its programs compile then).
+    std::unique_ptr<temporal::Reprojector> reprojector_;     // warp and refresh modes
+    std::unique_ptr<temporal::CorrectedFrames> corrected_;  // correct mode
     temporal::FrameClock clock_;
     bool lastInterpolated_ = false;
     NeuralOptions::TemporalMode mode_;
