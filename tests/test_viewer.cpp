@@ -233,6 +233,7 @@ TEST(Viewer, LiveSwitchesShowInScreenshotsAndStats) {
     EXPECT_EQ(d["options"]["scales"], "100,50");
     EXPECT_EQ(d["options"]["inference"], "corners");
     EXPECT_EQ(d["options"]["temporal"], "2");
+    EXPECT_EQ(d["method_stats"]["temporal_mode"], "correct") << "the default interpolated frames";
     EXPECT_GT(coverage(starnt::loadImage(path("d.png"))), 0.05);
     fs::remove_all(dir);
 }

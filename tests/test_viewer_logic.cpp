@@ -87,6 +87,8 @@ TEST(ViewerSettings, SetParsesEverySwitchAndLeavesBadValuesOut) {
     s.set("scales", "50,25");
     s.set("inference", "corners");
     s.set("temporal", "auto");
+    EXPECT_EQ(s.options.neural.temporalMode, NeuralOptions::TemporalMode::Correct) << "the default";
+    s.set("temporal-mode", "warp");
     s.set("target-fps", "30");
     EXPECT_EQ(s.method, "dfaoit");
     EXPECT_EQ(s.splitMethod, "wboit");
@@ -98,6 +100,7 @@ TEST(ViewerSettings, SetParsesEverySwitchAndLeavesBadValuesOut) {
     EXPECT_FLOAT_EQ(s.options.neural.fixedScale3, 0.25f);
     EXPECT_EQ(s.options.neural.inference, NeuralOptions::Inference::Corners);
     EXPECT_TRUE(s.options.neural.temporalAuto);
+    EXPECT_EQ(s.options.neural.temporalMode, NeuralOptions::TemporalMode::Warp);
     EXPECT_EQ(s.options.neural.targetFps, 30.0);
 
     const ViewerSettings before = s;
@@ -105,6 +108,7 @@ TEST(ViewerSettings, SetParsesEverySwitchAndLeavesBadValuesOut) {
     EXPECT_THROW(s.set("background", "1,1"), Error);
     EXPECT_THROW(s.set("split", "nosuch"), Error);
     EXPECT_THROW(s.set("target-fps", "0"), Error);
+    EXPECT_THROW(s.set("temporal-mode", "blend"), Error);
     EXPECT_THROW(s.set("colour", "red"), Error);
     EXPECT_FALSE(needsNewMethods(before, s));
     EXPECT_EQ(s.alpha, before.alpha);
@@ -124,7 +128,7 @@ TEST(ViewerSettings, OnlyMethodAndOptionChangesRebuildMethods) {
     EXPECT_FALSE(needsNewMethods(a, b));
     for (auto [key, value] : std::vector<std::pair<const char*, const char*>>{
              {"method", "wboit"}, {"split", "peel"}, {"spatial", "on"}, {"scales", "100,50"},
-             {"inference", "corners"}, {"temporal", "3"}, {"target-fps", "90"}}) {
+             {"inference", "corners"}, {"temporal", "3"}, {"temporal-mode", "refresh"}, {"target-fps", "90"}}) {
         ViewerSettings c = a;
         c.set(key, value);
         EXPECT_TRUE(needsNewMethods(a, c)) << key;
