@@ -133,11 +133,7 @@ int main(int argc, char** argv) {
             tiles::ScaleGuard total;
             double allFragments = 0.0;
             for (size_t t = 0; t < tileSums.size(); ++t) {
-                total.occupied += tileSums[t].occupied;
-                for (size_t k = 0; k < 2; ++k) {
-                    total.loss2[k] += tileSums[t].loss2[k];
-                    total.loss3[k] += tileSums[t].loss3[k];
-                }
+                total += tileSums[t];
                 allFragments += tileFragments[t];
             }
             for (double budget : budgets) {

@@ -24,7 +24,6 @@ public:
     void capture(GLuint composite, GLuint depth, GLuint nearest, GLuint sumAlphaColor, GLuint transmittance, int width,
                  int height, const glm::mat4& viewProj, const glm::vec3& background);
     bool hasFrame() const { return hasFrame_; }
-    bool hasCorrection() const { return hasFrame_ && hasCorrection_; }
     int width() const { return width_; }
     int height() const { return height_; }
 
@@ -45,7 +44,6 @@ public:
     }
 
 private:
-
     gl::Program capture_, composite_;
     gl::VertexArrayHandle emptyVao_;
     gl::FramebufferHandle framebuffer_;

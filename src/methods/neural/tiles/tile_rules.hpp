@@ -41,6 +41,17 @@ struct ScaleGuard {
     float occupied = 0.0f;
     float energy2 = 0.0f, energy3 = 0.0f;
     std::array<float, 2> loss2{}, loss3{};
+    // Adds another set of sums (a tile's to a total), field by field.
+    ScaleGuard& operator+=(const ScaleGuard& o) {
+        occupied += o.occupied;
+        energy2 += o.energy2;
+        energy3 += o.energy3;
+        for (size_t k = 0; k < 2; ++k) {
+            loss2[k] += o.loss2[k];
+            loss3[k] += o.loss3[k];
+        }
+        return *this;
+    }
 };
 // The scales the guard picks: of the pairs (s2, s3) with s3 <= s2 in {1, 1/2, 1/4}, the cheapest
 // (fewest fragments, s2^2 + s3^2) whose predicted loss is at most `budget` x the occupied pixels

@@ -240,15 +240,7 @@ std::vector<ScaleGuard> scaleGuardTiles(int width, int height, const std::vector
 ScaleGuard scaleGuardSums(int width, int height, const std::vector<glm::vec4>& composite,
                           const std::vector<glm::vec4>& nearest, const std::vector<glm::vec4>& second) {
     ScaleGuard total;
-    for (const ScaleGuard& tile : scaleGuardTiles(width, height, composite, nearest, second, GuardPixels::Sampled)) {
-        total.occupied += tile.occupied;
-        total.energy2 += tile.energy2;
-        total.energy3 += tile.energy3;
-        for (size_t k = 0; k < 2; ++k) {
-            total.loss2[k] += tile.loss2[k];
-            total.loss3[k] += tile.loss3[k];
-        }
-    }
+    for (const ScaleGuard& tile : scaleGuardTiles(width, height, composite, nearest, second, GuardPixels::Sampled)) total += tile;
     return total;
 }
 
