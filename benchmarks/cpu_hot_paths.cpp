@@ -6,10 +6,10 @@
 
 #include <random>
 
-#include "starnt/fragments.hpp"
-#include "starnt/image.hpp"
-#include "starnt/metrics.hpp"
-#include "starnt/nn.hpp"
+#include "starnt/tools/fragments.hpp"
+#include "starnt/tools/image.hpp"
+#include "starnt/tools/metrics.hpp"
+#include "starnt/tools/nn.hpp"
 
 namespace {
 

@@ -20,9 +20,9 @@
 #include "methods/neural/neural_method.hpp"
 #include "methods/registry.hpp"
 #include "starnt/error.hpp"
-#include "starnt/gl_context.hpp"
-#include "starnt/metrics.hpp"
-#include "starnt/nn.hpp"
+#include "starnt/tools/gl_context.hpp"
+#include "starnt/tools/metrics.hpp"
+#include "starnt/tools/nn.hpp"
 
 using namespace starnt;
 

@@ -27,10 +27,10 @@
 #include "study_support.hpp"
 #include "methods/neural/tiles/tile_constants.h"
 #include "methods/neural/tiles/tile_rules.hpp"
-#include "methods/neural/tiles/tiles_cpu.hpp"
+#include "reference/tiles_cpu.hpp"
 #include "starnt/error.hpp"
-#include "starnt/gl_context.hpp"
-#include "starnt/nn.hpp"
+#include "starnt/tools/gl_context.hpp"
+#include "starnt/tools/nn.hpp"
 
 using namespace starnt;
 

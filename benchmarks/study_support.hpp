@@ -9,10 +9,10 @@
 
 #include "bench/bench_plan.hpp"
 #include "reference/fragment_capture.hpp"
-#include "render/scene_gpu.hpp"
-#include "starnt/camera.hpp"
+#include "scene/scene_gpu.hpp"
+#include "starnt/tools/camera.hpp"
 #include "starnt/error.hpp"
-#include "starnt/scene.hpp"
+#include "starnt/tools/scene.hpp"
 
 namespace starnt::study {
 

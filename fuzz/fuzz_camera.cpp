@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "fuzz_input.hpp"
-#include "starnt/camera.hpp"
-#include "starnt/camera_path.hpp"
+#include "starnt/tools/camera.hpp"
+#include "starnt/tools/camera_path.hpp"
 
 namespace {
 

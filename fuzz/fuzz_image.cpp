@@ -1,10 +1,10 @@
 // libFuzzer target: the image readers `compare` uses. First byte: even = PNG, odd = EXR.
-// The decode budget is 256x256 pixels (core/image_limits.hpp): larger declared sizes stop at the
+// The decode budget is 256x256 pixels (io/image_limits.hpp): larger declared sizes stop at the
 // size check, which is what loadImage does above kMaxImagePixels, and the fuzzer spends its time
 // in the decoders instead of in allocating and filling huge images (56 inputs/s -> see the log).
-#include "core/image_limits.hpp"
+#include "io/image_limits.hpp"
 #include "fuzz_input.hpp"
-#include "starnt/image.hpp"
+#include "starnt/tools/image.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     static const bool budgetSet = [] {

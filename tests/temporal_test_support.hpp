@@ -7,11 +7,11 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/gl_util.hpp"
+#include "gl/gl_util.hpp"
 #include "methods/registry.hpp"
-#include "render/scene_gpu.hpp"
-#include "starnt/nn.hpp"
-#include "starnt/scene.hpp"
+#include "scene/scene_gpu.hpp"
+#include "starnt/tools/nn.hpp"
+#include "starnt/tools/scene.hpp"
 #include "test_support.hpp"
 
 namespace starnt::test {

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "starnt/error.hpp"
-#include "starnt/scene.hpp"
+#include "starnt/tools/scene.hpp"
 
 using namespace starnt;
 

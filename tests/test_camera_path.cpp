@@ -1,10 +1,10 @@
-// Camera paths for sequences (include/starnt/camera_path.hpp): orbit endpoints, keyframes passed
+// Camera paths for sequences (include/starnt/tools/camera_path.hpp): orbit endpoints, keyframes passed
 // through, and clear errors for bad specs and files.
 #include <gtest/gtest.h>
 
 #include <fstream>
 
-#include "starnt/camera_path.hpp"
+#include "starnt/tools/camera_path.hpp"
 #include "starnt/error.hpp"
 #include "test_support.hpp"
 

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "starnt/fragments.hpp"
+#include "starnt/tools/fragments.hpp"
 
 using namespace starnt;
 

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include "methods/mboit/mboit_reference.hpp"
+#include "reference/mboit_cpu.hpp"
 #include "reference/cpu_raster.hpp"
 #include "starnt/error.hpp"
-#include "starnt/metrics.hpp"
+#include "starnt/tools/metrics.hpp"
 #include "test_support.hpp"
 
 using namespace starnt;
@@ -141,7 +141,7 @@ TEST(GlMboit, BoundsHoldAgainstExactTransmittanceOnPanes) {
     }
 }
 
-// The GPU method against the CPU composite (mboit_reference.cpp) on the random triangles, for every
+// The GPU method against the CPU composite (mboit_cpu.cpp) on the random triangles, for every
 // moment setting. The GPU sums moments in float in arbitrary order and reconstructs in float from a
 // Hankel/Toeplitz system whose condition the bias limits to ~1/beta; the reference works in double
 // with a different solver and root finder. Measured: worst 5.7e-5 per channel (linear colour), mean

@@ -3,13 +3,13 @@
 
 #include <cmath>
 
-#include "core/gl_util.hpp"
+#include "gl/gl_util.hpp"
 #include "reference/cpu_raster.hpp"
 #include "reference/fragment_capture.hpp"
 #include "render/offscreen_renderer.hpp"
-#include "starnt/camera.hpp"
+#include "starnt/tools/camera.hpp"
 #include "starnt/error.hpp"
-#include "starnt/families.hpp"
+#include "starnt/tools/families.hpp"
 #include "test_support.hpp"
 
 using namespace starnt;

@@ -6,16 +6,16 @@
 #include <cstring>
 #include <sstream>
 
-#include "core/gl_util.hpp"
-#include "core/shader.hpp"
+#include "gl/gl_util.hpp"
+#include "gl/shader.hpp"
 #include "methods/neural/neural_method.hpp"
 #include "methods/registry.hpp"
 #include "reference/fragment_capture.hpp"
 #include "render/offscreen_renderer.hpp"
-#include "starnt/camera.hpp"
+#include "starnt/tools/camera.hpp"
 #include "starnt/error.hpp"
-#include "starnt/metrics.hpp"
-#include "starnt/nn.hpp"
+#include "starnt/tools/metrics.hpp"
+#include "starnt/tools/nn.hpp"
 #include "test_support.hpp"
 
 using namespace starnt;

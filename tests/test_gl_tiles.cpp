@@ -7,22 +7,22 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/gl_util.hpp"
+#include "gl/gl_util.hpp"
 #include "render/frame_stats_json.hpp"
-#include "core/texture_readback.hpp"
-#include "core/gpu_timer.hpp"
-#include "core/shader.hpp"
+#include "io/texture_readback.hpp"
+#include "gl/gpu_timer.hpp"
+#include "gl/shader.hpp"
 #include "methods/common/method_base.hpp"
 #include "methods/neural/neural_method.hpp"
 #include "methods/neural/neural_passes.hpp"
 #include "methods/neural/tiles/tile_constants.h"
-#include "methods/neural/tiles/tiles_cpu.hpp"
+#include "reference/tiles_cpu.hpp"
 #include "methods/neural/tiles/tiles_gpu.hpp"
-#include "methods/neural/upsample_cpu.hpp"
+#include "reference/upsample_cpu.hpp"
 #include "methods/registry.hpp"
-#include "render/scene_gpu.hpp"
-#include "starnt/metrics.hpp"
-#include "starnt/nn.hpp"
+#include "scene/scene_gpu.hpp"
+#include "starnt/tools/metrics.hpp"
+#include "starnt/tools/nn.hpp"
 #include "test_support.hpp"
 
 using namespace starnt;

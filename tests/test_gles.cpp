@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "starnt/image.hpp"
+#include "starnt/tools/image.hpp"
 #include "test_support.hpp"
 
 namespace starnt {

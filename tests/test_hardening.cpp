@@ -11,13 +11,13 @@
 #include <nlohmann/json.hpp>
 
 #include "scene_test_helpers.hpp"
-#include "starnt/camera.hpp"
-#include "starnt/camera_path.hpp"
+#include "starnt/tools/camera.hpp"
+#include "starnt/tools/camera_path.hpp"
 #include "starnt/error.hpp"
-#include "starnt/image.hpp"
-#include "starnt/metrics.hpp"
-#include "starnt/nn.hpp"
-#include "starnt/scene.hpp"
+#include "starnt/tools/image.hpp"
+#include "starnt/tools/metrics.hpp"
+#include "starnt/tools/nn.hpp"
+#include "starnt/tools/scene.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;

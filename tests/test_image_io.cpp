@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "starnt/error.hpp"
-#include "starnt/image.hpp"
+#include "starnt/tools/image.hpp"
 #include "test_support.hpp"
 
 using namespace starnt;

@@ -5,7 +5,7 @@
 #include <random>
 
 #include "starnt/error.hpp"
-#include "starnt/metrics.hpp"
+#include "starnt/tools/metrics.hpp"
 
 using namespace starnt;
 

@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "starnt/error.hpp"
-#include "starnt/families.hpp"
-#include "starnt/nn.hpp"
+#include "starnt/tools/families.hpp"
+#include "starnt/tools/nn.hpp"
 #include "test_support.hpp"
 
 using namespace starnt;

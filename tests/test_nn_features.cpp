@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "starnt/error.hpp"
-#include "starnt/nn.hpp"
-#include "starnt/train.hpp"
+#include "starnt/tools/nn.hpp"
+#include "starnt/tools/train.hpp"
 
 using namespace starnt;
 using namespace starnt::nn;

@@ -7,7 +7,7 @@
 
 #include "test_support.hpp"
 #include "starnt/error.hpp"
-#include "starnt/nn.hpp"
+#include "starnt/tools/nn.hpp"
 
 using namespace starnt;
 using namespace starnt::nn;

@@ -4,10 +4,10 @@
 #include <cmath>
 
 #include "test_support.hpp"
-#include "nn/mlp.hpp"
+#include "train/mlp.hpp"
 #include "nn/random.hpp"
 #include "starnt/error.hpp"
-#include "starnt/nn.hpp"
+#include "starnt/tools/nn.hpp"
 
 using namespace starnt;
 using namespace starnt::nn;

@@ -8,8 +8,8 @@
 #include "test_support.hpp"
 #include "nn/random.hpp"
 #include "starnt/error.hpp"
-#include "starnt/families.hpp"
-#include "starnt/train.hpp"
+#include "starnt/tools/families.hpp"
+#include "starnt/tools/train.hpp"
 
 using namespace starnt;
 using namespace starnt::nn;

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "starnt/error.hpp"
-#include "starnt/nn.hpp"
+#include "starnt/tools/nn.hpp"
 #include "test_support.hpp"
 
 using namespace starnt;

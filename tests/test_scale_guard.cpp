@@ -9,17 +9,17 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include "core/gl_util.hpp"
+#include "gl/gl_util.hpp"
 #include "render/frame_stats_json.hpp"
-#include "core/gpu_timer.hpp"
+#include "gl/gpu_timer.hpp"
 #include "methods/neural/tiles/tile_constants.h"
-#include "methods/neural/tiles/tiles_cpu.hpp"
+#include "reference/tiles_cpu.hpp"
 #include "methods/neural/tiles/tiles_gpu.hpp"
 #include "methods/registry.hpp"
 #include "reference/fragment_capture.hpp"
-#include "render/scene_gpu.hpp"
-#include "starnt/nn.hpp"
-#include "starnt/scene.hpp"
+#include "scene/scene_gpu.hpp"
+#include "starnt/tools/nn.hpp"
+#include "starnt/tools/scene.hpp"
 #include "test_support.hpp"
 
 using namespace starnt;

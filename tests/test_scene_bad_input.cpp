@@ -6,7 +6,7 @@
 
 #include "scene_test_helpers.hpp"
 #include "starnt/error.hpp"
-#include "starnt/scene.hpp"
+#include "starnt/tools/scene.hpp"
 #include "test_support.hpp"
 
 using namespace starnt;

@@ -7,7 +7,7 @@
 #include <stb/stb_image_write.h>
 
 #include "scene_test_helpers.hpp"
-#include "starnt/scene.hpp"
+#include "starnt/tools/scene.hpp"
 #include "test_support.hpp"
 
 using namespace starnt;

@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "starnt/image.hpp"
-#include "starnt/metrics.hpp"
+#include "starnt/tools/image.hpp"
+#include "starnt/tools/metrics.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;

@@ -6,7 +6,7 @@
 
 #include "reference/fragment_capture.hpp"
 #include "render/offscreen_renderer.hpp"
-#include "starnt/camera.hpp"
+#include "starnt/tools/camera.hpp"
 #include "test_support.hpp"
 
 using namespace starnt;

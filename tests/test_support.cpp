@@ -29,7 +29,7 @@ std::filesystem::path makeTempDir(const std::string& tag) {
 
 }  // namespace starnt::test
 
-#include "starnt/gl_context.hpp"
+#include "starnt/tools/gl_context.hpp"
 
 namespace starnt::test {
 HeadlessGlContext& glContext() {

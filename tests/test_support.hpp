@@ -11,7 +11,7 @@
 
 #include "reference/fragment_capture.hpp"
 #include "render/offscreen_renderer.hpp"
-#include "starnt/camera.hpp"
+#include "starnt/tools/camera.hpp"
 
 namespace starnt::test {
 

@@ -1,13 +1,13 @@
 // Corrected interpolated frames (`--temporal-mode correct`, beyond SPEC 6): passes 1 and 3 rendered
 // at the new camera, the closed form behind the nearest layer plus the last real frame's network
-// correction, reprojected (correction_reference.hpp).
+// correction, reprojected (correction_cpu.hpp).
 #include <cstring>
 #include <gtest/gtest.h>
 
 #include <random>
 
 
-#include "methods/neural/temporal/correction_reference.hpp"
+#include "reference/correction_cpu.hpp"
 #include "methods/neural/temporal/temporal_frames.hpp"
 #include "starnt/error.hpp"
 #include "temporal_test_support.hpp"

@@ -8,14 +8,14 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
-#include "methods/neural/temporal/reprojection_reference.hpp"
+#include "reference/reprojection_cpu.hpp"
 #include "methods/neural/temporal/temporal_frames.hpp"
 #include "methods/registry.hpp"
 #include "reference/fragment_capture.hpp"
-#include "render/scene_gpu.hpp"
+#include "scene/scene_gpu.hpp"
 #include "starnt/error.hpp"
-#include "starnt/nn.hpp"
-#include "starnt/scene.hpp"
+#include "starnt/tools/nn.hpp"
+#include "starnt/tools/scene.hpp"
 #include "temporal_test_support.hpp"
 #include "test_support.hpp"
 

@@ -14,11 +14,11 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "methods/neural/temporal/reprojection_reference.hpp"
+#include "reference/reprojection_cpu.hpp"
 #include "methods/neural/temporal/reprojector.hpp"
 #include "methods/neural/temporal/temporal_frames.hpp"
 #include "starnt/error.hpp"
-#include "starnt/metrics.hpp"
+#include "starnt/tools/metrics.hpp"
 #include "test_support.hpp"
 
 using namespace starnt;

@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "starnt/image.hpp"
+#include "starnt/tools/image.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;

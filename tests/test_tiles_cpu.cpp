@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "methods/neural/tiles/tile_constants.h"
-#include "methods/neural/tiles/tiles_cpu.hpp"
-#include "methods/neural/upsample_cpu.hpp"
+#include "reference/tiles_cpu.hpp"
+#include "reference/upsample_cpu.hpp"
 
 using namespace starnt;
 using namespace starnt::tiles;

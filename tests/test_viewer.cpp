@@ -10,9 +10,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "starnt/camera.hpp"
-#include "starnt/image.hpp"
-#include "starnt/metrics.hpp"
+#include "starnt/tools/camera.hpp"
+#include "starnt/tools/image.hpp"
+#include "starnt/tools/metrics.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;

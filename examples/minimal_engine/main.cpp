@@ -15,7 +15,7 @@
 
 #include <starnt/bindings.h>
 #include <starnt/error.hpp>
-#include <starnt/image.hpp>  // starnt::tools: savePng
+#include <starnt/tools/image.hpp>  // starnt::tools: savePng
 #include <starnt/log.hpp>
 #include <starnt/method_options.hpp>
 #include <starnt/oit_method.hpp>

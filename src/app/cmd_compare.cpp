@@ -4,8 +4,8 @@
 
 #include "app/commands.hpp"
 #include "starnt/error.hpp"
-#include "starnt/image.hpp"
-#include "starnt/metrics.hpp"
+#include "starnt/tools/image.hpp"
+#include "starnt/tools/metrics.hpp"
 
 namespace starnt::app {
 

@@ -12,8 +12,8 @@
 #include "render/method_options.hpp"
 #include "render/offscreen_renderer.hpp"
 #include "starnt/error.hpp"
-#include "starnt/gl_context.hpp"
-#include "starnt/nn.hpp"
+#include "starnt/tools/gl_context.hpp"
+#include "starnt/tools/nn.hpp"
 
 namespace starnt::app {
 namespace {

@@ -11,12 +11,12 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
-#include "reference/training_data.hpp"
+#include "train/training_data.hpp"
 #include "starnt/error.hpp"
-#include "starnt/families.hpp"
-#include "starnt/gl_context.hpp"
-#include "starnt/scene.hpp"
-#include "starnt/train.hpp"
+#include "starnt/tools/families.hpp"
+#include "starnt/tools/gl_context.hpp"
+#include "starnt/tools/scene.hpp"
+#include "starnt/tools/train.hpp"
 
 namespace starnt::app {
 namespace {

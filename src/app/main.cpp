@@ -8,7 +8,7 @@
 #include "starnt/error.hpp"
 #include "starnt/log.hpp"
 #include "starnt/oit_method.hpp"
-#include "starnt/scene.hpp"
+#include "starnt/tools/scene.hpp"
 
 int main(int argc, char** argv) {
     // The libraries never write to stderr themselves: their notes and warnings come here.

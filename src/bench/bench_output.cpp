@@ -4,7 +4,7 @@
 
 #include "bench/bench_report.hpp"
 #include "bench/plots.hpp"
-#include "starnt/image.hpp"
+#include "starnt/tools/image.hpp"
 
 namespace starnt::bench {
 

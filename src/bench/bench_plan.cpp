@@ -7,7 +7,7 @@
 
 #include "render/offscreen_renderer.hpp"
 #include "starnt/error.hpp"
-#include "starnt/scene.hpp"
+#include "starnt/tools/scene.hpp"
 
 namespace starnt::bench {
 namespace {

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "render/scene_gpu.hpp"
-#include "starnt/gl_context.hpp"
+#include "scene/scene_gpu.hpp"
+#include "starnt/tools/gl_context.hpp"
 #include "starnt/oit_method.hpp"
 
 namespace starnt::bench {

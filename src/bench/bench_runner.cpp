@@ -6,9 +6,9 @@
 #include "bench/progress.hpp"
 #include "render/offscreen_renderer.hpp"
 #include "starnt/error.hpp"
-#include "starnt/gl_context.hpp"
-#include "starnt/metrics.hpp"
-#include "starnt/scene.hpp"
+#include "starnt/tools/gl_context.hpp"
+#include "starnt/tools/metrics.hpp"
+#include "starnt/tools/scene.hpp"
 
 namespace starnt::bench {
 namespace {

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <thread>
 
-#include "core/build_info.hpp"
+#include "bench/build_info.hpp"
 
 namespace starnt::bench {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "starnt/gl_context.hpp"
+#include "starnt/tools/gl_context.hpp"
 
 namespace starnt::bench {
 

@@ -1,5 +1,5 @@
 #include "bench/plots.hpp"
-#include "render/tool_sources.hpp"
+#include "scene/tool_sources.hpp"
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "core/shader.hpp"
-#include "starnt/image.hpp"
+#include "gl/shader.hpp"
+#include "starnt/tools/image.hpp"
 
 namespace starnt::bench {
 namespace {

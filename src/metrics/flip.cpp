@@ -30,7 +30,7 @@
 //  - The remapped colour error is clamped to [0, 1] (a safety net: in the RGB cube green/blue is the
 //    maximum pair the paper uses; no other pair is expected to exceed it).
 #include "starnt/error.hpp"
-#include "starnt/metrics.hpp"
+#include "starnt/tools/metrics.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,6 +1,6 @@
 // Mean squared error of sRGB-encoded values (SPEC section 8).
 #include "starnt/error.hpp"
-#include "starnt/metrics.hpp"
+#include "starnt/tools/metrics.hpp"
 
 #include <algorithm>
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "reference/fragment_capture.hpp"
-#include "starnt/scene.hpp"
+#include "starnt/tools/scene.hpp"
 
 namespace starnt {
 

@@ -1,10 +1,10 @@
 #include "reference/fragment_capture.hpp"
-#include "render/tool_sources.hpp"
+#include "scene/tool_sources.hpp"
 
 #include <algorithm>
 
 
-#include "shaders/shared_constants.h"
+#include "scene/scene_constants.h"
 
 namespace starnt {
 

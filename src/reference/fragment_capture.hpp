@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "methods/abuffer/abuffer_lists.hpp"
-#include "starnt/fragments.hpp"
+#include "starnt/tools/fragments.hpp"
 
 namespace starnt {
 

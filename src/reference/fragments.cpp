@@ -1,4 +1,4 @@
-#include "starnt/fragments.hpp"
+#include "starnt/tools/fragments.hpp"
 
 #include <algorithm>
 

@@ -1,6 +1,6 @@
 #include "render/offscreen_renderer.hpp"
 #include "render/frame_stats_json.hpp"
-#include "core/texture_readback.hpp"
+#include "io/texture_readback.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -10,11 +10,11 @@
 #include <unistd.h>
 #include <numeric>
 
-#include "core/gl_util.hpp"
-#include "core/gpu_timer.hpp"
+#include "gl/gl_util.hpp"
+#include "gl/gpu_timer.hpp"
 #include "reference/fragment_capture.hpp"
 #include "starnt/error.hpp"
-#include "starnt/metrics.hpp"
+#include "starnt/tools/metrics.hpp"
 
 namespace starnt {
 

@@ -8,10 +8,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "render/scene_gpu.hpp"
-#include "starnt/camera.hpp"
-#include "starnt/camera_path.hpp"
-#include "starnt/image.hpp"
+#include "scene/scene_gpu.hpp"
+#include "starnt/tools/camera.hpp"
+#include "starnt/tools/camera_path.hpp"
+#include "starnt/tools/image.hpp"
 
 namespace starnt {
 

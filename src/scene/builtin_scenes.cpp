@@ -27,9 +27,9 @@
 #include <numbers>
 #include <random>
 
-#include "core/hue_color.hpp"
+#include "scene/hue_color.hpp"
 #include "starnt/error.hpp"
-#include "starnt/scene.hpp"
+#include "starnt/tools/scene.hpp"
 
 namespace starnt {
 

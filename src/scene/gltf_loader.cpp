@@ -17,7 +17,7 @@
 
 #include "scene/scene_internal.hpp"
 #include "starnt/error.hpp"
-#include "starnt/scene.hpp"
+#include "starnt/tools/scene.hpp"
 
 namespace starnt {
 

@@ -8,7 +8,7 @@
 
 #include "scene/scene_internal.hpp"
 #include "starnt/error.hpp"
-#include "starnt/scene.hpp"
+#include "starnt/tools/scene.hpp"
 #include "starnt/log.hpp"
 
 namespace starnt {

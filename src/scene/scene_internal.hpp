@@ -2,7 +2,7 @@
 #pragma once
 #include <string>
 
-#include "starnt/scene.hpp"
+#include "starnt/tools/scene.hpp"
 
 namespace starnt::detail {
 

@@ -4,8 +4,8 @@
 #pragma once
 #include <glm/glm.hpp>
 
-#include "starnt/camera.hpp"
-#include "starnt/scene.hpp"
+#include "starnt/tools/camera.hpp"
+#include "starnt/tools/scene.hpp"
 
 namespace starnt::viewer {
 

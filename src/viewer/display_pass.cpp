@@ -1,5 +1,5 @@
 #include "viewer/display_pass.hpp"
-#include "render/tool_sources.hpp"
+#include "scene/tool_sources.hpp"
 
 #include <algorithm>
 #include <vector>

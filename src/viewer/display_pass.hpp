@@ -5,8 +5,8 @@
 
 #include <glm/glm.hpp>
 
-#include "core/shader.hpp"
-#include "starnt/image.hpp"
+#include "gl/shader.hpp"
+#include "starnt/tools/image.hpp"
 
 namespace starnt::viewer {
 

@@ -1,9 +1,9 @@
 #include "viewer/error_view.hpp"
-#include "core/texture_readback.hpp"
+#include "io/texture_readback.hpp"
 
 #include <sstream>
 
-#include "starnt/metrics.hpp"
+#include "starnt/tools/metrics.hpp"
 #include "viewer/display_pass.hpp"
 #include "viewer/method_set.hpp"
 

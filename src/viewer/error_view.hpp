@@ -5,9 +5,9 @@
 #include <optional>
 #include <string>
 
-#include "core/gl_util.hpp"
-#include "render/scene_gpu.hpp"
-#include "starnt/camera.hpp"
+#include "gl/gl_util.hpp"
+#include "scene/scene_gpu.hpp"
+#include "starnt/tools/camera.hpp"
 #include "viewer/viewer_settings.hpp"
 
 namespace starnt::viewer {

@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "starnt/error.hpp"
-#include "starnt/gl_context.hpp"
+#include "starnt/tools/gl_context.hpp"
 
 namespace starnt::viewer {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <glm/glm.hpp>
 
-#include "starnt/gl_context.hpp"
+#include "starnt/tools/gl_context.hpp"
 
 struct GLFWwindow;
 

@@ -8,9 +8,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/gpu_timer.hpp"
-#include "render/scene_gpu.hpp"
-#include "starnt/camera.hpp"
+#include "gl/gpu_timer.hpp"
+#include "scene/scene_gpu.hpp"
+#include "starnt/tools/camera.hpp"
 #include "viewer/viewer_settings.hpp"
 
 namespace starnt::viewer {

@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "starnt/scene.hpp"
+#include "starnt/tools/scene.hpp"
 
 namespace fs = std::filesystem;
 

@@ -2,7 +2,7 @@
 #pragma once
 #include <string>
 
-#include "starnt/gl_context.hpp"
+#include "starnt/tools/gl_context.hpp"
 #include "viewer/viewer_settings.hpp"
 
 namespace starnt::viewer {

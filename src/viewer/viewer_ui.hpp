@@ -4,7 +4,7 @@
 #pragma once
 #include <map>
 
-#include "core/gpu_timer.hpp"
+#include "gl/gpu_timer.hpp"
 #include <optional>
 #include <string>
 #include <vector>

@@ -1,9 +1,9 @@
 // Shared plumbing of the OIT methods: program building around the engine's surface shader, the
 // full-resolution output target, and the full-screen triangle.
 #pragma once
-#include "core/gl_util.hpp"
-#include "core/gpu_timer.hpp"
-#include "core/shader.hpp"
+#include "gl/gl_util.hpp"
+#include "gl/gpu_timer.hpp"
+#include "gl/shader.hpp"
 #include "starnt/oit_method.hpp"
 
 namespace starnt {

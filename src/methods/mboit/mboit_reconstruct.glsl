@@ -1,6 +1,6 @@
 // MBOIT: transmittance at a depth reconstructed from the moments of optical depth (the paper's
 // bounds: Hamburger problem for 4 and 6 power moments, the trigonometric moment problem for 2 and 3
-// complex moments). Same formulas as the CPU reference mboit_reference.cpp:
+// complex moments). Same formulas as the CPU reference mboit_cpu.cpp:
 //  1. normalise by b_0 and bias: power b <- (1 - beta) b + beta * biasVector, trig b <- (1 - beta) b;
 //  2. M = Hankel (M_jk = b_{j+k}) or Toeplitz (M_jk = b_{j-k}) matrix, size n + 1; solve
 //     M q = v(x0), v(x) = (1, x, .., x^n), x0 = z (power) or exp(i phi(z)) (trig), by LDL^T / LDL^H;

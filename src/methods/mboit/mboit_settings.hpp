@@ -1,7 +1,7 @@
 // Moment-based OIT (Muenstermann, Krumpen, Klein, Peters, "Moment-Based Order-Independent
 // Transparency", Proc. ACM CGIT 1(1), 2018): the moment settings and the constants the paper gives
 // for them. Shared by the GPU method (mboit.cpp passes them to the shaders as uniforms) and by the
-// CPU reference (mboit_reference.cpp), so both use the same numbers.
+// CPU reference (mboit_cpu.cpp), so both use the same numbers.
 //
 // Depth warp (the paper's logarithmic warp): view depth d in [near, far] of the frame's projection
 //   z = 2 * ln(d / near) / ln(far / near) - 1   in [-1, 1],

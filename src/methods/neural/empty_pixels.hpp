@@ -17,8 +17,8 @@
 #pragma once
 #include <glm/glm.hpp>
 
-#include "core/gl_util.hpp"
-#include "core/shader.hpp"
+#include "gl/gl_util.hpp"
+#include "gl/shader.hpp"
 
 namespace starnt {
 

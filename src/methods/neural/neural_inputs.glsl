@@ -146,7 +146,7 @@ void starntInputs(PixelSums s, out float x[5]) {
 }
 
 // The composite of the three-pass methods (starnt, hybrid, starnt-residual; CPU reference
-// compositeThreeLayersExact in src/nn/features.cpp): the two peeled layers exactly, the tail exactly
+// compositeThreeLayersExact in src/train/features.cpp): the two peeled layers exactly, the tail exactly
 // for N <= 3 (the third fragment follows from the sums), `deepTail` for N > 3, then the background.
 vec3 threeLayerComposite(PixelSums s, vec3 deepTail, vec3 background) {
     vec3 tail;

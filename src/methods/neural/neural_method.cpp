@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <map>
 
-#include "core/shader.hpp"
+#include "gl/shader.hpp"
 #include "methods/common/method_base.hpp"
 #include "methods/neural/empty_pixels.hpp"
 #include "methods/neural/neural_passes.hpp"

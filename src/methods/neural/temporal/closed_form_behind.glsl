@@ -3,7 +3,7 @@
 // 1 - T' of the pixel, T' = T / (1 - a1), with their alpha-weighted mean colour, the background
 // the rest. Corrected interpolated frames (correction_composite.frag.glsl) add to it the network's
 // correction kept from the last real frame (reprojection_behind.frag.glsl, STARNT_BEHIND_CORRECTION). CPU reference:
-// temporal::closedFormBehind (correction_reference.hpp), which states the guards.
+// temporal::closedFormBehind (correction_cpu.hpp), which states the guards.
 // `nearest` = C1, a1 (a1 < 1 - STARNT_TEMPORAL_MIN_TRANSMITTANCE), `sums` = (sum a C, sum a),
 // `t` = prod (1 - a).
 vec3 closedFormBehind(vec4 nearest, vec4 sums, float t, vec3 background) {

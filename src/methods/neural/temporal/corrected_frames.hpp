@@ -1,12 +1,12 @@
-// Corrected interpolated frames on the GPU (`--temporal-mode correct`; correction_reference.hpp
+// Corrected interpolated frames on the GPU (`--temporal-mode correct`; correction_cpu.hpp
 // states the method and is its CPU reference): what a real frame keeps (one RGBA texture: the
 // network's correction of the closed form behind the nearest layer, and the texel's inverse view
 // depth), and the composite of an interpolated frame from its own pass 1 and pass 3.
 #pragma once
 #include <glm/glm.hpp>
 
-#include "core/gl_util.hpp"
-#include "core/shader.hpp"
+#include "gl/gl_util.hpp"
+#include "gl/shader.hpp"
 #include "methods/neural/empty_pixels.hpp"
 #include "starnt/oit_method.hpp"
 

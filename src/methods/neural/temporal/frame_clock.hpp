@@ -3,14 +3,14 @@
 // On a GPU: a GL_TIMESTAMP query pair around the frame, read back without stalling at a later
 // frame once the result is available (a measurement still in flight skips the next frame).
 // On a software rasteriser (llvmpipe) timestamps are taken at submission, not execution (see
-// core/gpu_timer.hpp), so there the frame is bracketed by glFinish and timed with the wall clock;
+// gl/gpu_timer.hpp), so there the frame is bracketed by glFinish and timed with the wall clock;
 // a CPU "GPU" has no pipelining to lose.
 #pragma once
 #include <epoxy/gl.h>
 
 #include <optional>
 
-#include "core/gl_util.hpp"
+#include "gl/gl_util.hpp"
 
 namespace starnt::temporal {
 

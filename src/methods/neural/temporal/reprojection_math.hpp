@@ -1,4 +1,4 @@
-// The matrices a reprojection runs on (see reprojection_reference.hpp for the algorithm). Runtime
+// The matrices a reprojection runs on (see reprojection_cpu.hpp for the algorithm). Runtime
 // (reprojector.cpp) and the CPU reference share them.
 #pragma once
 #include <glm/glm.hpp>
@@ -12,7 +12,7 @@ struct Reprojection {
 };
 Reprojection makeReprojection(const glm::mat4& oldViewProj, const glm::mat4& newViewProj);
 
-// Corrected frames (correction_reference.hpp): the matrices of the composite,
+// Corrected frames (correction_cpu.hpp): the matrices of the composite,
 // oldViewProj * inverse(newViewProj) and row 3 of inverse(oldViewProj), in double, rounded once.
 struct CorrectionMatrices {
     glm::mat4 newToOld{1.0f};

@@ -1,5 +1,5 @@
 // Reprojection of the last real frame to the current camera by a backward search (gather), one
-// full-screen pass. reprojection_reference.hpp states the algorithm and runs the same float
+// full-screen pass. reprojection_cpu.hpp states the algorithm and runs the same float
 // operations on the CPU; read it first.
 //
 // Why a gather: a forward splat needs a clear, an atomic depth test per source, a tie-break pass
@@ -27,7 +27,7 @@ layout(binding = 4) uniform highp sampler2D u_nearest;
 uniform vec3 u_background;
 layout(binding = 5) uniform highp sampler2D u_behind;  // reprojection_behind.frag.glsl: (B, 1 / view depth)
 
-// temporal::refreshComposite (reprojection_reference.hpp states it): the fresh nearest layer over
+// temporal::refreshComposite (reprojection_cpu.hpp states it): the fresh nearest layer over
 // what lay behind the kept frame's nearest layer at the source texel.
 vec3 refreshComposite(vec3 keptComposite, vec4 keptNearest, vec4 nearest, vec3 background) {
     if (!(nearest.a > 0.0)) return background;

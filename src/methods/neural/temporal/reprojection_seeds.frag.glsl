@@ -1,4 +1,4 @@
-// The search seeds of the reprojection, made once per real frame (see reprojection_reference.hpp):
+// The search seeds of the reprojection, made once per real frame (see reprojection_cpu.hpp):
 // per block of STARNT_TEMPORAL_SEED_BLOCK^2 pixels the (min, max) pass-1 depth, then the same over
 // the 3x3 blocks around each block. One fetch per output pixel then replaces a window of fetches
 // at every interpolated frame.

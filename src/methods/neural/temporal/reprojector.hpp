@@ -1,13 +1,13 @@
 // GPU reprojection of the last real frame to a new camera (SPEC section 6): a copy of the real
 // frame, then one full-screen pass that searches each output pixel's source
 // (reprojection_search.frag.glsl). The algorithm, its fallback and a CPU reference are in
-// reprojection_reference.hpp.
+// reprojection_cpu.hpp.
 #pragma once
 #include <glm/glm.hpp>
 
-#include "core/gl_util.hpp"
+#include "gl/gl_util.hpp"
 #include "starnt/oit_method.hpp"
-#include "core/shader.hpp"
+#include "gl/shader.hpp"
 #include "methods/neural/empty_pixels.hpp"
 
 namespace starnt::temporal {

@@ -14,7 +14,7 @@
 
 #include <glm/glm.hpp>
 
-#include "core/gpu_timer.hpp"
+#include "gl/gpu_timer.hpp"
 #include "methods/neural/temporal/corrected_frames.hpp"
 #include "methods/neural/temporal/frame_clock.hpp"
 #include "methods/neural/temporal/reprojector.hpp"

@@ -3,8 +3,8 @@
 #pragma once
 #include <string>
 
-#include "core/gl_util.hpp"
-#include "core/shader.hpp"
+#include "gl/gl_util.hpp"
+#include "gl/shader.hpp"
 #include "starnt/error.hpp"
 
 namespace starnt::temporal {

@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/gl_util.hpp"
-#include "core/gpu_timer.hpp"
-#include "core/shader.hpp"
+#include "gl/gl_util.hpp"
+#include "gl/gpu_timer.hpp"
+#include "gl/shader.hpp"
 #include "methods/neural/tiles/tile_rules.hpp"
 
 namespace starnt::tiles {

@@ -1,0 +1,267 @@
+#include "gl/gl_util.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <vector>
+
+#include "starnt/error.hpp"
+
+namespace starnt::gl {
+
+void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
+void deleteBuffer(GLuint id) { glDeleteBuffers(1, &id); }
+void deleteFramebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
+void deleteVertexArray(GLuint id) { glDeleteVertexArrays(1, &id); }
+void deleteProgram(GLuint id) { glDeleteProgram(id); }
+void deleteQuery(GLuint id) { glDeleteQueries(1, &id); }
+
+size_t bytesPerTexel(GLenum f) {
+    switch (f) {
+        case GL_RGBA32F: return 16;
+        case GL_RGBA16F: return 8;
+        case GL_RGBA8: case GL_RGB10_A2: case GL_RG16F: return 4;
+        case GL_RG32F: return 8;
+        case GL_R32F: case GL_R32UI: case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8: return 4;
+        case GL_R16F: case GL_R16: case GL_DEPTH_COMPONENT16: return 2;
+        case GL_R8: return 1;
+        default: {
+            char hex[16];
+            std::snprintf(hex, sizeof hex, "0x%04X", unsigned(f));
+            throw Error(std::string("internal: unknown texture format ") + hex);
+        }
+    }
+}
+
+Texture2D::Texture2D(GLenum internalFormat, int width, int height, GLenum filter)
+    : format_(internalFormat), width_(width), height_(height) {
+    GLuint id = 0;
+    if (isEs()) {
+        glGenTextures(1, &id);
+        handle_ = Handle<deleteTexture>(id);
+        glBindTexture(GL_TEXTURE_2D, id);
+        glTexStorage2D(GL_TEXTURE_2D, 1, internalFormat, width, height);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GLint(filter));
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GLint(filter));
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        return;
+    }
+    glCreateTextures(GL_TEXTURE_2D, 1, &id);
+    handle_ = Handle<deleteTexture>(id);
+    glTextureStorage2D(id, 1, internalFormat, width, height);
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, filter);
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, filter);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+Buffer::Buffer(size_t bytes, const void* data, GLbitfield flags) : bytes_(bytes) {
+    GLuint id = 0;
+    if (isEs()) {
+        // ES 3.2 has no immutable buffer storage (EXT_buffer_storage is optional); a mutable store
+        // of the same size serves: nothing here maps buffers persistently.
+        glGenBuffers(1, &id);
+        handle_ = Handle<deleteBuffer>(id);
+        glBindBuffer(GL_COPY_WRITE_BUFFER, id);
+        glBufferData(GL_COPY_WRITE_BUFFER, GLsizeiptr(bytes), data, GL_DYNAMIC_DRAW);
+    } else {
+        glCreateBuffers(1, &id);
+        handle_ = Handle<deleteBuffer>(id);
+        glNamedBufferStorage(id, GLsizeiptr(bytes), data, flags);
+    }
+    if (glGetError() == GL_OUT_OF_MEMORY) {
+        handle_.reset();
+        throw Error("out of GPU memory allocating a buffer of " + std::to_string(bytes) + " bytes");
+    }
+}
+
+FramebufferHandle makeFramebuffer(std::initializer_list<const Texture2D*> colors, const Texture2D* depth) {
+    FramebufferHandle fb = makeFramebufferName();
+    const GLuint id = fb.id();
+    std::vector<GLenum> drawBuffers;
+    GLenum slot = GL_COLOR_ATTACHMENT0;
+    for (const Texture2D* t : colors) {
+        attachTexture(id, slot, t->id());
+        drawBuffers.push_back(slot++);
+    }
+    if (depth) attachTexture(id, GL_DEPTH_ATTACHMENT, depth->id());
+    GLenum status = 0;
+    if (isEs()) {
+        glBindFramebuffer(GL_FRAMEBUFFER, id);
+        const GLenum none = GL_NONE;
+        if (drawBuffers.empty()) {
+            glDrawBuffers(1, &none);
+        } else {
+            glDrawBuffers(GLsizei(drawBuffers.size()), drawBuffers.data());
+        }
+        status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    } else {
+        if (drawBuffers.empty()) {
+            glNamedFramebufferDrawBuffer(id, GL_NONE);
+        } else {
+            glNamedFramebufferDrawBuffers(id, GLsizei(drawBuffers.size()), drawBuffers.data());
+        }
+        status = glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER);
+    }
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+        throw Error("internal: incomplete framebuffer (status 0x" + std::to_string(status) + ")");
+    }
+    return fb;
+}
+
+bool isEs() { return !epoxy_is_desktop_gl(); }
+
+void bindTexture(GLuint unit, GLuint texture) {
+    if (isEs()) {
+        glActiveTexture(GL_TEXTURE0 + unit);
+        glBindTexture(GL_TEXTURE_2D, texture);
+    } else {
+        glBindTextureUnit(unit, texture);
+    }
+}
+
+void fillBufferUint(const Buffer& buffer, uint32_t value) {
+    if (isEs()) {
+        const std::vector<uint32_t> words(buffer.bytes() / 4, value);
+        glBindBuffer(GL_COPY_WRITE_BUFFER, buffer.id());
+        glBufferSubData(GL_COPY_WRITE_BUFFER, 0, GLsizeiptr(words.size() * 4), words.data());
+    } else {
+        glClearNamedBufferData(buffer.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &value);
+    }
+}
+
+void readBuffer(GLuint buffer, size_t offset, size_t bytes, void* out) {
+    if (bytes == 0) return;
+    if (!isEs()) {
+        glGetNamedBufferSubData(buffer, GLintptr(offset), GLsizeiptr(bytes), out);
+        return;
+    }
+    glBindBuffer(GL_COPY_READ_BUFFER, buffer);
+    const void* mapped = glMapBufferRange(GL_COPY_READ_BUFFER, GLintptr(offset), GLsizeiptr(bytes), GL_MAP_READ_BIT);
+    if (!mapped) throw Error("internal: glMapBufferRange failed reading a buffer back");
+    std::memcpy(out, mapped, bytes);
+    glUnmapBuffer(GL_COPY_READ_BUFFER);
+}
+
+void copyBuffer(GLuint source, GLuint destination, size_t bytes) {
+    if (isEs()) {
+        glBindBuffer(GL_COPY_READ_BUFFER, source);
+        glBindBuffer(GL_COPY_WRITE_BUFFER, destination);
+        glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, GLsizeiptr(bytes));
+    } else {
+        glCopyNamedBufferSubData(source, destination, 0, 0, GLsizeiptr(bytes));
+    }
+}
+
+std::vector<float> readTextureFloats(GLuint texture, int width, int height, int channels) {
+    std::vector<float> out(size_t(width) * size_t(height) * size_t(channels));
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    if (!isEs()) {
+        glGetTextureImage(texture, 0, channels == 1 ? GL_RED : GL_RGBA, GL_FLOAT, GLsizei(out.size() * sizeof(float)),
+                          out.data());
+        return out;
+    }
+    GLuint fb = 0;
+    glGenFramebuffers(1, &fb);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fb);
+    glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    const GLenum status = glCheckFramebufferStatus(GL_READ_FRAMEBUFFER);
+    std::vector<float> rgba(size_t(width) * size_t(height) * 4);
+    if (status == GL_FRAMEBUFFER_COMPLETE) glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, rgba.data());
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &fb);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+        throw Error("internal: texture read-back on OpenGL ES: the texture is not colour-renderable");
+    }
+    if (channels == 4) return rgba;
+    for (size_t i = 0; i < out.size(); ++i) out[i] = rgba[i * 4];
+    return out;
+}
+
+void uploadTexture(GLuint texture, int width, int height, GLenum format, GLenum type, const void* pixels) {
+    if (isEs()) {
+        glBindTexture(GL_TEXTURE_2D, texture);
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, format, type, pixels);
+    } else {
+        glTextureSubImage2D(texture, 0, 0, 0, width, height, format, type, pixels);
+    }
+}
+
+GLenum textureInternalFormat(GLuint texture) {
+    GLint format = 0;
+    if (isEs()) {
+        glBindTexture(GL_TEXTURE_2D, texture);
+        glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    } else {
+        glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    }
+    return GLenum(format);
+}
+
+FramebufferHandle makeFramebufferName() {
+    GLuint id = 0;
+    if (isEs()) {
+        glGenFramebuffers(1, &id);
+        glBindFramebuffer(GL_FRAMEBUFFER, id);
+    } else {
+        glCreateFramebuffers(1, &id);
+    }
+    return FramebufferHandle(id);
+}
+
+GLenum attachTexture(GLuint framebuffer, GLenum attachment, GLuint texture) {
+    if (isEs()) {
+        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, attachment, GL_TEXTURE_2D, texture, 0);
+        return glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    }
+    glNamedFramebufferTexture(framebuffer, attachment, texture, 0);
+    return glCheckNamedFramebufferStatus(framebuffer, GL_FRAMEBUFFER);
+}
+
+void setFramebufferDefaultSize(GLuint framebuffer, int width, int height) {
+    if (isEs()) {
+        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+        glFramebufferParameteri(GL_FRAMEBUFFER, GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
+        glFramebufferParameteri(GL_FRAMEBUFFER, GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+    } else {
+        glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
+        glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+    }
+}
+
+bool hasFractionalViewport() { return !isEs() || epoxy_has_gl_extension("GL_OES_viewport_array"); }
+
+void setViewportF(float x, float y, float width, float height) {
+    if (!isEs()) {
+        glViewportIndexedf(0, x, y, width, height);
+    } else if (epoxy_has_gl_extension("GL_OES_viewport_array")) {
+        glViewportIndexedfOES(0, x, y, width, height);
+    } else if (x == float(int(x)) && y == float(int(y))) {
+        glViewport(int(x), int(y), int(width), int(height));
+    } else {
+        throw Error("this OpenGL ES context lacks GL_OES_viewport_array, which passes rendered at a reduced "
+                    "scale need (their samples must fall on full-resolution pixel centres); use full-resolution "
+                    "passes (--spatial off or --scales 100,100)");
+    }
+}
+
+VertexArrayHandle makeEmptyVertexArray() {
+    GLuint id = 0;
+    if (isEs()) {
+        glGenVertexArrays(1, &id);
+        glBindVertexArray(id);  // a generated name becomes a vertex array at its first bind
+    } else {
+        glCreateVertexArrays(1, &id);
+    }
+    return VertexArrayHandle(id);
+}
+
+void drawFullscreenTriangle(const VertexArrayHandle& emptyVao) {
+    glBindVertexArray(emptyVao.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+}  // namespace starnt::gl

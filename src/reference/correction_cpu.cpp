@@ -1,0 +1,76 @@
+#include "reference/correction_cpu.hpp"
+
+#include <cmath>
+
+#include "methods/neural/temporal/reprojection_constants.h"
+#include "methods/neural/temporal/reprojection_math.hpp"
+
+namespace starnt::temporal {
+
+glm::vec3 closedFormBehind(const glm::vec4& nearest, const glm::vec4& sums, float transmittance, const glm::vec3& background) {
+    const float behindT = glm::clamp(transmittance / (1.0f - nearest.a), 0.0f, 1.0f);
+    const float behindAlpha = sums.a - nearest.a;
+    const glm::vec3 mean = behindAlpha > float(STARNT_TEMPORAL_MIN_BEHIND_ALPHA)
+                               ? glm::max(glm::vec3(sums) - nearest.a * glm::vec3(nearest), glm::vec3(0.0f)) / behindAlpha
+                               : background;
+    return (1.0f - behindT) * mean + behindT * background;
+}
+
+std::vector<glm::vec4> correctionOnCpu(const CorrectionSource& real, const glm::mat4& viewProj, const glm::vec3& background) {
+    const glm::vec4 sourceScale = makeReprojection(viewProj, viewProj).sourceScale;
+    std::vector<glm::vec4> out(size_t(real.width) * size_t(real.height));
+    for (int y = 0; y < real.height; ++y) {
+        for (int x = 0; x < real.width; ++x) {
+            const size_t t = size_t(y) * size_t(real.width) + size_t(x);
+            const glm::vec4 n = real.nearest[t];
+            const float open = 1.0f - n.a;
+            if (!(open > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE))) {
+                out[t] = glm::vec4(0.0f, 0.0f, 0.0f, -1.0f);
+                continue;
+            }
+            const glm::vec2 ndc = (glm::vec2(float(x), float(y)) + 0.5f) / glm::vec2(float(real.width), float(real.height)) * 2.0f - 1.0f;
+            const float inverseViewDepth = glm::dot(sourceScale, glm::vec4(ndc, real.depth[t] * 2.0f - 1.0f, 1.0f));
+            const glm::vec3 network = (glm::vec3(real.composite[t]) - n.a * glm::vec3(n)) / open;
+            out[t] = glm::vec4(network - closedFormBehind(n, real.sums[t], real.transmittance[t], background), inverseViewDepth);
+        }
+    }
+    return out;
+}
+
+glm::vec3 correctedPixel(int x, int y, int width, int height, const glm::vec4& nearest, float depth, const glm::vec4& sums,
+                         float transmittance, const std::vector<glm::vec4>& correction, const glm::mat4& oldViewProj,
+                         const glm::mat4& newViewProj, const glm::vec3& background) {
+    if (!(nearest.a > 0.0f)) return background;
+    const float open = 1.0f - nearest.a;
+    glm::vec3 behind = background;
+    if (open > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE)) {
+        behind = closedFormBehind(nearest, sums, transmittance, background);
+        const CorrectionMatrices m = makeCorrectionMatrices(oldViewProj, newViewProj);
+        const glm::vec2 c = (glm::vec2(float(x), float(y)) + 0.5f) / glm::vec2(float(width), float(height)) * 2.0f - 1.0f;
+        const glm::vec4 old = m.newToOld * glm::vec4(c, depth * 2.0f - 1.0f, 1.0f);
+        if (!correction.empty() && old.w > 0.0f) {
+            const glm::vec3 ndc = glm::vec3(old) / old.w;
+            const float reference = glm::dot(m.sourceScale, glm::vec4(ndc, 1.0f));
+            const glm::vec2 f = (glm::vec2(ndc) * 0.5f + 0.5f) * glm::vec2(float(width), float(height)) - 0.5f;
+            if (reference > 0.0f && f.x > -1.0f && f.y > -1.0f && f.x < float(width) && f.y < float(height)) {
+                const glm::ivec2 base(int(std::floor(f.x)), int(std::floor(f.y)));
+                const glm::vec2 w = f - glm::vec2(base);
+                glm::vec3 sum(0.0f);
+                float weight = 0.0f;
+                for (int k = 0; k < 4; ++k) {
+                    const glm::ivec2 t = base + glm::ivec2(k & 1, k >> 1);
+                    if (t.x < 0 || t.y < 0 || t.x >= width || t.y >= height) continue;
+                    const glm::vec4 d = correction[size_t(t.y) * size_t(width) + size_t(t.x)];
+                    if (!(d.a > 0.0f) || std::abs(d.a / reference - 1.0f) > float(STARNT_TEMPORAL_SAME_SURFACE)) continue;
+                    const float wk = ((k & 1) ? w.x : 1.0f - w.x) * ((k >> 1) ? w.y : 1.0f - w.y);
+                    sum += wk * glm::vec3(d);
+                    weight += wk;
+                }
+                if (weight > 0.0f) behind += sum / weight;
+            }
+        }
+    }
+    return nearest.a * glm::vec3(nearest) + open * glm::max(behind, glm::vec3(0.0f));
+}
+
+}  // namespace starnt::temporal
