@@ -40,8 +40,8 @@ inline glm::mat4 turnedViewProj(int w, int h, float yawDeg) {
 // Renders `yaws` with the starnt method and `options`, the camera turned about its target by +yaw
 // around y; returns each output in GL order.
 inline std::vector<std::vector<glm::vec4>> renderSequence(TestScene& c, const MethodOptions& options,
-                                                          const std::vector<float>& yaws) {
-    auto method = createMethod("starnt", SceneGpu::surfaceShader(), options);
+                                                          const std::vector<float>& yaws, const std::string& name = "starnt") {
+    auto method = createMethod(name, SceneGpu::surfaceShader(), options);
     std::vector<std::vector<glm::vec4>> out;
     for (float yaw : yaws) {
         Camera cam = c.camera;

@@ -11,6 +11,7 @@
 
 #include "bench/bench_plan.hpp"
 #include "bench/bench_results.hpp"
+#include "render/offscreen_renderer.hpp"
 #include "starnt/error.hpp"
 #include "test_support.hpp"
 
@@ -52,7 +53,7 @@ const std::string kTinyArgs = "bench --preset quick --suite-dir /nonexistent/sui
 // The default methods of bench: unsorted, wboit, mboit, mboit-t3, dfaoit, starnt-full, hybrid,
 // starnt-residual-full, starnt, starnt-paper, starnt-total, starnt-total-refresh, starnt-total-warp,
 // starnt-corners.
-constexpr size_t kDefaultVariants = 16;
+constexpr size_t kDefaultVariants = 17;
 
 json readJson(const fs::path& p) {
     std::ifstream f(p);
@@ -84,6 +85,18 @@ TEST(BenchPlan, VariantsCarryTheirOptions) {
     EXPECT_EQ(bench::findVariant("dfaoit").options.neural.spatial, std::nullopt);  // the method's default: off
     EXPECT_EQ(bench::findVariant("mboit").options.mboit.moments, "6");
     EXPECT_EQ(bench::findVariant("mboit-t3").options.mboit.moments, "t3");
+    // Savings are measured against the same method with the acceleration off, in the same run.
+    const auto& recommended = bench::findVariant("recommended");
+    EXPECT_EQ(recommended.method, "recommended");
+    EXPECT_EQ(recommended.accelerationOff, "starnt-d");
+    EXPECT_EQ(total.accelerationOff, "starnt");
+    EXPECT_EQ(bench::findVariant("starnt").accelerationOff, "starnt-full");
+    EXPECT_EQ(bench::findVariant("starnt-d").accelerationOff, "");
+    for (const auto& v : bench::allVariants()) {
+        if (v.accelerationOff.empty()) continue;
+        EXPECT_EQ(bench::findVariant(v.accelerationOff).method, v.method == "recommended" ? "starnt-d" : v.method) << v.name;
+        EXPECT_FALSE(v.acceleration.empty()) << v.name;
+    }
     try {
         bench::findVariant("fancy");
         FAIL() << "unknown variant accepted";
@@ -181,7 +194,8 @@ void expectEveryFile(const fs::path& dir) {
     const std::string report = slurp(dir / "report.md");
     for (const char* heading : {"## Frame time", "## Per-pass breakdown", "## Speed-up over DFAOIT", "### MSE x10^2", "### FLIP",
                                 "reduction against WBOIT", "## GPU memory", "## Q metric", "## Failures",
-                                "## What the network adds", "| MSE x10^2 starnt-residual-full | ratio |"}) {
+                                "## What the network adds", "| MSE x10^2 starnt-residual-full | ratio |", "## Against itself",
+                                "| **mean** | recommended | K = 2 corrected | starnt-d |", "| **mean** | starnt | tiles | starnt-full |"}) {
         EXPECT_NE(report.find(heading), std::string::npos) << heading;
     }
     for (const auto& name : bench::defaultVariantNames()) EXPECT_NE(report.find(name), std::string::npos) << name;
@@ -340,4 +354,20 @@ TEST(BenchCli, BadArgumentsFailBeforeRendering) {
     r = runCli("bench --suite-dir /nonexistent/suite --scenes tree --out " + dir.string());
     EXPECT_NE(r.exitCode, 0);
     EXPECT_NE(r.err.find("suite"), std::string::npos) << r.err;
+}
+
+TEST(RenderStats, WorstInterpolatedFlashComparesWithTheRealFramesBesideIt) {
+    // Real frames at 1, 2, 2; interpolated ones at 1.5 (between 1 and 2: ratio 1) and 8 (between 2
+    // and 2: ratio 4), and a last one at 3 with a real frame on one side only (ratio 1.5).
+    const std::vector<std::pair<bool, double>> frames = {{false, 1.0}, {true, 1.5}, {false, 2.0}, {true, 8.0},
+                                                         {false, 2.0}, {true, 3.0}};
+    const auto flash = worstInterpolatedFlash(frames);
+    ASSERT_TRUE(flash);
+    EXPECT_DOUBLE_EQ(flash->ratio, 4.0);
+    EXPECT_EQ(flash->frame, 3);
+    const auto tail = worstInterpolatedFlash({{false, 2.0}, {true, 3.0}});
+    ASSERT_TRUE(tail);
+    EXPECT_DOUBLE_EQ(tail->ratio, 1.5);
+    EXPECT_FALSE(worstInterpolatedFlash({{false, 1.0}, {false, 2.0}}));  // nothing interpolated
+    EXPECT_FALSE(worstInterpolatedFlash({{true, 1.0}}));                 // no real frame to compare with
 }

@@ -99,6 +99,14 @@ public:
     virtual void resetHistory() {}
 };
 
+// The configuration the project recommends, `createMethod("recommended", ...)`: starnt-d (the tail
+// by depth moments, corrected by a network) with temporal frames, one real frame then
+// kRecommendedTemporalInterval - 1 corrected interpolated frames. recommendedOptions returns
+// `options` with that interval where it asks for every frame real (interval 1, not auto); every
+// other option is kept. docs/INTEGRATION.md, "Which method".
+constexpr int kRecommendedTemporalInterval = 2;
+MethodOptions recommendedOptions(MethodOptions options = {});
+
 // Names accepted by createMethod, in a stable order.
 std::vector<std::string> methodNames();
 // Needs the engine's GL context current on this thread. Throws starnt::Error for an unknown name

@@ -3,28 +3,34 @@
 
 namespace starnt::app {
 
+std::string methodNameList() {
+    std::string list;
+    for (const auto& name : methodNames()) list += (list.empty() ? "" : "|") + name;
+    return list;
+}
+
 void addAccelerationOptions(CLI::App* command, AccelerationFlags& flags) {
-    command->add_option("--spatial", flags.spatial, "starnt/dfaoit: adaptive tiles on|off|default (default: on for starnt)")
+    command->add_option("--spatial", flags.spatial, "neural methods: adaptive tiles on|off|default (default: on for starnt)")
         ->capture_default_str();
-    command->add_option("--scales", flags.scales, "starnt/dfaoit: pass 2/3 scales, auto or P2,P3 in %")->capture_default_str();
-    command->add_option("--inference", flags.inference, "starnt/dfaoit: full|corners")->capture_default_str();
-    command->add_option("--temporal", flags.temporal, "starnt/dfaoit: off|auto|K (K in 1..4)")->capture_default_str();
+    command->add_option("--scales", flags.scales, "neural methods: pass 2/3 scales, auto or P2,P3 in %")->capture_default_str();
+    command->add_option("--inference", flags.inference, "neural methods: full|corners")->capture_default_str();
+    command->add_option("--temporal", flags.temporal, "neural methods: off|auto|K (K in 1..4)")->capture_default_str();
     command->add_option("--target-fps", flags.targetFps, "frame rate that --temporal auto aims for")->capture_default_str();
-    command->add_option("--scale-rule", flags.scaleRule, "starnt/dfaoit: w_bar -> scales: snapped|continuous|step")
+    command->add_option("--scale-rule", flags.scaleRule, "neural methods: w_bar -> scales: snapped|continuous|step")
         ->capture_default_str();
-    command->add_option("--tile-signal", flags.tileSignal, "starnt/dfaoit: what the tiles measure: back|composite")
+    command->add_option("--tile-signal", flags.tileSignal, "neural methods: what the tiles measure: back|composite")
         ->capture_default_str();
     command->add_option("--scale-guard", flags.scaleGuard,
-                        "starnt/dfaoit: probe frames that keep passes at full resolution where reducing loses detail: on|off")
+                        "neural methods: probe frames that keep passes at full resolution where reducing loses detail: on|off")
         ->capture_default_str();
     command->add_option("--upsample", flags.upsample,
-                        "starnt/dfaoit: reduced passes back to full resolution: bilinear | joint (bilateral, guided by pass-1 depth)")
+                        "neural methods: reduced passes back to full resolution: bilinear | joint (bilateral, guided by pass-1 depth)")
         ->capture_default_str();
     command->add_option("--temporal-mode", flags.temporalMode,
-                        "starnt/dfaoit: interpolated frames: warp (the paper) | refresh (fresh pass 1) | correct (fresh passes 1 and 3, the last real frame's network correction)")
+                        "neural methods: interpolated frames: warp (the paper) | refresh (fresh pass 1) | correct (fresh passes 1 and 3, the last real frame's network correction)")
         ->capture_default_str();
     command->add_option("--targets", flags.targets,
-                        "starnt/dfaoit/hybrid: pass-target precision: compact (16-bit colours and sums, 36 B/pixel) | fp32")
+                        "neural methods: pass-target precision: compact (16-bit colours and sums, 36 B/pixel) | fp32")
         ->capture_default_str();
 }
 

@@ -92,7 +92,7 @@ void addRenderCommand(CLI::App& app) {
     auto a = std::make_shared<Args>();
     CLI::App* cmd = app.add_subcommand("render", "render a scene with one OIT method");
     cmd->add_option("--scene", a->scene, "scene file (.gltf/.glb/.obj) or builtin:NAME")->capture_default_str();
-    cmd->add_option("--method", a->method, "abuffer|peel|unsorted|wboit|mboit|dfaoit|starnt")->capture_default_str();
+    cmd->add_option("--method", a->method, methodNameList())->capture_default_str();
     cmd->add_option("--width", a->width, "image width")->capture_default_str();
     cmd->add_option("--height", a->height, "image height")->capture_default_str();
     cmd->add_option("--camera", a->camera, "orbit:DEG[,ELEV] or a camera .json (default: auto-framed)");
@@ -239,6 +239,11 @@ void addRenderCommand(CLI::App& app) {
             std::printf("%s: %s %dx%d, frame %.2f ms (median of %d), max %u fragments/pixel -> %s\n", a->method.c_str(),
                         a->scene.c_str(), a->width, a->height, out.stats["frame_ms"].get<double>(),
                         out.stats["timed_frames"].get<int>(), out.stats["max_fragments"].get<unsigned>(), a->out.c_str());
+        }
+        if (out.stats.contains("error") && out.stats["error"].contains("interpolated_flash")) {
+            const auto& flash = out.stats["error"]["interpolated_flash"];
+            std::printf("worst interpolated frame: %d, MSE %.2fx that of the real frames beside it\n",
+                        flash["frame"].get<int>(), flash["worst_ratio"].get<double>());
         }
     });
 }

@@ -24,7 +24,7 @@ void addViewCommand(CLI::App& app) {
     auto a = std::make_shared<Args>();
     CLI::App* cmd = app.add_subcommand("view", "interactive viewer window (needs a display; see README, Viewer)");
     cmd->add_option("--scene", a->scene, "scene file (.gltf/.glb/.obj) or builtin:NAME")->capture_default_str();
-    cmd->add_option("--method", a->method, "abuffer|peel|unsorted|wboit|mboit|dfaoit|starnt")->capture_default_str();
+    cmd->add_option("--method", a->method, methodNameList())->capture_default_str();
     cmd->add_option("--split", a->split, "show this second method on the right half");
     cmd->add_option("--view", a->view, "final|tiles|error")->capture_default_str();
     cmd->add_option("--alpha", a->alpha, "override every material's alpha (0..1)");

@@ -29,6 +29,9 @@ struct AccelerationFlags {
     std::string upsample = "bilinear";      // bilinear | joint
     std::string targets = "compact";        // compact | fp32
 };
+// "abuffer|peel|...": every name createMethod accepts, for --method's help (from the registry, so
+// it cannot go stale).
+std::string methodNameList();
 void addAccelerationOptions(CLI::App* command, AccelerationFlags& flags);
 // Checks the flags (throws starnt::Error) and sets them on `options`.
 void applyAccelerationFlags(const AccelerationFlags& flags, MethodOptions& options);

@@ -21,6 +21,13 @@ Variant makeVariant(std::string name, std::string method, std::string descriptio
     return v;
 }
 
+// `v`, whose saving is measured against `off` (the same method with `acceleration` off).
+Variant accelerated(Variant v, std::string off, std::string acceleration) {
+    v.accelerationOff = std::move(off);
+    v.acceleration = std::move(acceleration);
+    return v;
+}
+
 std::string joined(const std::vector<std::string>& names) {
     std::string text;
     for (const auto& n : names) text += (text.empty() ? "" : ", ") + n;
@@ -44,8 +51,9 @@ const std::vector<Variant>& allVariants() {
         makeVariant("dfaoit", "dfaoit", "DFAOIT: 10-input network, every pass at full resolution"),
         makeVariant("starnt-full", "starnt", "STAR-NT network, spatial off (all passes at full resolution)",
                     [](MethodOptions& o) { o.neural.spatial = false; }),
-        makeVariant("starnt", "starnt", "STAR-NT, adaptive tiles on (\"w/o temporal\")",
-                    [](MethodOptions& o) { o.neural.spatial = true; }),
+        accelerated(makeVariant("starnt", "starnt", "STAR-NT, adaptive tiles on (\"w/o temporal\")",
+                                [](MethodOptions& o) { o.neural.spatial = true; }),
+                    "starnt-full", "tiles"),
         makeVariant("hybrid", "hybrid", "STAR-NT's passes and tiles, tail in closed form (no network): what the network adds",
                     [](MethodOptions& o) { o.neural.spatial = false; }),
         makeVariant("hybrid-moments", "hybrid-moments",
@@ -55,8 +63,12 @@ const std::vector<Variant>& allVariants() {
         makeVariant("starnt-residual-full", "starnt-residual",
                     "STAR-NT's passes and network size, the network correcting hybrid's closed-form tail; spatial off",
                     [](MethodOptions& o) { o.neural.spatial = false; }),
-        makeVariant("starnt-residual", "starnt-residual", "starnt-residual with adaptive tiles on",
-                    [](MethodOptions& o) { o.neural.spatial = true; }),
+        accelerated(makeVariant("starnt-residual", "starnt-residual", "starnt-residual with adaptive tiles on",
+                                [](MethodOptions& o) { o.neural.spatial = true; }),
+                    "starnt-residual-full", "tiles"),
+        accelerated(makeVariant("recommended", "recommended",
+                                "the recommended configuration: starnt-d's tail, temporal K = 2 with corrected frames"),
+                    "starnt-d", "K = 2 corrected"),
         makeVariant("starnt-paper", "starnt",
                     "STAR-NT as the paper: tiles on the composite, continuous scales, no guard",
                     [](MethodOptions& o) {
@@ -65,25 +77,25 @@ const std::vector<Variant>& allVariants() {
                         o.neural.scaleRule = NeuralOptions::ScaleRule::Continuous;
                         o.neural.scaleGuard = false;
                     }),
-        makeVariant("starnt-total", "starnt",
+        accelerated(makeVariant("starnt-total", "starnt",
                     "STAR-NT, tiles on + temporal K = 2, corrected frames (\"Total STAR\"; fresh passes 1 and 3, the network's correction kept)",
                     [](MethodOptions& o) {
                         o.neural.spatial = true;
                         o.neural.temporalInterval = 2;
                         o.neural.temporalMode = NeuralOptions::TemporalMode::Correct;
-                    }),
-        makeVariant("starnt-total-refresh", "starnt", "STAR-NT, tiles on + temporal K = 2, refresh frames (fresh pass 1 over the reprojected back)",
+                    }), "starnt", "K = 2 corrected"),
+        accelerated(makeVariant("starnt-total-refresh", "starnt", "STAR-NT, tiles on + temporal K = 2, refresh frames (fresh pass 1 over the reprojected back)",
                     [](MethodOptions& o) {
                         o.neural.spatial = true;
                         o.neural.temporalInterval = 2;
                         o.neural.temporalMode = NeuralOptions::TemporalMode::Refresh;
-                    }),
-        makeVariant("starnt-total-warp", "starnt", "STAR-NT, tiles on + temporal K = 2, warped frames (the paper's)",
+                    }), "starnt", "K = 2 refresh"),
+        accelerated(makeVariant("starnt-total-warp", "starnt", "STAR-NT, tiles on + temporal K = 2, warped frames (the paper's)",
                     [](MethodOptions& o) {
                         o.neural.spatial = true;
                         o.neural.temporalInterval = 2;
                         o.neural.temporalMode = NeuralOptions::TemporalMode::Warp;
-                    }),
+                    }), "starnt", "K = 2 warp"),
         makeVariant("starnt-corners", "starnt", "STAR-NT, tiles on, inference at leaf corners only",
                     [](MethodOptions& o) {
                         o.neural.spatial = true;
@@ -103,7 +115,7 @@ const std::vector<Variant>& allVariants() {
 }
 
 std::vector<std::string> defaultVariantNames() {
-    return {"unsorted", "wboit", "mboit", "mboit-t3", "dfaoit", "starnt-full", "hybrid", "hybrid-moments", "starnt-d", "starnt-residual-full", "starnt",
+    return {"unsorted", "wboit", "mboit", "mboit-t3", "dfaoit", "starnt-full", "hybrid", "hybrid-moments", "starnt-d", "recommended", "starnt-residual-full", "starnt",
             "starnt-paper", "starnt-total", "starnt-total-refresh",
             "starnt-total-warp", "starnt-corners"};
 }

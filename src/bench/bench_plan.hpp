@@ -17,6 +17,10 @@ struct Variant {
     std::string method;  // createMethod name, e.g. "starnt"
     MethodOptions options;
     std::string description;  // one line for report.md
+    // The same method with its acceleration off (tiles off for spatial, K = 1 for temporal): the
+    // variant its saving is measured against, in the same run (report.md, "Against itself").
+    std::string accelerationOff = {};
+    std::string acceleration = {};  // what differs from that variant, e.g. "tiles", "K = 2 corrected"
 };
 
 // Every variant `--methods` accepts, in report order. The first nine are the default set; abuffer

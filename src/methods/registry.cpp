@@ -7,6 +7,14 @@ namespace starnt {
 namespace {
 
 using Factory = std::unique_ptr<OitMethod> (*)(const SurfaceShader&, const MethodOptions&);
+
+// The recommended configuration (docs/DESIGN.md, "The recommended configuration"): starnt-d's tail
+// with corrected interpolated frames. The caller's options are honoured, except that "every frame
+// real" (interval 1, not auto) becomes the recommended interval: for no interpolated frames, ask
+// for starnt-d itself.
+std::unique_ptr<OitMethod> createRecommendedMethod(const SurfaceShader& surface, const MethodOptions& options) {
+    return createStarntDepthMethod(surface, recommendedOptions(options));
+}
 struct Entry {
     const char* name;
     Factory factory;
@@ -25,11 +33,19 @@ const std::vector<Entry>& entries() {
         {"starnt-residual", createStarntResidualMethod},
         {"hybrid-moments", createHybridMomentsMethod},
         {"starnt-d", createStarntDepthMethod},
+        {"recommended", createRecommendedMethod},
     };
     return all;
 }
 
 }  // namespace
+
+MethodOptions recommendedOptions(MethodOptions options) {
+    if (options.neural.temporalInterval == 1 && !options.neural.temporalAuto) {
+        options.neural.temporalInterval = kRecommendedTemporalInterval;
+    }
+    return options;
+}
 
 std::vector<std::string> methodNames() {
     std::vector<std::string> names;
@@ -50,6 +66,7 @@ std::unique_ptr<OitMethod> createMethod(const std::string& name, const SurfaceSh
 }
 
 const NeuralMethodConfig* neuralConfig(const std::string& name) {
+    if (name == "recommended") return &starntDepthConfig();
     for (const NeuralMethodConfig* c : {&starntConfig(), &dfaoitConfig(), &hybridConfig(), &starntResidualConfig(),
                                              &hybridMomentsConfig(), &starntDepthConfig()})
         if (name == c->name) return c;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <fstream>
+#include <limits>
 #include <map>
 
 #include <unistd.h>
@@ -95,6 +96,7 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
     std::map<std::string, std::vector<double>> passMs;
     std::map<std::string, gl::PassCounters> counterSums;  // over the timed frames
     std::vector<double> mseReal, mseInterp, flipReal, flipInterp;
+    std::vector<std::pair<bool, double>> msePerFrame;  // (interpolated, MSE) of every compared frame
     int interpolatedFrames = 0;
     Image image, referenceImage;
     DrawCallback draw;
@@ -154,6 +156,7 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
             record.stats["mse"] = mse;
             record.stats["flip"] = flipMean;
             (interpolated ? mseInterp : mseReal).push_back(mse);
+            msePerFrame.emplace_back(interpolated, mse);
             (interpolated ? flipInterp : flipReal).push_back(flipMean);
         }
         if (job.onFrame) {
@@ -227,8 +230,35 @@ RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
             {"interpolated",
              {{"frames", mseInterp.size()}, {"mse_mean", nullableMean(mseInterp)}, {"flip_mean", nullableMean(flipInterp)}}},
         };
+        if (const auto flash = worstInterpolatedFlash(msePerFrame)) {
+            out.stats["error"]["interpolated_flash"] = {{"worst_ratio", flash->ratio}, {"frame", flash->frame}};
+        }
     }
     return out;
+}
+
+std::optional<InterpolatedFlash> worstInterpolatedFlash(const std::vector<std::pair<bool, double>>& msePerFrame) {
+    std::optional<InterpolatedFlash> worst;
+    const int n = int(msePerFrame.size());
+    for (int i = 0; i < n; ++i) {
+        if (!msePerFrame[size_t(i)].first) continue;
+        double sum = 0.0;
+        int count = 0;
+        for (int step : {-1, 1}) {  // the nearest real frame on each side, where there is one
+            for (int j = i + step; j >= 0 && j < n; j += step) {
+                if (msePerFrame[size_t(j)].first) continue;
+                sum += msePerFrame[size_t(j)].second;
+                ++count;
+                break;
+            }
+        }
+        if (count == 0) continue;
+        const double adjacent = sum / count;
+        const double mse = msePerFrame[size_t(i)].second;
+        const double ratio = adjacent > 0.0 ? mse / adjacent : (mse > 0.0 ? std::numeric_limits<double>::infinity() : 1.0);
+        if (!worst || ratio > worst->ratio) worst = InterpolatedFlash{ratio, i};
+    }
+    return worst;
 }
 
 }  // namespace starnt

@@ -74,4 +74,14 @@ double median(std::vector<double> values);
 size_t residentMemoryBytes();
 double mean(const std::vector<double>& values);
 
+// The interpolated frame whose error stands out most from the real frames beside it: its MSE over
+// the mean MSE of the nearest real frame before and after it (one side at the ends of a run).
+// A corrected or warped frame that goes wrong shows as a flash in an otherwise steady sequence;
+// a mean over all interpolated frames hides it. nullopt without an interpolated frame.
+struct InterpolatedFlash {
+    double ratio = 0.0;
+    int frame = -1;
+};
+std::optional<InterpolatedFlash> worstInterpolatedFlash(const std::vector<std::pair<bool, double>>& msePerFrame);
+
 }  // namespace starnt

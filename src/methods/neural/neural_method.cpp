@@ -44,6 +44,7 @@ public:
                   narrowLayersApply(config, options_, spatial_, corners_), config.tailMoments),
           temporal_(options_) {
         if (spatial_ || corners_) tiles_ = std::make_unique<tiles::GpuTiles>();
+        if (temporal_.interpolates() && temporal_.corrects()) passes_.prepareNearestAndSums();
         // Compile up front what the frames will need, so no frame pays for a shader compile: the
         // full-resolution variant for the first frame (no tile history) and fixed 100 % scales,
         // the upsampling one when scales below 1 can occur.

@@ -118,7 +118,8 @@ NeuralPasses::NeuralPasses(const SurfaceShader& surface, bool colorSums, NeuralO
       colorSums_(colorSums),
       targets_(targets),
       narrowLayers_(narrowLayersUsed(targets, narrowLayers)),
-      tailMoments_(tailMoments) {}
+      tailMoments_(tailMoments),
+      surface_(surface) {}
 
 // The compact layout's transmittance, prod (1 - a) blended over up to hundreds of fragments. In a
 // 16-bit float target every blended multiply loses up to a step of 2^-11 relative, and llvmpipe
@@ -177,6 +178,7 @@ void NeuralPasses::resize(int width, int height) {
     } else {
         pass3Fb_ = gl::makeFramebuffer({&alphaColor_, &colorCount_, &transmittance_});
     }
+    sumsFb_ = gl::makeFramebuffer({&alphaColor_, &transmittance_});
     nearestOnlyFb_ = gl::makeFramebuffer({&nearest_});
     secondOnlyFb_ = gl::makeFramebuffer({&second_});
     alphaColorOnlyFb_ = gl::makeFramebuffer({&alphaColor_});
@@ -280,13 +282,30 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
     resetPassState();
 }
 
+void NeuralPasses::prepareNearestAndSums() {
+    if (!pass3Sums_.id()) {
+        pass3Sums_ = buildSurfaceProgram(surface_, "neural_pass3_sums", "methods/neural/pass3_accumulate.frag.glsl",
+                                         "#define STARNT_SUMS_ONLY\n");
+    }
+}
+
 void NeuralPasses::runNearestAndSums(const FrameDesc& frame, const DrawCallback& draw) {
     runNearest(frame, draw);
+    prepareNearestAndSums();
     pass3Size_ = {width_, height_};
-    // Only sum a C, sum a and the transmittance are read: the count (or sum C) target is masked
-    // (runSums ends with resetPassState, which unmasks it).
-    glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    runSums(frame, draw, pass3Size_);
+    {
+        const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1};
+        gl::ScopedPass timing(frame.timing, "pass3");
+        glBindFramebuffer(GL_FRAMEBUFFER, sumsFb_.id());
+        glViewport(0, 0, width_, height_);
+        glClearBufferfv(GL_COLOR, 0, zero);
+        glClearBufferfv(GL_COLOR, 1, one);
+        glEnable(GL_BLEND);
+        glBlendFunci(0, GL_ONE, GL_ONE);
+        glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
+        MethodBase::runGeometryPass("pass3", pass3Sums_, frame, draw);
+        resetPassState();
+    }
     glViewport(0, 0, width_, height_);
 }
 

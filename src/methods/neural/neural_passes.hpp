@@ -112,6 +112,8 @@ public:
     // Pass 1 and pass 3, both at full resolution (alphaColor() and transmittance() hold the sums
     // over every fragment), for corrected interpolated frames (no pass 2, no tail resolve).
     void runNearestAndSums(const FrameDesc& frame, const DrawCallback& draw);
+    // Compiles runNearestAndSums' pass 3 now rather than in the first frame that needs it.
+    void prepareNearestAndSums();
     // Binds the pass outputs to the NeuralInputUnit units and sets the upsample uniforms of
     // `program` (which includes neural_inputs.glsl).
     void bindInputs(const gl::Program& program) const;
@@ -163,6 +165,11 @@ private:
     bool narrowLayers_ = false;
     bool tailMoments_ = false;
     gl::FramebufferHandle pass1Fb_, pass2Fb_, pass3Fb_;
+    // runNearestAndSums' pass 3: sum a C, sum a and the transmittance only (12 bytes a fragment in
+    // the compact layout, where a real frame of a tail-moment method blends 54).
+    SurfaceShader surface_;  // for pass3Sums_, built on first need
+    gl::Program pass3Sums_;
+    gl::FramebufferHandle sumsFb_;
     gl::FramebufferHandle nearestOnlyFb_, secondOnlyFb_, alphaColorOnlyFb_;  // output slots
 };
 

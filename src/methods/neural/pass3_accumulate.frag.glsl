@@ -9,9 +9,15 @@
 //   nn::tailMomentsFromFragments):
 //   target 3 (RGBA32F, blend ONE/ONE):                 sum a_i C_i u_i, sum a_i u_i
 //   target 4 (RGBA32F, blend ONE/ONE):                 sum a_i C_i u_i^2, sum a_i u_i^2
+//   with STARNT_SUMS_ONLY (corrected interpolated frames: the closed form behind the nearest layer
+//   reads nothing else): target 0 as above, target 1 the transmittance; no count, no moments.
 layout(location = 0) out vec4 outAlphaColor;
+#ifdef STARNT_SUMS_ONLY
+layout(location = 1) out vec4 outTransmittance;
+#else
 layout(location = 1) out vec4 outColorCount;
 layout(location = 2) out vec4 outTransmittance;
+#endif
 #ifdef STARNT_TAIL_MOMENTS
 layout(location = 3) out vec4 outTailMoment1;
 layout(location = 4) out vec4 outTailMoment2;
@@ -22,7 +28,8 @@ layout(binding = 0) uniform highp sampler2D u_secondDepth;  // pass 2's depth, 1
 void main() {
     vec4 s = fetchSurfaceOrDiscard();
     outAlphaColor = vec4(s.rgb * s.a, s.a);
-#ifdef STARNT_COUNT_ONLY
+#if defined(STARNT_SUMS_ONLY)
+#elif defined(STARNT_COUNT_ONLY)
     outColorCount = vec4(1.0);  // an R32F target keeps .r
 #else
     outColorCount = vec4(s.rgb, 1.0);
