@@ -230,7 +230,7 @@ TEST(MboitCli, BadMomentsValueIsOneClearError) {
     const auto dir = test::makeTempDir("mboit_cli");
     const auto out = dir / "a.png";
     const std::string args = "render --scene builtin:panes --method mboit --mboit-moments 5 --width 32 --height 32 --out " + out.string();
-    test::expectCleanFailure(args, out, "--mboit-moments '5'");
+    test::expectCleanFailure(args, out, "mboit.moments (--mboit-moments) '5'");
     const test::CliRun r = test::run(args);
     EXPECT_EQ(r.err.rfind("starnt: error: ", 0), 0u) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;

@@ -521,13 +521,16 @@ TEST(GlTiles, ScalesOfTheNextFrameFollowWBar) {
     EXPECT_EQ(total, uint32_t(std::count(occupied.begin(), occupied.end(), 1)));
 }
 
+// The w_bar rule alone (no guard: with it, a frame with nothing to measure keeps full resolution,
+// ScaleGuard.EmptyViewKeepsProbingAndShowsTheBackground).
 TEST(GlTiles, NoTransparentPixelGivesWBarZeroAndMinimumScales) {
     test::TestScene c(makeBuiltinScene("tubes", 3), 40, 24, 0.0f, 10.0f, kBackground);
-    MethodRunner run(c, "starnt", {});
+    MethodOptions unguarded;
+    unguarded.neural.scaleGuard = false;
+    MethodRunner run(c, "starnt", unguarded);
     const FrameDesc f = c.frame();
     SurfaceOptions invisible;
     invisible.alphaOverride = 0.01f;  // below the 0.03 cut-off: nothing is drawn
-    // The guard's probe frames (full resolution) come first, then its scales apply.
     for (int frame = 0; frame < STARNT_SCALE_SETTLE_FRAMES + 2; ++frame) {
         run.method->render(f, c.gpu->callback(f.view, f.projection, invisible));
         glFinish();

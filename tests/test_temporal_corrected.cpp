@@ -232,3 +232,22 @@ TEST(TemporalCorrected, StillCameraNeverDropsTheSurfaces) {
         if (bad == 0) EXPECT_EQ(interpolated, frames / 2) << method << ": K = 2 interpolates every other frame";
     }
 }
+
+// The real frame's composite writes the kept correction itself (fusedCorrectionCapture, the
+// default) or a pass of its own does: the interpolated frames are the same either way.
+TEST(TemporalCorrected, FusedCaptureEqualsTheCapturePass) {
+    test::TestScene c(makeBuiltinScene("random", 5), 120, 80, 25.0f, 10.0f, kBackground);
+    for (const char* method : {"starnt", "starnt-d"}) {
+        MethodOptions fused = correctedOptions(), pass = correctedOptions();
+        pass.neural.fusedCorrectionCapture = false;
+        const auto a = renderSequence(c, fused, {0.0f, 1.5f, 3.0f, 4.5f}, method);
+        const auto b = renderSequence(c, pass, {0.0f, 1.5f, 3.0f, 4.5f}, method);
+        for (size_t f = 0; f < a.size(); ++f) {
+            float largest = 0.0f;
+            for (size_t i = 0; i < a[f].size(); ++i)
+                for (int ch = 0; ch < 3; ++ch) largest = std::max(largest, std::abs(a[f][i][ch] - b[f][i][ch]));
+            EXPECT_LE(largest, 1.0f / 1024.0f) << method << " frame " << f;  // 0 on llvmpipe, a 16-bit step at most
+        }
+        EXPECT_NE(a[1], a[0]) << method << ": the camera moved";
+    }
+}

@@ -97,6 +97,11 @@ struct NeuralOptions {
     // background into the others (bit for bit the same image; methods/neural/empty_pixels.hpp).
     // Off only to compare against shading every pixel. Joint upsampling always shades every pixel.
     bool skipEmptyPixels = true;
+    // Corrected frames: the real frame's composite writes the correction they keep as a second
+    // output, instead of a capture pass of its own (docs/DESIGN.md, "Corrected frames"). Falls back
+    // to the pass where the composite cannot (corner inference, joint upsampling, reduced pass 3,
+    // skipEmptyPixels off). false: always the pass, for comparison.
+    bool fusedCorrectionCapture = true;
 };
 
 struct MethodOptions {

@@ -1,5 +1,11 @@
 #include "gl/gl_util.hpp"
 
+#include <dlfcn.h>
+
+#include <initializer_list>
+
+#include "starnt/error.hpp"
+
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
@@ -8,6 +14,46 @@
 #include "starnt/error.hpp"
 
 namespace starnt::gl {
+
+bool hasCurrentContext() {
+    using GetCurrent = void* (*)();
+    struct Api {
+        GetCurrent egl = nullptr, glx = nullptr;
+    };
+    static thread_local Api api;  // per thread: no lock, and cheap after the first look-up
+    // Looked up again until one is found: the engine may load its library after us.
+    if (!api.egl || !api.glx) {
+        auto find = [](std::initializer_list<const char*> libraries, const char* symbol) -> GetCurrent {
+            for (const char* library : libraries) {
+                if (void* handle = dlopen(library, RTLD_LAZY | RTLD_NOLOAD)) {
+                    void* f = dlsym(handle, symbol);
+                    dlclose(handle);
+                    if (f) return reinterpret_cast<GetCurrent>(f);
+                }
+            }
+            return reinterpret_cast<GetCurrent>(dlsym(RTLD_DEFAULT, symbol));
+        };
+        if (!api.egl) api.egl = find({"libEGL.so.1", "libEGL.so"}, "eglGetCurrentContext");
+        if (!api.glx) api.glx = find({"libGLX.so.0", "libGL.so.1", "libGL.so"}, "glXGetCurrentContext");
+    }
+    return (api.egl && api.egl()) || (api.glx && api.glx());
+}
+
+void checkFrameSize(int width, int height) {
+    const std::string size = std::to_string(width) + "x" + std::to_string(height);
+    if (width < 1 || height < 1) throw Error("frame size " + size + ": width and height must be at least 1");
+    GLint maxTexture = 0, maxFbWidth = 0, maxFbHeight = 0, viewport[2] = {0, 0};
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
+    glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &maxFbWidth);
+    glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &maxFbHeight);
+    glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
+    const int maxWidth = std::min({maxTexture, maxFbWidth, viewport[0]});
+    const int maxHeight = std::min({maxTexture, maxFbHeight, viewport[1]});
+    if (width > maxWidth || height > maxHeight) {
+        throw Error("frame size " + size + " exceeds what this context can render into (" + std::to_string(maxWidth) + "x" +
+                    std::to_string(maxHeight) + ": GL_MAX_TEXTURE_SIZE, GL_MAX_FRAMEBUFFER_WIDTH/HEIGHT, GL_MAX_VIEWPORT_DIMS)");
+    }
+}
 
 void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
 void deleteBuffer(GLuint id) { glDeleteBuffers(1, &id); }

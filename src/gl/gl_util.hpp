@@ -12,7 +12,17 @@
 
 namespace starnt::gl {
 
-// Owns one GL name; Deleter is called with the name on destruction.
+// True when an EGL or GLX context is current on this thread (asked of whichever of libEGL and
+// libGL/libGLX the process has loaded, without loading either: a GL call through epoxy without a
+// context aborts the process). Handles release their names only then; otherwise the names die
+// with their context (docs/INTEGRATION.md, "Misuse").
+bool hasCurrentContext();
+// Throws starnt::Error naming the size unless 1 <= width, height <= the context's
+// GL_MAX_TEXTURE_SIZE, GL_MAX_FRAMEBUFFER_WIDTH / HEIGHT and GL_MAX_VIEWPORT_DIMS: checked before
+// anything of that size is allocated.
+void checkFrameSize(int width, int height);
+
+// Owns one GL name; Deleter is called with the name on destruction, when a context is current.
 template <void (*Deleter)(GLuint)>
 class Handle {
 public:
@@ -30,7 +40,7 @@ public:
     Handle(const Handle&) = delete;
     Handle& operator=(const Handle&) = delete;
     void reset() {
-        if (id_) Deleter(id_);
+        if (id_ && hasCurrentContext()) Deleter(id_);
         id_ = 0;
     }
     GLuint id() const { return id_; }

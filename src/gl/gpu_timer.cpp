@@ -1,4 +1,5 @@
 #include "gl/gpu_timer.hpp"
+#include "gl/gl_util.hpp"
 
 #include <chrono>
 #include <string_view>
@@ -45,6 +46,7 @@ GpuPassTimer::GpuPassTimer(bool finishAndWallClock)
       countersAvailable_(epoxy_is_desktop_gl() && (epoxy_gl_version() >= 46 || epoxy_has_gl_extension("GL_ARB_pipeline_statistics_query"))) {}
 
 GpuPassTimer::~GpuPassTimer() {
+    if (!hasCurrentContext()) return;  // the queries die with their context
     for (auto& p : pendingCounters_)
         for (size_t i = 0; i < 3; ++i) freeCounterQueries_[i].push_back(p.queries[i]);
     for (auto& list : freeCounterQueries_)

@@ -20,7 +20,7 @@ void ABufferLists::allocate(int width, int height, uint64_t capacity) {
     if (total > options_.abuffer.memoryCapBytes) {
         throw Error("A-buffer needs " + std::to_string(total >> 20) + " MiB for " + std::to_string(capacity) +
                     " fragments, over its memory cap of " + std::to_string(options_.abuffer.memoryCapBytes >> 20) +
-                    " MiB (raise --abuffer-cap-mib, or lower the resolution)");
+                    " MiB (raise MethodOptions::abuffer.memoryCapBytes, the CLI's --abuffer-cap-mib, or lower the resolution)");
     }
     if (width != width_ || height != height_) {
         heads_ = gl::Buffer(size_t(width) * size_t(height) * 4);

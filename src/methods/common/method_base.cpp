@@ -1,5 +1,7 @@
 #include "methods/common/method_base.hpp"
 
+#include "starnt/error.hpp"
+
 namespace starnt {
 
 MethodBase::MethodBase(SurfaceShader surface)
@@ -36,7 +38,10 @@ bool MethodBase::resizeOutput(int width, int height) {
 }
 
 bool MethodBase::setFrameSize(int width, int height) {
+    // Every render() starts here: no GL call before these checks (docs/INTEGRATION.md, "Misuse").
+    if (!gl::hasCurrentContext()) throw Error("render(): no OpenGL context is current on this thread");
     if (width == width_ && height == height_) return false;
+    gl::checkFrameSize(width, height);
     width_ = width;
     height_ = height;
     output_ = gl::Texture2D();
@@ -73,6 +78,12 @@ void resetPassState() {
     glDisable(GL_SCISSOR_TEST);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glBlendEquation(GL_FUNC_ADD);
+    // State an engine commonly leaves set that would change what the passes rasterise or the
+    // window depths they compare (docs/INTEGRATION.md, "State"): filled polygons, no depth offset,
+    // the full depth range.
+    if (!gl::isEs()) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glDepthRangef(0.0f, 1.0f);
 }
 
 }  // namespace starnt

@@ -18,7 +18,7 @@ MomentKind parseMomentKind(const std::string& text) {
     for (MomentKind k : {MomentKind::Power4, MomentKind::Power6, MomentKind::Trig2, MomentKind::Trig3}) {
         if (text == momentSetting(k).name) return k;
     }
-    throw Error("--mboit-moments '" + text + "': expected 4, 6, t2 or t3 (power moments 4 or 6, trigonometric 2 or 3)");
+    throw Error("MethodOptions::mboit.moments (--mboit-moments) '" + text + "': expected 4, 6, t2 or t3 (power moments 4 or 6, trigonometric 2 or 3)");
 }
 
 }  // namespace starnt::mboit

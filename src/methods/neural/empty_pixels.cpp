@@ -10,14 +10,18 @@ EmptyPixelSkip::EmptyPixelSkip()
     : background_(gl::buildProgram("infer_background", gl::embeddedSource("methods/common/fullscreen.vert.glsl"),
                                    gl::embeddedSource("methods/neural/infer_background.frag.glsl"))) {}
 
-void EmptyPixelSkip::bindCovered(GLuint colorTexture, GLuint pass1Depth, int width, int height) {
+void EmptyPixelSkip::bindCovered(GLuint colorTexture, GLuint pass1Depth, int width, int height, GLuint secondColor) {
     if (!framebuffer_) framebuffer_ = gl::makeFramebufferName();
     // Attached on every call: the textures are the caller's and may have been reallocated.
     gl::attachTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, colorTexture);
+    if (secondColor || second_) gl::attachTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT1, secondColor);
+    second_ = secondColor != 0;
     if (gl::attachTexture(framebuffer_.id(), GL_DEPTH_ATTACHMENT, pass1Depth) != GL_FRAMEBUFFER_COMPLETE) {
         throw Error("internal: the output and pass-1 depth do not form a complete framebuffer");
     }
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+    const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glDrawBuffers(second_ ? 2 : 1, buffers);
     glViewport(0, 0, width, height);
     glDisable(GL_BLEND);
     glDisable(GL_SCISSOR_TEST);
@@ -27,6 +31,10 @@ void EmptyPixelSkip::bindCovered(GLuint colorTexture, GLuint pass1Depth, int wid
 }
 
 void EmptyPixelSkip::fillEmpty(const glm::vec3& background, bool halfOutput, const gl::VertexArrayHandle& emptyVao) const {
+    if (second_) {
+        const GLenum first[2] = {GL_COLOR_ATTACHMENT0, GL_NONE};  // the background shader writes location 0 only
+        glDrawBuffers(2, first);
+    }
     glDepthFunc(GL_LEQUAL);
     glUseProgram(background_.id());
     glUniform3fv(background_.uniform("u_background"), 1, glm::value_ptr(background));

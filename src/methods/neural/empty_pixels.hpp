@@ -30,7 +30,9 @@ public:
     // DEPTH_COMPONENT32F depth, the output's size) attached, a full viewport of that size, and the
     // depth state under which the next draws shade only the covered pixels (no depth writes).
     // Throws starnt::Error if the framebuffer is incomplete.
-    void bindCovered(GLuint colorTexture, GLuint pass1Depth, int width, int height);
+    // `secondColor` (optional): a second target at draw buffer 1 that the composite writes too
+    // (the fused capture of corrected frames); fillEmpty leaves it untouched.
+    void bindCovered(GLuint colorTexture, GLuint pass1Depth, int width, int height, GLuint secondColor = 0);
     // After the covered pixels were drawn: writes the background into the empty ones and restores
     // the default depth state (test off, function LESS, writes on). The depth range is not touched.
     void fillEmpty(const glm::vec3& background, bool halfOutput, const gl::VertexArrayHandle& emptyVao) const;
@@ -38,6 +40,7 @@ public:
 private:
     gl::Program background_;
     gl::FramebufferHandle framebuffer_;
+    bool second_ = false;  // a second target is attached
 };
 
 }  // namespace starnt

@@ -3,6 +3,15 @@
 // compositePixel) are included before this file.
 #include "methods/neural/half_targets.glsl"
 layout(location = 0) out vec4 outColor;
+#ifdef STARNT_CAPTURE_CORRECTION
+// The fused capture of corrected frames (CorrectedFrames::beginFusedCapture): what the capture
+// pass would keep, written beside the output. The early empty-pixel test runs against a copy of
+// pass 1's depth, so sampling the original here is no feedback loop.
+#include "methods/neural/temporal/correction_capture.glsl"
+layout(location = 1) out vec4 outCorrection;
+layout(binding = STARNT_UNIT_NEAREST_DEPTH) uniform highp sampler2D u_captureDepth;
+uniform vec4 u_sourceScale;
+#endif
 
 void main() {
     PixelSums s = readPixelSums(ivec2(gl_FragCoord.xy));
@@ -12,5 +21,12 @@ void main() {
         networkInputs(s, x);
         network = nnEvaluate(x);
     }
-    outColor = targetValue(vec4(compositePixel(s, network), 1.0));
+    vec4 color = targetValue(vec4(compositePixel(s, network), 1.0));
+    outColor = color;
+#ifdef STARNT_CAPTURE_CORRECTION
+    ivec2 t = ivec2(gl_FragCoord.xy);
+    outCorrection = keptCorrection(t, u_fullSize, u_sourceScale, color.rgb, texelFetch(u_nearest, t, 0),
+                                   texelFetch(u_alphaColor, t, 0), texelFetch(u_transmittance, t, 0).r,
+                                   texelFetch(u_captureDepth, t, 0).r, u_background);
+#endif
 }

@@ -44,7 +44,10 @@ public:
                   narrowLayersApply(config, options_, spatial_, corners_), config.tailMoments),
           temporal_(options_) {
         if (spatial_ || corners_) tiles_ = std::make_unique<tiles::GpuTiles>();
-        if (temporal_.interpolates() && temporal_.corrects()) passes_.prepareNearestAndSums();
+        if (temporal_.interpolates() && temporal_.corrects()) {
+            passes_.prepareNearestAndSums();
+            if (options_.neural.fusedCorrectionCapture && !corners_) inference("infer_full_capture", true);
+        }
         // Compile up front what the frames will need, so no frame pays for a shader compile: the
         // full-resolution variant for the first frame (no tile history) and fixed 100 % scales,
         // the upsampling one when scales below 1 can occur.
@@ -162,7 +165,9 @@ public:
             return;
         }
         renderReal(frame, draw);
-        if (temporal_.interpolates()) {
+        if (fusedCaptured_) {
+            temporal_.endRealFrameFused();
+        } else if (temporal_.interpolates()) {
             gl::ScopedPass timing(frame.timing, "temporal_capture");
             // Corrected frames need this frame's pass-3 sums at full resolution (none when it ran reduced).
             const bool sums = temporal_.corrects() && passes_.pass3Size() == Size2{frame.width, frame.height};
@@ -251,8 +256,8 @@ private:
             const bool reduced = o.neural.fixedScale2 > 0.0f && !(o.neural.fixedScale2 == 1.0f && o.neural.fixedScale3 == 1.0f);
             if (o.neural.spatial.value_or(config.spatialByDefault) || reduced ||
                 o.neural.inference == NeuralOptions::Inference::Corners || o.neural.upsample == NeuralOptions::Upsample::Joint) {
-                throw Error(config.name + " runs every pass at full resolution: --spatial on, --scales below 100, "
-                            "--inference corners and --upsample joint are not available with it");
+                throw Error(config.name + " runs every pass at full resolution: spatial on, fixed scales below 1, corner inference and joint upsampling "
+                            "(--spatial on, --scales below 100, --inference corners, --upsample joint) are not available with it");
             }
         }
         return o;
@@ -265,12 +270,15 @@ private:
         return slot;
     }
 
-    gl::Program buildInference(const std::string& stage, bool fullResolutionInputs) const {
+    gl::Program buildInference(std::string stage, bool fullResolutionInputs) const {
+        const bool capture = stage == "infer_full_capture";  // infer_full with the fused capture
+        if (capture) stage = "infer_full";
         const std::string defines = std::string(fullResolutionInputs ? "#define STARNT_INPUTS_FULL_RESOLUTION\n" : "") +
+                                    (capture ? "#define STARNT_CAPTURE_CORRECTION\n" : "") +
                                     (joint() ? "#define STARNT_UPSAMPLE_JOINT\n" : "") + passes_.countLayoutDefine() + passes_.targetsDefine() +
                                     passes_.layerDefine() +
                                     neuralEpsilonDefines() + nn::generateInferenceGlsl(network_);
-        return buildFullscreenProgram(config_.name + "_" + stage + (fullResolutionInputs ? "" : "_upsampled"),
+        return buildFullscreenProgram(config_.name + "_" + stage + (capture ? "_capture" : "") + (fullResolutionInputs ? "" : "_upsampled"),
                                       {config_.compositeShader, "methods/neural/" + stage + ".frag.glsl"}, defines);
     }
 
@@ -286,9 +294,14 @@ private:
             scale2_ = tiles::ruleScale(options_.neural.scaleRule, wBar, STARNT_SCALE_DELTA_PASS2);
             scale3_ = tiles::ruleScale(options_.neural.scaleRule, wBar, STARNT_SCALE_DELTA_PASS3);
             if (guarded()) {
-                probe_ = tiles_->updates() < STARNT_SCALE_SETTLE_FRAMES || realFramesSinceProbe_ + 1 >= probeInterval();
+                // A reading with nothing to measure (an empty draw, nothing behind the nearest
+                // layer) is no verdict: it must not choose the scales of the frames after it, so
+                // every real frame probes until a reading measures something.
+                const bool verdict = tiles_->hasGuard() && tiles::guardMeasured(tiles_->guard());
+                probe_ = tiles_->updates() < STARNT_SCALE_SETTLE_FRAMES || realFramesSinceProbe_ + 1 >= probeInterval() ||
+                         (tiles_->hasGuard() && !verdict);
                 realFramesSinceProbe_ = probe_ ? 0 : realFramesSinceProbe_ + 1;
-                if (probe_ || !tiles_->hasGuard()) {
+                if (probe_ || !verdict) {
                     scale2_ = scale3_ = 1.0f;
                 } else {
                     // The guard decides (measured: w_bar of the tiles stays near 3 on the built-in
@@ -329,6 +342,20 @@ private:
         cornersUsed_ = corners_ && tiles_->updates() > 0;
         const Size2 full{width_, height_};
         const bool fullResolution = passes_.pass2Size() == full && passes_.pass3Size() == full;
+        // Corrected frames keep this frame's correction: written by the composite itself where it can.
+        fusedCaptured_ = !cornersUsed_ && temporal_.interpolates() && temporal_.corrects() && skipEmpty() && fullResolution &&
+                         options_.neural.fusedCorrectionCapture;
+        if (fusedCaptured_) {
+            const auto targets = temporal_.beginFusedCapture(gl::textureInternalFormat(out_.texture), passes_.nearestDepth().id(),
+                                                            width_, height_, frame.projection * frame.view);
+            emptyPixels_.bindCovered(out_.texture, targets.coverDepth, width_, height_, targets.correction);
+            const gl::Program& program = inference("infer_full_capture", true);
+            setCommonUniforms(program, frame);
+            glUniform4fv(program.uniform("u_sourceScale"), 1, &targets.sourceScale[0]);
+            drawFullscreen();
+            finishOutput(frame);
+            return;
+        }
         if (!cornersUsed_) {
             bindOutput();
             setCommonUniforms(inference("infer_full", fullResolution), frame);
@@ -366,6 +393,7 @@ private:
     gl::FramebufferHandle cornerFb_;
     float scale2_ = 1.0f, scale3_ = 1.0f;
     bool cornersUsed_ = false;
+    bool fusedCaptured_ = false;  // this real frame's composite captured the corrected frames' correction
     NeuralPasses::OutputSlot out_;  // this frame's output
     bool probe_ = false;            // this real frame is a guard probe (passes 2/3 at full resolution)
     int realFramesSinceProbe_ = 0;

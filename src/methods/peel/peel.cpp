@@ -71,7 +71,13 @@ public:
                 glUniform1i(layer_.uniform("u_firstLayer"), layer == 0 ? 1 : 0);
                 gl::bindTexture(0, depth_[cur ^ 1].id());
                 glBeginQuery(GL_ANY_SAMPLES_PASSED, query_.id());
-                runGeometryPass("peel", layer_, frame, draw);
+                try {
+                    runGeometryPass("peel", layer_, frame, draw);
+                } catch (...) {
+                    glEndQuery(GL_ANY_SAMPLES_PASSED);  // an engine's exception must not leave the query running
+                    resetPassState();
+                    throw;
+                }
                 glEndQuery(GL_ANY_SAMPLES_PASSED);
                 resetPassState();
                 glGetQueryObjectuiv(query_.id(), GL_QUERY_RESULT, &anySamples);

@@ -39,6 +39,35 @@ void CorrectedFrames::capture(GLuint composite, GLuint depth, GLuint nearest, GL
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
+CorrectedFrames::FusedTargets CorrectedFrames::beginFusedCapture(GLenum compositeFormat, GLuint depth, int width, int height,
+                                                                const glm::mat4& viewProj) {
+    if (width < 1 || height < 1) throw Error("corrected frames: empty frame size");
+    if (compositeFormat != GL_RGBA32F && compositeFormat != GL_RGBA16F) {
+        throw Error("corrected frames: the composite must be RGBA32F or RGBA16F");
+    }
+    if (correction_.width() != width || correction_.height() != height || correction_.format() != compositeFormat) {
+        correction_ = gl::Texture2D(compositeFormat, width, height);
+    }
+    if (coverDepth_.width() != width || coverDepth_.height() != height) {
+        coverDepth_ = gl::Texture2D(GL_DEPTH_COMPONENT32F, width, height);
+    }
+    glCopyImageSubData(depth, GL_TEXTURE_2D, 0, 0, 0, 0, coverDepth_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width, height, 1);
+    const float hidden[4] = {0.0f, 0.0f, 0.0f, -1.0f};
+    drawIntoTexture(framebuffer_, correction_.id(), width, height);
+    glClearBufferfv(GL_COLOR, 0, hidden);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    width_ = width;
+    height_ = height;
+    viewProj_ = viewProj;
+    hasFrame_ = false;  // until endFusedCapture
+    return {correction_.id(), coverDepth_.id(), makeCorrectionMatrices(viewProj, viewProj).sourceScale};
+}
+
+void CorrectedFrames::endFusedCapture() {
+    hasFrame_ = true;
+    hasCorrection_ = true;
+}
+
 void CorrectedFrames::composite(const glm::mat4& newViewProj, GLuint nearest, GLuint depth, GLuint sumAlphaColor,
                                 GLuint transmittance, const glm::vec3& background, GLuint output) {
     if (!hasFrame_) throw Error("internal: a corrected frame before any real frame was captured");

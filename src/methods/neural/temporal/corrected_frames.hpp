@@ -23,6 +23,19 @@ public:
     // frames that follow composite the closed form alone.
     void capture(GLuint composite, GLuint depth, GLuint nearest, GLuint sumAlphaColor, GLuint transmittance, int width,
                  int height, const glm::mat4& viewProj, const glm::vec3& background);
+    // The same capture written by the real frame's own composite (infer_full.frag.glsl with
+    // STARNT_CAPTURE_CORRECTION) instead of a pass of its own: beginFusedCapture copies pass 1's
+    // `depth` for the composite's early empty-pixel test (the composite samples the original, see
+    // composite() below), clears the kept correction to "hidden" (alpha -1: where the composite
+    // does not shade, nothing is kept) and returns {correction texture, depth copy} to attach; the
+    // composite's second output writes what capture() would write at every shaded pixel.
+    // endFusedCapture keeps the frame. Same formats and rules as capture().
+    struct FusedTargets {
+        GLuint correction = 0, coverDepth = 0;
+        glm::vec4 sourceScale{0.0f};  // u_sourceScale of the capture
+    };
+    FusedTargets beginFusedCapture(GLenum compositeFormat, GLuint depth, int width, int height, const glm::mat4& viewProj);
+    void endFusedCapture();
     bool hasFrame() const { return hasFrame_; }
     int width() const { return width_; }
     int height() const { return height_; }

@@ -11,7 +11,7 @@ layout(binding = 0) uniform highp sampler2D u_color;        // the kept composit
 layout(binding = 1) uniform highp sampler2D u_depth;        // its pass-1 window depth
 layout(binding = 3) uniform highp sampler2D u_keptNearest;  // its pass-1 colour + alpha
 #ifdef STARNT_BEHIND_CORRECTION
-#include "methods/neural/temporal/closed_form_behind.glsl"
+#include "methods/neural/temporal/correction_capture.glsl"
 layout(binding = 4) uniform highp sampler2D u_sumAlphaColor;  // its pass 3 at full resolution: sum a C, sum a
 layout(binding = 5) uniform highp sampler2D u_transmittance;  // its pass 3: prod (1 - a)
 uniform vec3 u_background;
@@ -24,6 +24,10 @@ out vec4 o_behind;
 void main() {
     ivec2 t = ivec2(gl_FragCoord.xy);
     vec4 n = texelFetch(u_keptNearest, t, 0);
+#ifdef STARNT_BEHIND_CORRECTION
+    o_behind = keptCorrection(t, u_size, u_sourceScale, texelFetch(u_color, t, 0).rgb, n, texelFetch(u_sumAlphaColor, t, 0),
+                              texelFetch(u_transmittance, t, 0).r, texelFetch(u_depth, t, 0).r, u_background);
+#else
     float open = 1.0 - n.a;
     if (!(open > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE))) {
         o_behind = vec4(0.0, 0.0, 0.0, -1.0);
@@ -32,8 +36,6 @@ void main() {
     vec2 ndc = (vec2(t) + 0.5) / vec2(u_size) * 2.0 - 1.0;
     float inverseViewDepth = dot(u_sourceScale, vec4(ndc, texelFetch(u_depth, t, 0).r * 2.0 - 1.0, 1.0));
     vec3 behind = (texelFetch(u_color, t, 0).rgb - n.a * n.rgb) / open;
-#ifdef STARNT_BEHIND_CORRECTION
-    behind -= closedFormBehind(n, texelFetch(u_sumAlphaColor, t, 0), texelFetch(u_transmittance, t, 0).r, u_background);
-#endif
     o_behind = vec4(behind, inverseViewDepth);
+#endif
 }

@@ -52,6 +52,18 @@ void TemporalFrames::endRealFrame(GLuint compositeTexture, GLuint nearestDepthTe
     clock_.stop();
 }
 
+temporal::CorrectedFrames::FusedTargets TemporalFrames::beginFusedCapture(GLenum compositeFormat, GLuint depth, int width,
+                                                                         int height, const glm::mat4& viewProj) {
+    if (lastInterpolated_ || !corrected_) throw Error("internal: a fused capture outside a real frame with corrected frames");
+    return corrected_->beginFusedCapture(compositeFormat, depth, width, height, viewProj);
+}
+
+void TemporalFrames::endRealFrameFused() {
+    if (lastInterpolated_ || !corrected_) throw Error("internal: a fused capture outside a real frame with corrected frames");
+    corrected_->endFusedCapture();
+    clock_.stop();
+}
+
 void TemporalFrames::interpolate(const glm::mat4& viewProj, GLuint outputTexture, PassTimingHook* timer) {
     if (!lastInterpolated_) throw Error("internal: TemporalFrames::interpolate on a real frame");
     {

@@ -43,6 +43,12 @@ public:
     // An interpolated frame: the kept real frame reprojected to `viewProj`, rendered into
     // `outputTexture` (a colour-renderable RGBA texture of the frame size; the framebuffer binding is
     // 0 afterwards). Timed as pass "reproject" when a timer is given.
+    // Corrected frames only: the real frame's composite captures the correction itself
+    // (CorrectedFrames::beginFusedCapture); endRealFrameFused then keeps the frame instead of
+    // endRealFrame.
+    temporal::CorrectedFrames::FusedTargets beginFusedCapture(GLenum compositeFormat, GLuint depth, int width, int height,
+                                                             const glm::mat4& viewProj);
+    void endRealFrameFused();
     void interpolate(const glm::mat4& viewProj, GLuint outputTexture, PassTimingHook* timer = nullptr);
     // A refresh frame: `nearestTexture` is pass 1 rendered at `viewProj` (the caller renders it) and
     // `nearestDepth` its depth;

@@ -53,6 +53,9 @@ struct ScaleGuard {
         return *this;
     }
 };
+// True when a reading measured something: occupied pixels with something behind the nearest layer
+// (energy in pass 2 or pass 3). Without it the reading says nothing about reducing.
+inline bool guardMeasured(const ScaleGuard& g) { return g.occupied > 0.0f && (g.energy2 > 0.0f || g.energy3 > 0.0f); }
 // The scales the guard picks: of the pairs (s2, s3) with s3 <= s2 in {1, 1/2, 1/4}, the cheapest
 // (fewest fragments, s2^2 + s3^2) whose predicted loss is at most `budget` x the occupied pixels
 // (an added MSE of at most `budget` over the pixels with a transparent fragment). Predicted loss of

@@ -29,7 +29,9 @@ GpuTiles::GpuTiles()
     histogramBuffer_ = gl::Buffer(kReadbackBytes);
 }
 
-GpuTiles::~GpuTiles() { clearReadbacks(); }
+GpuTiles::~GpuTiles() {
+    if (gl::hasCurrentContext()) clearReadbacks();  // else the fences die with their context
+}
 
 void GpuTiles::clearReadbacks() {
     for (auto& r : readbacks_) {
@@ -55,8 +57,11 @@ void GpuTiles::resize(int width, int height) {
 
 void GpuTiles::reset() {
     const uint32_t zero = 0;
-    for (auto& m : masks_) gl::fillBufferUint(m, zero);
-    gl::fillBufferUint(occupancy_, zero);
+    // Before the first frame nothing is allocated yet, and there is nothing to clear.
+    for (auto& m : masks_) {
+        if (m) gl::fillBufferUint(m, zero);
+    }
+    if (occupancy_) gl::fillBufferUint(occupancy_, zero);
     clearReadbacks();
     hasHistogram_ = false;
     histogram_ = {};

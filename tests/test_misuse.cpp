@@ -1,0 +1,147 @@
+// What engines do to the library (docs/INTEGRATION.md, "Misuse"): no abort, a clear error or a
+// correct image, and no GL error of the library's own. Every method, on a small built-in scene.
+#include <gtest/gtest.h>
+
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
+
+#include <cmath>
+
+#include "scene/scene_gpu.hpp"
+#include "starnt/error.hpp"
+#include "starnt/oit_method.hpp"
+#include "test_support.hpp"
+
+using namespace starnt;
+
+namespace {
+
+const glm::vec3 kBackground(0.875f, 0.75f, 0.625f);
+
+// Drops every GL error queued so far and returns the first one (GL_NO_ERROR when none).
+GLenum takeGlError() {
+    const GLenum first = glGetError();
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    return first;
+}
+
+std::vector<glm::vec4> renderOnce(OitMethod& method, const test::TestScene& c) {
+    const FrameDesc f = c.frame();
+    method.render(f, c.gpu->callback(f.view, f.projection, {}));
+    glFinish();
+    const auto floats = gl::readTextureFloats(method.outputTexture(), c.width, c.height, 4);
+    std::vector<glm::vec4> out(floats.size() / 4);
+    for (size_t i = 0; i < out.size(); ++i) out[i] = glm::vec4(floats[4 * i], floats[4 * i + 1], floats[4 * i + 2], floats[4 * i + 3]);
+    return out;
+}
+
+float largestDifference(const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b) {
+    float d = 0.0f;
+    for (size_t i = 0; i < a.size(); ++i)
+        for (int ch = 0; ch < 3; ++ch) d = std::max(d, std::abs(a[i][ch] - b[i][ch]));
+    return d;
+}
+
+// The methods an engine may create, with temporal frames for the neural ones (their temporal
+// history is what the corrected frames add).
+std::vector<std::pair<std::string, MethodOptions>> everyMethod() {
+    std::vector<std::pair<std::string, MethodOptions>> out;
+    for (const std::string& name : methodNames()) {
+        out.emplace_back(name, MethodOptions{});
+        if (name == "starnt" || name == "starnt-d") {
+            MethodOptions temporal;
+            temporal.neural.temporalInterval = 2;
+            out.emplace_back(name, temporal);
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+// Without a current context: render() throws before any GL call, and destroying a method releases
+// nothing (its objects die with their context) instead of aborting in the GL loader.
+TEST(Misuse, NoCurrentContextIsAnErrorAndDestroyingIsSafe) {
+    test::TestScene c(makeBuiltinScene("tubes", 3), 48, 32, 30.0f, 15.0f, kBackground);
+    const EGLDisplay display = eglGetCurrentDisplay();
+    const EGLContext context = eglGetCurrentContext();
+    const EGLSurface draw = eglGetCurrentSurface(EGL_DRAW), read = eglGetCurrentSurface(EGL_READ);
+    ASSERT_NE(context, EGL_NO_CONTEXT) << "the test context is EGL";
+    for (auto& [name, options] : everyMethod()) {
+        auto method = createMethod(name, SceneGpu::surfaceShader(), options);
+        renderOnce(*method, c);
+        const FrameDesc f = c.frame();
+        const DrawCallback drawScene = c.gpu->callback(f.view, f.projection, {});
+        ASSERT_TRUE(eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT));
+        const std::string error = test::errorOf([&] { method->render(f, drawScene); });
+        EXPECT_NE(error.find("no OpenGL context"), std::string::npos) << name << ": " << error;
+        method.reset();  // must not abort
+        ASSERT_TRUE(eglMakeCurrent(display, draw, read, context));
+        EXPECT_EQ(takeGlError(), GLenum(GL_NO_ERROR)) << name;
+    }
+}
+
+// Sizes no context can render: one error naming the size before anything is allocated; no GL error
+// left for the engine, and the memory reported is what exists.
+TEST(Misuse, AbsurdSizesFailBeforeAllocating) {
+    test::TestScene c(makeBuiltinScene("tubes", 3), 48, 32, 30.0f, 15.0f, kBackground);
+    for (auto& [name, options] : everyMethod()) {
+        auto method = createMethod(name, SceneGpu::surfaceShader(), options);
+        takeGlError();
+        for (const auto [w, h] : {std::pair{20000, 20000}, std::pair{-64, 32}, std::pair{48, 0}}) {
+            FrameDesc f = c.frame();
+            f.width = w;
+            f.height = h;
+            const std::string error = test::errorOf([&] { method->render(f, c.gpu->callback(f.view, f.projection, {})); });
+            EXPECT_NE(error.find(std::to_string(w) + "x" + std::to_string(h)), std::string::npos) << name << ": " << error;
+            EXPECT_EQ(takeGlError(), GLenum(GL_NO_ERROR)) << name << " " << w << "x" << h;
+            EXPECT_LT(method->gpuMemoryBytes(), size_t(64) << 20) << name << ": memory that was never allocated";
+        }
+        // And it still renders at a sane size afterwards.
+        const auto image = renderOnce(*method, c);
+        EXPECT_EQ(image.size(), size_t(c.width * c.height)) << name;
+        EXPECT_EQ(takeGlError(), GLenum(GL_NO_ERROR)) << name;
+    }
+}
+
+// resetHistory() before the first frame, and an engine callback that throws in the middle of a
+// frame: no GL error raised by the library, and the next frame is right.
+TEST(Misuse, ResetBeforeTheFirstFrameAndAThrowingCallback) {
+    test::TestScene c(makeBuiltinScene("tubes", 3), 48, 32, 30.0f, 15.0f, kBackground);
+    for (auto& [name, options] : everyMethod()) {
+        auto reference = createMethod(name, SceneGpu::surfaceShader(), options);
+        const auto expected = renderOnce(*reference, c);
+        auto method = createMethod(name, SceneGpu::surfaceShader(), options);
+        takeGlError();
+        method->resetHistory();
+        EXPECT_EQ(takeGlError(), GLenum(GL_NO_ERROR)) << name << ": resetHistory before any frame";
+        const FrameDesc f = c.frame();
+        EXPECT_THROW(method->render(f, [](const GeometryPass&) { throw std::runtime_error("engine failure"); }), std::runtime_error);
+        method->resetHistory();
+        const auto image = renderOnce(*method, c);
+        EXPECT_EQ(takeGlError(), GLenum(GL_NO_ERROR)) << name << ": after a throwing callback";
+        EXPECT_LE(largestDifference(image, expected), 1e-6f) << name;
+    }
+}
+
+// State engines leave set that is not in INTEGRATION's preconditions: the methods set what their
+// passes depend on, so the image is the undisturbed one.
+TEST(Misuse, EngineStateLeftSetDoesNotChangeTheImage) {
+    test::TestScene c(makeBuiltinScene("tubes", 3), 48, 32, 30.0f, 15.0f, kBackground);
+    for (auto& [name, options] : everyMethod()) {
+        auto method = createMethod(name, SceneGpu::surfaceShader(), options);
+        const auto undisturbed = renderOnce(*method, c);
+        method->resetHistory();
+        if (epoxy_is_desktop_gl()) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);  // ES has no polygon mode
+        glEnable(GL_POLYGON_OFFSET_FILL);
+        glPolygonOffset(4.0f, 64.0f);
+        glDepthRangef(0.5f, 1.0f);
+        const auto disturbed = renderOnce(*method, c);
+        EXPECT_LE(largestDifference(disturbed, undisturbed), 0.02f) << name;
+        EXPECT_EQ(takeGlError(), GLenum(GL_NO_ERROR)) << name;
+        if (epoxy_is_desktop_gl()) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+        glDisable(GL_POLYGON_OFFSET_FILL);
+        glDepthRangef(0.0f, 1.0f);
+    }
+}
