@@ -3,6 +3,7 @@
 // determinism, and that failures are recorded while the run goes on.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sys/wait.h>
@@ -370,4 +371,38 @@ TEST(RenderStats, WorstInterpolatedFlashComparesWithTheRealFramesBesideIt) {
     EXPECT_DOUBLE_EQ(tail->ratio, 1.5);
     EXPECT_FALSE(worstInterpolatedFlash({{false, 1.0}, {false, 2.0}}));  // nothing interpolated
     EXPECT_FALSE(worstInterpolatedFlash({{true, 1.0}}));                 // no real frame to compare with
+}
+
+// The gpu preset: the paper's protocol at 1080p for a GPU, every headline variant, the error on
+// three frames in every 32 (FLIP is CPU work; the GPU's timed frames are not).
+TEST(BenchPlan, GpuPresetNamesTheHeadlineAndMeasuresErrorOnFewFrames) {
+    bench::Request request;
+    request.preset = "gpu";
+    request.suiteDir = "/nonexistent/suite";
+    const bench::Plan plan = bench::makePlan(request);
+    EXPECT_EQ(plan.width, 1920);
+    EXPECT_EQ(plan.height, 1080);
+    EXPECT_EQ(plan.frames, 64);
+    EXPECT_EQ(plan.warmupFrames, 8);
+    EXPECT_EQ(plan.qualityEvery, 32);
+    std::vector<std::string> names;
+    for (const auto& v : plan.variants) names.push_back(v.name);
+    for (const char* v : {"wboit", "mboit", "mboit-t3", "dfaoit", "starnt-full", "starnt", "hybrid", "hybrid-moments", "starnt-d",
+                          "starnt-total", "starnt-total-refresh", "starnt-total-warp", "recommended"}) {
+        EXPECT_NE(std::find(names.begin(), names.end(), v), names.end()) << v;
+    }
+    EXPECT_EQ(bench::findPreset("gpu").suiteNames.size(), 6u);
+}
+
+TEST(BenchCli, GpuPresetComparesFramesZeroToTwoInEveryThirtyTwo) {
+    const fs::path dir = test::makeTempDir("bench_gpu");
+    CliRun r = runCli("bench --preset gpu --suite-dir /nonexistent/suite --scenes builtin:panes --methods wboit,recommended "
+                      "--width 32 --height 18 --frames 5 --no-plots --out " + (dir / "out").string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const json results = readJson(dir / "out" / "results.json");
+    for (const auto& c : results["scenes"][0]["methods"]) {
+        ASSERT_EQ(c["frames"].size(), 5u) << c["variant"];
+        for (size_t i = 0; i < 5; ++i) EXPECT_EQ(c["frames"][i].contains("mse"), i < 3) << c["variant"] << " frame " << i;
+    }
+    EXPECT_NE(slurp(dir / "out" / "report.md").find("i mod 32 < 3"), std::string::npos);
 }

@@ -63,7 +63,7 @@ void addBenchCommand(CLI::App& app) {
     auto a = std::make_shared<Args>();
     a->request.suiteDir = defaultSuiteDir();
     CLI::App* cmd = app.add_subcommand("bench", "time every method on a scene set and compare it with the A-buffer");
-    cmd->add_option("--preset", a->request.preset, "quick (3 scenes, 640x360, 8 frames) | paper (all suite scenes, 1920x1080, 16 frames)")
+    cmd->add_option("--preset", a->request.preset, "quick (3 scenes, 640x360, 8 frames) | paper (all suite scenes, 1920x1080, 16 frames) | gpu (the six headline scenes, 1920x1080, 8 warm-up + 64 timed frames, 13 variants, errors on 6 frames; for a GPU)")
         ->capture_default_str();
     cmd->add_option("--scenes", a->request.scenes, "suite names, builtin:NAME or scene files (default: the preset's)")->delimiter(',');
     cmd->add_option("--methods", a->request.methods,

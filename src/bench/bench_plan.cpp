@@ -163,11 +163,18 @@ const Preset& findPreset(const std::string& name) {
     static const std::vector<Preset> presets = {
         {"quick", 640, 360, 8, "orbit:0,14,15", {"magic_stars", "chess", "tree"}, {"builtin:panes", "builtin:smoke", "builtin:tubes"}},
         {"paper", 1920, 1080, 16, "orbit:0,30,15", {}, {"builtin:panes", "builtin:smoke", "builtin:tubes", "builtin:random"}},
+        // The paper's protocol on a GPU (docs/DESIGN.md, "Benchmark"): 1080p, 8 warm-up and 64 timed
+        // frames for stable means, every variant of the headline, the error on frames 0-2 and 32-34
+        // (FLIP runs on the CPU); about 6 minutes for the six headline scenes on an H100 host.
+        {"gpu", 1920, 1080, 64, "orbit:0,126,15", {"magic_stars", "chess", "tree", "hair", "hairball", "engine"},
+         {"builtin:panes", "builtin:smoke", "builtin:tubes"}, 8, 32,
+         {"wboit", "mboit", "mboit-t3", "dfaoit", "starnt-full", "starnt", "hybrid", "hybrid-moments", "starnt-d",
+          "starnt-total", "starnt-total-refresh", "starnt-total-warp", "recommended"}},
     };
     for (const auto& p : presets) {
         if (p.name == name) return p;
     }
-    throw Error("--preset: unknown preset '" + name + "' (valid: quick, paper)");
+    throw Error("--preset: unknown preset '" + name + "' (valid: quick, paper, gpu)");
 }
 
 SurfaceOptions surfaceOptionsFor(const SceneSpec& scene) {
@@ -219,6 +226,8 @@ Plan makePlan(const Request& request) {
     plan.height = request.height ? request.height : preset.height;
     plan.frames = request.frames ? request.frames : preset.frames;
     plan.cameraPath = request.cameraPath.empty() ? preset.cameraPath : request.cameraPath;
+    plan.warmupFrames = preset.warmupFrames;
+    plan.qualityEvery = preset.qualityEvery;
     checkImageSize(plan.width, plan.height);
     if (plan.frames < 1 || plan.frames > 10000) throw Error("--frames must be in 1..10000");
     // 0 = the default cap; anything else is checked and converted without wrapping (1e30 MiB).
@@ -254,7 +263,8 @@ Plan makePlan(const Request& request) {
         plan.scenes.push_back(std::move(spec));
     }
 
-    const std::vector<std::string> methodNames = request.methods.empty() ? defaultVariantNames() : request.methods;
+    const std::vector<std::string> methodNames =
+        !request.methods.empty() ? request.methods : !preset.variantNames.empty() ? preset.variantNames : defaultVariantNames();
     for (const auto& name : methodNames) {
         Variant v = findVariant(name);
         for (const auto& other : plan.variants) {

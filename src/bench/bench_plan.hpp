@@ -52,8 +52,11 @@ struct Preset {
     std::string cameraPath;                 // parseCameraPathSpec form
     std::vector<std::string> suiteNames;    // empty: every suite scene
     std::vector<std::string> builtinNames;  // used instead when the suite folder is absent
+    int warmupFrames = 4;                    // kWarmupFrames
+    int qualityEvery = 1;                    // RenderJob::qualityEvery
+    std::vector<std::string> variantNames;   // the default --methods (empty: defaultVariantNames())
 };
-// "quick" or "paper"; throws starnt::Error otherwise.
+// "quick", "paper" or "gpu"; throws starnt::Error otherwise.
 const Preset& findPreset(const std::string& name);
 
 // What the user asked for; empty / zero fields take the preset's values.
@@ -77,6 +80,7 @@ struct Plan {
     std::string preset;
     int width = 0, height = 0, frames = 0;
     int warmupFrames = kWarmupFrames;
+    int qualityEvery = 1;  // RenderJob::qualityEvery
     std::string cameraPath;
     std::vector<SceneSpec> scenes;
     std::vector<Variant> variants;

@@ -116,7 +116,11 @@ void header(std::ostringstream& md, const Results& r) {
           "every variant, table and plots (interpolated and probe frames make periodic sequences); "
           "glFinish + wall clock"
        << (m.gl.software ? "; on a CPU rasteriser they rank methods by work done, not by GPU speed" : "")
-       << ". Errors are means over every frame against the A-buffer at the same camera. D is the largest "
+       << "; per-pass times are " << (m.gl.software ? "glFinish + wall clock around each pass" : "GL_TIMESTAMP pairs")
+       << ". Errors are means over "
+       << (r.plan.qualityEvery > 1 ? "the frames i with i mod " + std::to_string(r.plan.qualityEvery) + " < 3"
+                                   : std::string("every frame"))
+       << " against the A-buffer at the same camera. D is the largest "
           "number of fragments on one pixel at the last camera.\n\n";
 }
 

@@ -36,6 +36,7 @@ RenderJob baseJob(const Plan& plan, const SceneSpec& spec, const Scene& scene) {
     job.height = plan.height;
     job.frames = plan.frames;
     job.warmupFrames = plan.warmupFrames;
+    job.qualityEvery = plan.qualityEvery;
     job.background = glm::vec3(1.0f);  // SPEC 9 default: white
     job.alphaCutoff = spec.alphaCutoff;
     job.surface = surfaceOptionsFor(spec);

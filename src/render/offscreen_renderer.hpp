@@ -48,6 +48,8 @@ struct RenderJob {
     // compared with (*referenceImages)[i]. Lets `starnt bench` render the ground truth once per
     // scene rather than once per method. Needs at least `frames` images of the job's size.
     const std::vector<Image>* referenceImages = nullptr;
+    // Measure the error on frames i with i % qualityEvery < 3 only (1: every frame).
+    int qualityEvery = 1;
     double flipPixelsPerDegree = 67.02;
     bool readEveryFrame = false;  // read each frame back (FrameRecord::image)
     bool readTileOverlay = false;  // RenderOutput::tileOverlay of the last frame (methods with tiles)
