@@ -15,7 +15,7 @@ namespace starnt::app {
 
 void addViewCommand(CLI::App& app) {
     struct Args {
-        std::string scene = "builtin:tubes", method = "starnt", split, view = "final", alpha, background = "1,1,1";
+        std::string scene = "builtin:tubes", method = "recommended", split, view = "final", alpha, background = "1,1,1";
         AccelerationFlags acceleration;
         std::string script, scriptFile, scenesDir, api = "gl";
         int width = 1280, height = 720, framesLimit = 0;

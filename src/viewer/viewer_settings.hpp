@@ -14,7 +14,7 @@ enum class ViewMode { Final, Tiles, Error };
 const char* viewModeName(ViewMode mode);
 
 struct ViewerSettings {
-    std::string method = "starnt";
+    std::string method = "recommended";  // docs/INTEGRATION.md, "Choosing a method"
     std::string splitMethod;  // empty: no split screen; else this method on the right half
     ViewMode view = ViewMode::Final;
     MethodOptions options;             // acceleration options (the other fields stay default)
