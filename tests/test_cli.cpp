@@ -1,7 +1,9 @@
 // The command-line contract (SPEC section 9): real runs of the starnt binary, good and bad input.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <sstream>
 #include <cstdio>
 #include <fstream>
 #include <sys/wait.h>
@@ -177,4 +179,26 @@ TEST(Cli, BadInputFailsCleanly) {
     r = run("compare --reference " + (dir / "a.png").string() + " --test " + (dir / "nothere.png").string());
     EXPECT_NE(r.exitCode, 0);
     EXPECT_NE(r.err.find("nothere.png"), std::string::npos) << r.err;
+}
+
+// The help texts come from the registry and the option parsers, so they cannot go stale: every
+// method the library creates, every temporal mode and every bench preset is named.
+TEST(Cli, HelpNamesEveryMethodModeAndPreset) {
+    const CliRun methods = run("methods");
+    ASSERT_EQ(methods.exitCode, 0);
+    std::vector<std::string> names;
+    std::istringstream in(methods.out);
+    for (std::string line; std::getline(in, line);)
+        if (!line.empty()) names.push_back(line);
+    ASSERT_GE(names.size(), 12u);
+    EXPECT_NE(std::find(names.begin(), names.end(), "recommended"), names.end());
+    for (const char* command : {"render", "view"}) {
+        const CliRun help = run(std::string(command) + " --help");
+        ASSERT_EQ(help.exitCode, 0) << command;
+        for (const auto& name : names) EXPECT_NE(help.out.find(name), std::string::npos) << command << " --help lacks " << name;
+        for (const char* mode : {"warp", "refresh", "correct"}) EXPECT_NE(help.out.find(mode), std::string::npos) << command << " " << mode;
+        EXPECT_EQ(help.out.find("starnt/dfaoit:"), std::string::npos) << command << ": a stale scope in the help";
+    }
+    const CliRun bench = run("bench --help");
+    for (const char* preset : {"quick", "paper", "gpu"}) EXPECT_NE(bench.out.find(preset), std::string::npos) << preset;
 }

@@ -21,7 +21,7 @@ struct PeelOptions {
 
 // wboit: weighted blended OIT (McGuire & Bavoil 2013).
 struct WboitOptions {
-    std::string weight = "eq10";  // "eq10" (default, SPEC), "eq7", "eq8", "eq9"
+    std::string weight = "eq10";  // "eq10" (default), "eq7", "eq8", "eq9"
 };
 
 // mboit: moment-based OIT (Muenstermann et al. 2018), 32-bit float storage.
@@ -30,7 +30,7 @@ struct MboitOptions {
 };
 
 // starnt, dfaoit, hybrid, starnt-residual, hybrid-moments and starnt-d: the neural methods (three
-// passes, SPEC 1-3) and their acceleration (SPEC 4-6; hybrid-moments and starnt-d run every pass at
+// passes, docs/DESIGN.md, "Pipeline and formats") and their acceleration (docs/DESIGN.md, "Adaptive tiles and tile-guided resolution"; hybrid-moments and starnt-d run every pass at
 // full resolution and refuse tiles, reduced scales, corner inference and joint upsampling).
 struct NeuralOptions {
     // Weights file; empty = the shipped default for the method. hybrid and hybrid-moments have no
@@ -45,12 +45,12 @@ struct NeuralOptions {
     // spatial is off).
     float fixedScale2 = 0.0f;
     float fixedScale3 = 0.0f;
-    // How the tiles' w_bar becomes the scales (SPEC 5): Snapped (default) = the paper's value
+    // How the tiles' w_bar becomes the scales (docs/DESIGN.md, "Adaptive tiles and tile-guided resolution"): Snapped (default) = the paper's value
     // snapped to 1, 1/2 or 1/4 (integer ratios keep reduced samples on pixel centres);
     // Continuous = the paper's formula as printed; Step = the authors' release.
     enum class ScaleRule { Snapped, Continuous, Step };
     ScaleRule scaleRule = ScaleRule::Snapped;
-    // What the tiles measure (SPEC 4): Back (default) = the composite minus the nearest layer's
+    // What the tiles measure (docs/DESIGN.md, "Adaptive tiles and tile-guided resolution"): Back (default) = the composite minus the nearest layer's
     // own term, C - a1 C1, what the reduced passes produce; Composite = the paper.
     enum class TileSignal { Back, Composite };
     TileSignal tileSignal = TileSignal::Back;
@@ -61,7 +61,7 @@ struct NeuralOptions {
     // structures (hair, strands) that fall between tile corners at full resolution. Off: the
     // tiles update on every real frame and the rule alone decides (the paper).
     bool scaleGuard = true;
-    // How reduced passes 2/3 come back to full resolution (SPEC 5): Bilinear = the four nearest
+    // How reduced passes 2/3 come back to full resolution (docs/DESIGN.md, "Adaptive tiles and tile-guided resolution"): Bilinear = the four nearest
     // reduced samples by distance; Joint = joint bilateral, the same taps weighted down where the
     // nearest surface at a tap's sample lies at another depth than at the pixel.
     enum class Upsample { Bilinear, Joint };
@@ -75,17 +75,17 @@ struct NeuralOptions {
     // interval - 1 interpolated ones, at their measured costs) fits in one frame at targetFps.
     int temporalInterval = 1;
     bool temporalAuto = false;
-    // What an interpolated frame renders (SPEC 6): Warp = the paper (the last real frame's
+    // What an interpolated frame renders (docs/DESIGN.md, "Temporal reprojection"): Warp = the paper (the last real frame's
     // composite reprojected; no geometry pass); Refresh = pass 1 at the current camera, so the
     // nearest layer is exact, over what lay behind it in the last real frame, reprojected;
     // Correct = passes 1 and 3 at the current camera, what lies behind the nearest layer in closed
     // form from those sums plus the network's correction of the last real frame, reprojected
-    // (beyond the paper and SPEC 6; docs/DESIGN.md, "Corrected frames").
+    // (beyond the paper and docs/DESIGN.md, "Temporal reprojection"; docs/DESIGN.md, "Corrected frames").
     enum class TemporalMode { Warp, Refresh, Correct };
     // The default: Correct, which measured best on quality against time (docs/DESIGN.md, "Corrected frames").
     TemporalMode temporalMode = TemporalMode::Correct;
     double targetFps = 60.0;
-    // Precision of the pass targets and the output (issue 17): Compact (default) = 16-bit float
+    // Precision of the pass targets and the output (docs/DESIGN.md, "Pipeline and formats"): Compact (default) = 16-bit float
     // colours, sums and count, a 16-bit unsigned normalised transmittance, 32-bit depths, and the
     // output written in place into a pass target the inference no longer needs (36 bytes a pixel at
     // full resolution; DFAOIT at full resolution without tiles or temporal frames: 10-bit layer

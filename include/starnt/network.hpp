@@ -12,12 +12,12 @@
 
 namespace starnt::nn {
 
-// StarNT: the paper's network, f(x) is the tail colour (SPEC 3).
+// StarNT: the paper's network, f(x) is the tail colour (docs/DESIGN.md, "Pipeline and formats").
 // StarNTResidual: the same inputs and layer sizes, a linear output f(x) that corrects the closed-form
 //   tail (hybrid's): tail = (1 - t_tail) * max(C_tilde + f(x), 0). Where the tail is faint the
 //   correction fades with it, and f = 0 is hybrid exactly (see nn.hpp, compositeStarntResidual).
-// DFAOIT: the DFAOIT baseline's network (whole transparent colour, SPEC 3).
-// StarNTDepth ("starnt-d", issue 15): STAR-NT's inputs plus the tail colour weighted by the tail's
+// DFAOIT: the DFAOIT baseline's network (whole transparent colour, docs/DESIGN.md, "Pipeline and formats").
+// StarNTDepth ("starnt-d", docs/DESIGN.md, "hybrid-moments and starnt-d"): STAR-NT's inputs plus the tail colour weighted by the tail's
 //   depth moments (hybrid-moments' C_m, nn::momentWeightedTailColor), 8-32-16-3, a linear output
 //   that corrects it: tail = (1 - t_tail) * max(C_m + f(x), 0).
 enum class NetworkKind { StarNT, StarNTResidual, DFAOIT, StarNTDepth };

@@ -1,4 +1,4 @@
-// The `starnt` subcommands (SPEC section 9). Each add* function registers one subcommand on the
+// The `starnt` subcommands (docs/USAGE.md, "Command line"). Each add* function registers one subcommand on the
 // CLI11 app; its callback throws starnt::Error on bad input, which main() prints as one line.
 #pragma once
 #include <CLI/CLI.hpp>
@@ -14,7 +14,7 @@ void addTrainCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addViewCommand(CLI::App& app);
 
-// The acceleration flags of the neural methods (SPEC 9) as typed; `render` and `view` declare them
+// The acceleration flags of the neural methods (docs/USAGE.md, "Command line") as typed; `render` and `view` declare them
 // with one call so both accept the same spellings with the same help.
 struct AccelerationFlags {
     std::string spatial = "default";  // on | off | default (the method's own: on for starnt)

@@ -1,4 +1,4 @@
-// starnt: render, compare, train and benchmark OIT methods (SPEC section 9).
+// starnt: render, compare, train and benchmark OIT methods (docs/USAGE.md, "Command line").
 #include <cstdio>
 #include <exception>
 #include <new>
@@ -43,7 +43,7 @@ int main(int argc, char** argv) {
     } catch (const CLI::Success& e) {
         return app.exit(e);  // --help (and the like): usage on stdout, exit 0
     } catch (const CLI::ParseError& e) {
-        // Usage errors: one line like every other error (SPEC 9), pointing at --help.
+        // Usage errors: one line like every other error (docs/USAGE.md, "Command line"), pointing at --help.
         std::string message = e.what();
         for (char& c : message)
             if (c == '\n' || c == '\r') c = ' ';

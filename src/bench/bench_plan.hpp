@@ -35,7 +35,7 @@ struct SceneSpec {
     std::string name;    // short name used in tables and file names, e.g. "tree" or "builtin-tubes"
     std::string source;  // loadScene argument: a path or "builtin:NAME"
     std::optional<float> alphaOverride;  // for files whose materials are opaque (alpha 1)
-    float alphaCutoff = 0.03f;           // SPEC default; lowered only where a scene's alphas are below it
+    float alphaCutoff = 0.03f;           // the default; lowered only where a scene's alphas are below it
     int paperDepth = 0;                  // D of the paper scene it stands in for (0: none)
     std::string note;                    // why the settings differ from the defaults
 };
@@ -73,7 +73,7 @@ struct Request {
 
 // The resolved run: concrete scenes (sources made absolute), variants and sizes.
 // Frames rendered before the timed ones, neither timed nor scored: shader compiles, and the
-// tiles, which change one level a frame, settle (issue 13: at least 4).
+// tiles, which change one level a frame, settle (docs/DESIGN.md, "Scale guard": at least 4).
 constexpr int kWarmupFrames = 4;
 
 struct Plan {

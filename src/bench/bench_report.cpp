@@ -233,7 +233,7 @@ void speedupTable(std::ostringstream& md, const Results& r) {
         [](const CaseResult& c) { return c.speedupVsDfaoit; }, [](double v) { return fixed(v, 1) + "%"; });
 }
 
-// The same method with and without an acceleration, from one run (SPEC 6: a saving is measured
+// The same method with and without an acceleration, from one run (docs/DESIGN.md, "Temporal reprojection": a saving is measured
 // against the acceleration off, never against the accelerated run's own real frames), beside what
 // the interpolated frames cost in error.
 void againstItselfTable(std::ostringstream& md, const Results& r) {

@@ -180,7 +180,7 @@ json toJson(const Results& r) {
           {"abuffer_memory_cap_bytes", r.plan.abufferCapBytes},
           {"api", glApiName(r.plan.api)},
           {"timing", "mean over the timed frames, after untimed warm-up frames; glFinish + wall clock per frame"},
-          {"quality", "mean over every frame of MSE (sRGB, SPEC 8) and LDR-FLIP mean (67.02 px/deg) against the ground truth"},
+          {"quality", "mean over every frame of MSE (sRGB) and LDR-FLIP mean (67.02 px/deg) against the ground truth"},
           {"q_metric", "Q = (MSE_unsorted - MSE_method) / (frame_ms * MSE_unsorted) * 100, % per ms"}}},
         {"variants", variants},
         {"scenes", scenes},

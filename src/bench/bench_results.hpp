@@ -14,7 +14,7 @@ namespace starnt::bench {
 
 // Error of a method against the ground truth.
 struct Quality {
-    double mse = 0.0;   // mean over every frame of the path (sRGB MSE, SPEC 8)
+    double mse = 0.0;   // mean over every frame of the path (sRGB MSE, docs/DESIGN.md, "Benchmark")
     double flip = 0.0;  // mean over every frame of the path (LDR-FLIP mean)
     // The last frame as written to PNG and read back: exactly what `starnt compare` computes on the
     // files in images/ (8-bit sRGB quantisation included).

@@ -37,7 +37,7 @@ RenderJob baseJob(const Plan& plan, const SceneSpec& spec, const Scene& scene) {
     job.frames = plan.frames;
     job.warmupFrames = plan.warmupFrames;
     job.qualityEvery = plan.qualityEvery;
-    job.background = glm::vec3(1.0f);  // SPEC 9 default: white
+    job.background = glm::vec3(1.0f);  // the command line's default: white
     job.alphaCutoff = spec.alphaCutoff;
     job.surface = surfaceOptionsFor(spec);
     job.path = parseCameraPathSpec(plan.cameraPath, scene.bounds(), float(plan.width) / float(plan.height));

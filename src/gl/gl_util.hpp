@@ -1,5 +1,5 @@
 // Small RAII wrappers for the GL objects the methods allocate, with byte accounting so every
-// method can report the GPU memory it holds (SPEC section 8).
+// method can report the GPU memory it holds (docs/DESIGN.md, "Benchmark").
 #pragma once
 #include <epoxy/gl.h>
 

@@ -1,4 +1,4 @@
-// Mean squared error of sRGB-encoded values (SPEC section 8).
+// Mean squared error of sRGB-encoded values (docs/DESIGN.md, "Benchmark").
 #include "starnt/error.hpp"
 #include "starnt/tools/metrics.hpp"
 

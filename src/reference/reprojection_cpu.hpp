@@ -64,7 +64,7 @@ struct ReprojectionSource {
 std::vector<ReprojectionSource> reprojectionSearchOnCpu(const ReprojectionFrame& frame, const Reprojection& reprojection);
 std::vector<int> reprojectionSourcesOnCpu(const ReprojectionFrame& frame, const Reprojection& reprojection);
 
-// Refresh frames (SPEC 6, `--temporal-mode refresh`): the nearest layer is rendered fresh at the
+// Refresh frames (docs/DESIGN.md, "Temporal reprojection", `--temporal-mode refresh`): the nearest layer is rendered fresh at the
 // new camera (nearest = C1, a1, straight); what lay behind the kept frame's nearest layer at the
 // source texel, B = (C_kept - a1k C1k) / (1 - a1k), is composited under it:
 //   C = a1 C1 + (1 - a1) B = r C_kept + (a1 C1 - r a1k C1k),  r = (1 - a1) / (1 - a1k),

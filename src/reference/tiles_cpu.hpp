@@ -1,4 +1,4 @@
-// CPU reference of the adaptive tiles (SPEC sections 4-5): mask evaluation with hysteresis, the
+// CPU reference of the adaptive tiles (docs/DESIGN.md, "Adaptive tiles and tile-guided resolution"): mask evaluation with hysteresis, the
 // one-level-per-frame limit, neighbour balance, the occupied-tile histogram and the scale guard's
 // sums. The rules the runtime applies to their results (w_bar -> scales) are in tile_rules.hpp. The GPU passes (tiles_gpu.*) implement the same rules; tests compare them mask for mask.
 //

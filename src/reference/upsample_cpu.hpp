@@ -1,4 +1,4 @@
-// CPU reference of the resolution changes around passes 2 and 3 (SPEC 2, 5): the max depth
+// CPU reference of the resolution changes around passes 2 and 3 (docs/DESIGN.md, "Pipeline and formats", 5): the max depth
 // downsample pass 2 peels against, and the bilinear upsample the inference reads through
 // (upsample.glsl). Images are row-major, rows bottom-first (GL order).
 #pragma once

@@ -1,4 +1,4 @@
-// Text forms of the acceleration options (SPEC section 9), shared by `render`, `bench` and `view`
+// Text forms of the acceleration options (docs/USAGE.md, "Command line"), shared by `render`, `bench` and `view`
 // so every front end accepts and rejects exactly the same spellings.
 #pragma once
 #include <cstddef>
@@ -16,17 +16,17 @@ void parseScalesOption(const std::string& text, MethodOptions& options);
 void parseInferenceOption(const std::string& text, MethodOptions& options);
 // "off" | "auto" | "K" with K in 1..4.
 void parseTemporalOption(const std::string& text, MethodOptions& options);
-// "snapped" | "continuous" | "step" (SPEC 5).
+// "snapped" | "continuous" | "step" (docs/DESIGN.md, "Adaptive tiles and tile-guided resolution").
 void parseScaleRuleOption(const std::string& text, MethodOptions& options);
-// "back" | "composite" (SPEC 4).
+// "back" | "composite" (docs/DESIGN.md, "Adaptive tiles and tile-guided resolution").
 void parseTileSignalOption(const std::string& text, MethodOptions& options);
 // "on" | "off".
 void parseScaleGuardOption(const std::string& text, MethodOptions& options);
-// "bilinear" | "joint" (SPEC 5).
+// "bilinear" | "joint" (docs/DESIGN.md, "Adaptive tiles and tile-guided resolution").
 void parseUpsampleOption(const std::string& text, MethodOptions& options);
-// "warp" | "refresh" (SPEC 6) | "correct" (beyond it).
+// "warp" | "refresh" (docs/DESIGN.md, "Temporal reprojection") | "correct" (beyond it).
 void parseTemporalModeOption(const std::string& text, MethodOptions& options);
-// "compact" | "fp32" (issue 17: pass-target precision).
+// "compact" | "fp32" (docs/DESIGN.md, "Pipeline and formats": pass-target precision).
 void parseTargetsOption(const std::string& text, MethodOptions& options);
 // Target frame rate for --temporal auto: finite and in (0, 1000].
 void parseTargetFpsOption(double fps, MethodOptions& options);

@@ -1,5 +1,5 @@
 // Renders a scene with one method for N frames (one camera, or a camera path) and gathers the
-// SPEC section 9 statistics, optionally per frame and against a reference method at the same
+// docs/USAGE.md, "Command line" statistics, optionally per frame and against a reference method at the same
 // cameras. This is what `starnt render`, `starnt bench`, the tests and the viewer's screenshots call.
 #pragma once
 #include <functional>
@@ -59,10 +59,10 @@ struct RenderJob {
 struct RenderOutput {
     Image image;                         // last frame, linear
     std::optional<Image> tileOverlay;    // last frame's tile levels over the image, when asked and available
-    nlohmann::json stats;                // SPEC section 9 fields plus method counters
+    nlohmann::json stats;                // docs/USAGE.md, "Command line" fields plus method counters
 };
 
-// Largest width or height accepted (SPEC: over 16384 is an error).
+// Largest width or height accepted (larger is an error).
 constexpr int kMaxImageSize = 16384;
 // Throws starnt::Error unless 1 <= width, height <= kMaxImageSize.
 void checkImageSize(int width, int height);

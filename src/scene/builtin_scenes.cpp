@@ -15,7 +15,7 @@
 //            [-0.55,0.55]^2 x [-0.5,0.5], each vertex's z jittered by 0.2), each with one flat COLOR_0
 //            (alpha 0.2-0.8), unlit. Max depth complexity 13-19.
 //   curtains - 6 large sheets of clearly different colours (hues spread around the circle) with
-//            alpha 0.15-0.7 in COLOR_0 (issue 15's user trial: curtains and glazing): sheets 0, 2, 4
+//            alpha 0.15-0.7 in COLOR_0 (docs/DESIGN.md, "hybrid-moments and starnt-d" user trial: curtains and glazing): sheets 0, 2, 4
 //            are flat glazing panes, sheets 1, 3, 5 pleated curtains (6-10 pleats 0.12-0.25 deep, so
 //            oblique views cross one curtain several times); 1.1-1.5 wide, 1.3-1.6 tall, centres at
 //            z in [-0.6, 0.6], turned by up to 25 degrees about Y; lit, with normals. Max depth

@@ -1,4 +1,4 @@
-// Built-in scene renderer, surface function (SPEC section 10).
+// Built-in scene renderer, surface function (docs/DESIGN.md, "Shading").
 // Base = baseColorFactor x baseColorTexture x COLOR_0 (linear; the texture is sRGB-decoded by its
 // GL format). Alpha = base alpha, or u_alphaOverride when >= 0. Unlit materials return the base
 // unchanged. Lit materials: a headlight Lambert term plus ambient,

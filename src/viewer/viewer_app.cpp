@@ -120,7 +120,7 @@ private:
         ++sceneGeneration_;
     }
 
-    // A scene that fails to load is reported and the current one stays (SPEC: bad input never
+    // A scene that fails to load is reported and the current one stays (bad input never
     // ends the session).
     void loadSceneOrReport(const std::string& spec, const char* origin) {
         try {

@@ -1,4 +1,4 @@
-// Cameras: auto-framing on scene bounds, orbit specs and JSON camera files (SPEC section 9).
+// Cameras: auto-framing on scene bounds, orbit specs and JSON camera files (docs/USAGE.md, "Command line").
 #pragma once
 #include <string>
 

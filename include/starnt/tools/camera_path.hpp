@@ -1,4 +1,4 @@
-// Camera paths for sequences (SPEC section 6): an orbit, or smooth interpolation through JSON
+// Camera paths for sequences (docs/DESIGN.md, "Temporal reprojection"): an orbit, or smooth interpolation through JSON
 // keyframes.
 #pragma once
 #include <string>

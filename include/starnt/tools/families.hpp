@@ -1,4 +1,4 @@
-// Training scene families (issue 15): named groups of per-pixel fragment lists that the project
+// Training scene families (docs/DESIGN.md, "hybrid-moments and starnt-d"): named groups of per-pixel fragment lists that the project
 // owns and generates itself, so that a network can be trained on some families and validated on
 // one it never saw (`starnt train --hold-out FAMILY`). The suite scenes stay held out entirely.
 //

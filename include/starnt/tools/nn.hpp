@@ -93,7 +93,7 @@ glm::vec3 dfaoitTarget(const FragmentList& sorted);
 glm::vec3 compositeStarnt(const Network& net, const PixelSums& s, glm::vec3 background);
 // The residual kind: STAR-NT's composite with the tail (1 - t_tail) max(C_tilde + f(x), 0).
 glm::vec3 compositeStarntResidual(const Network& net, const PixelSums& s, glm::vec3 background);
-// hybrid (SPEC 7): STAR-NT's composite with the tail in closed form, (1 - t_tail) C_tilde.
+// hybrid (docs/DESIGN.md, "Pipeline and formats"): STAR-NT's composite with the tail in closed form, (1 - t_tail) C_tilde.
 glm::vec3 compositeHybrid(const PixelSums& s, glm::vec3 background);
 // hybrid-moments: hybrid with the tail's colour weighted by where its opacity lies in depth.
 // Pass 3 also sums, over the fragments behind the second layer (window depth z > z2), with u =

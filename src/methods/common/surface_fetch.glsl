@@ -1,4 +1,4 @@
-// Wraps the engine's starntSurface(): applies the alpha cut-off every pass shares (SPEC section 2:
+// Wraps the engine's starntSurface(): applies the alpha cut-off every pass shares (docs/DESIGN.md, "Pipeline and formats":
 // fragments with alpha below it are discarded in all passes) and clamps to valid ranges.
 uniform float u_alphaCutoff;
 

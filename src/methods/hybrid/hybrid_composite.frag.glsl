@@ -1,4 +1,4 @@
-// hybrid composite (SPEC 7; CPU reference nn::compositeHybrid): STAR-NT's inputs, the tail in closed
+// hybrid composite (docs/DESIGN.md, "Pipeline and formats"; CPU reference nn::compositeHybrid): STAR-NT's inputs, the tail in closed
 // form, (1 - t_tail) C_tilde: the alpha-weighted mean tail colour under the tail's total opacity.
 // Exact for N <= 3 like starnt. No network: networkApplies() is false, so nnEvaluate is never called.
 #include "methods/neural/neural_inputs.glsl"

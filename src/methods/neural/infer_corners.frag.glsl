@@ -1,4 +1,4 @@
-// Stage "infer", spatially selective (beyond the paper, SPEC 5), step 1 of 2: the network only at
+// Stage "infer", spatially selective (beyond the paper, docs/DESIGN.md, "Adaptive tiles and tile-guided resolution"), step 1 of 2: the network only at
 // the corner pixels of the quadtree leaves of the last real frame's tiles. Writes (f(x), 1) where
 // the network applies and (0, 0) where it does not; other pixels are discarded (left stale: the
 // fill pass reads corners only).

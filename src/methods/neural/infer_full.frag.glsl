@@ -1,4 +1,4 @@
-// Stage "infer" (SPEC 2, step 5), full: the network at every pixel where the method uses it, then
+// Stage "infer" (docs/DESIGN.md, "Pipeline and formats", step 5), full: the network at every pixel where the method uses it, then
 // the method's composite. The method's features and composite (networkApplies, networkInputs,
 // compositePixel) are included before this file.
 #include "methods/neural/half_targets.glsl"

@@ -124,7 +124,7 @@ float twoLayerTransmittance(PixelSums s) { return (1.0 - s.a1) * (1.0 - s.a2); }
 vec3 tailPremultiplied(PixelSums s) { return s.sumAlphaColor - s.a1 * s.c1 - s.a2 * s.c2; }
 float tailAlphaSum(PixelSums s) { return s.sumAlpha - s.a1 - s.a2; }
 
-// STAR-NT's tail features (SPEC 3) with the guards of nn::starntFeatures: the tail's own
+// STAR-NT's tail features (docs/DESIGN.md, "Pipeline and formats") with the guards of nn::starntFeatures: the tail's own
 // transmittance t_tail = T_all / T2 and its alpha-weighted mean colour C_tilde.
 float tailTransmittance(PixelSums s) {
     float t2 = twoLayerTransmittance(s);

@@ -39,7 +39,7 @@ public:
           spatial_(options.neural.spatial.value_or(config.spatialByDefault)),
           corners_(options.neural.inference == NeuralOptions::Inference::Corners),
           network_(loadMethodNetwork(config, options)),
-          // Only DFAOIT's inputs read the unweighted colour sum of pass 3 (SPEC 3).
+          // Only DFAOIT's inputs read the unweighted colour sum of pass 3 (docs/DESIGN.md, "Pipeline and formats").
           passes_(surface, config.kind == nn::NetworkKind::DFAOIT, options_.neural.targets,
                   narrowLayersApply(config, options_, spatial_, corners_), config.tailMoments),
           temporal_(options_) {
@@ -282,7 +282,7 @@ private:
                                       {config_.compositeShader, "methods/neural/" + stage + ".frag.glsl"}, defines);
     }
 
-    // Scales of this frame (SPEC 5): fixed for ablations, else from the newest tile histogram
+    // Scales of this frame (docs/DESIGN.md, "Adaptive tiles and tile-guided resolution"): fixed for ablations, else from the newest tile histogram
     // (the last real frame's, or one older if the GPU has not finished it), else full resolution.
     void chooseScales() {
         if (options_.neural.fixedScale2 > 0.0f) {

@@ -1,7 +1,7 @@
 // A neural OIT method, in the order the data flows through a real frame:
 //   passes (neural_passes.*) -> upsample (upsample.glsl, fused into the reads) -> infer
 //   (infer_full / infer_corners + infer_fill, with the network generated from a weights file)
-//   -> tiles (tiles/, SPEC 4) -> scales of the next real frame (SPEC 5). `starnt` and `dfaoit` are two configurations of
+//   -> tiles (tiles/, docs/DESIGN.md, "Adaptive tiles and tile-guided resolution") -> scales of the next real frame (docs/DESIGN.md, "Adaptive tiles and tile-guided resolution"). `starnt` and `dfaoit` are two configurations of
 // it (network kind, composite shader, default weights), each in its own folder.
 #pragma once
 #include <memory>

@@ -1,5 +1,5 @@
 // The three geometry passes of the low-end neural OIT pipeline (no interlock, no per-pixel
-// lists), shared by `starnt` and `dfaoit` (SPEC section 2):
+// lists), shared by `starnt` and `dfaoit` (docs/DESIGN.md, "Pipeline and formats"):
 //   pass 1: nearest fragment (colour+alpha, depth)        full resolution
 //   pass 2: second-nearest by peeling against pass 1      scale s2 (against a max-downsampled depth)
 //   pass 3: sums over all fragments                       scale s3
@@ -7,7 +7,7 @@
 // Passes 2 and 3 render into the lower-left ceil(W s) x ceil(H s) rectangle of full-size targets,
 // so a change of scale from frame to frame never reallocates; the inference reads them back at
 // full resolution through upsample.glsl.
-// Target formats (issue 17; NeuralOptions::Targets). Compact, the default, 36 bytes a pixel at full
+// Target formats (docs/DESIGN.md, "Pipeline and formats"; NeuralOptions::Targets). Compact, the default, 36 bytes a pixel at full
 // resolution for STAR-NT:
 //   nearest / second colour RGBA16F (8 + 8), their depths DEPTH_COMPONENT32F (4 + 4: peeling
 //   compares depths bit for bit), sum aC + sum a RGBA16F (8), N alone R16F (2; integers exact to

@@ -1,4 +1,4 @@
-// Where the reduced passes 2 and 3 sample the full-resolution window (SPEC 2, 5). Runtime
+// Where the reduced passes 2 and 3 sample the full-resolution window (docs/DESIGN.md, "Pipeline and formats", 5). Runtime
 // (neural_passes.cpp) and the CPU reference (upsample_cpu.*) share it.
 #pragma once
 

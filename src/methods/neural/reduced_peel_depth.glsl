@@ -1,5 +1,5 @@
 // Pass 2 at scale s2 < 1 peels against a downsampled pass-1 depth: the maximum over the full
-// pixels whose centres fall inside the reduced pixel (SPEC 2). Reduced pixel i along an axis of
+// pixels whose centres fall inside the reduced pixel (docs/DESIGN.md, "Pipeline and formats"). Reduced pixel i along an axis of
 // full size F and reduced size R samples at i F/R + 0.5 (upsample_cpu.hpp) and covers full pixels
 // j with (j + 0.5) in [i F/R + 0.5 - F/2R, i F/R + 0.5 + F/2R), i.e. j from ceil((2 i - 1) F / 2R)
 // up to ceil((2 i + 1) F / 2R), exclusive; integer arithmetic, so the CPU reference

@@ -1,4 +1,4 @@
-// Stage "upsample" (SPEC 2, step 4): passes 2 and 3 may render at a reduced size into the
+// Stage "upsample" (docs/DESIGN.md, "Pipeline and formats", step 4): passes 2 and 3 may render at a reduced size into the
 // lower-left corner of their full-size targets; the inference passes read them back at full
 // resolution through these bilinear lookups. Fusing the upsample into the reads saves writing and
 // re-reading four full-resolution float targets; upsample_cpu.hpp is the CPU reference.

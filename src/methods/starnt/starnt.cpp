@@ -1,4 +1,4 @@
-// STAR-NT: 5-feature tail network over the three-pass pipeline (SPEC sections 2-3).
+// STAR-NT: 5-feature tail network over the three-pass pipeline (docs/DESIGN.md, "Pipeline and formats").
 #include "methods/neural/neural_method.hpp"
 #include "methods/registry.hpp"
 

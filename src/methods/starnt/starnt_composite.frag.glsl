@@ -1,4 +1,4 @@
-// STAR-NT features and composite (SPEC section 3), read by the inference passes in
+// STAR-NT features and composite (docs/DESIGN.md, "Pipeline and formats"), read by the inference passes in
 // methods/neural/infer_*.frag.glsl:
 //   inputs  x = [t_tail, N, C_tilde.rgb], t_tail = T_all / T2, C_tilde = tail premultiplied / tail alpha
 //   C = a1 C1 + (1 - a1) a2 C2 + T2 * tail + T_all * C_bg,

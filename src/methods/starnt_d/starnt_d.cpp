@@ -1,4 +1,4 @@
-// starnt-d (issue 15): STAR-NT's passes with hybrid-moments' tail depth moments, and a network that
+// starnt-d (docs/DESIGN.md, "hybrid-moments and starnt-d"): STAR-NT's passes with hybrid-moments' tail depth moments, and a network that
 // corrects the moment-weighted tail colour (NetworkKind::StarNTDepth, 8-32-16-3, linear output).
 // The network kind the issue allows when the paper's five inputs, which carry no depth order inside
 // the tail, cannot beat the peers; measured in docs/results/ (the 13-scene table) and DESIGN.md.

@@ -1,7 +1,7 @@
 // starnt-residual: STAR-NT's three passes, inputs and 5-32-16-3 network, the network trained to
 // correct the closed-form tail (hybrid's) rather than to predict the tail (nn::NetworkKind::
-// StarNTResidual). Not the paper's composite (SPEC 3 keeps `starnt` as the paper's); it is measured
-// beside starnt and hybrid in the bench (issue 15, "what the network adds").
+// StarNTResidual). Not the paper's composite (docs/DESIGN.md, "Pipeline and formats" keeps `starnt` as the paper's); it is measured
+// beside starnt and hybrid in the bench (docs/DESIGN.md, "hybrid-moments and starnt-d", "what the network adds").
 #include "methods/neural/neural_method.hpp"
 #include "methods/registry.hpp"
 

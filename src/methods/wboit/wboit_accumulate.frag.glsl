@@ -2,7 +2,7 @@
 // Target 0 (RGBA32F, blend ONE/ONE):            sum w*a*C, sum w*a
 // Target 1 (R32F,    blend ZERO/ONE_MINUS_SRC_COLOR): revealage prod (1 - a)
 // The weight functions w(z, a) are equations 7-10 of the paper; eq. 10 (window depth) is the
-// default, clamped to [1e-2, 3e3] as SPEC section 7 states.
+// default, clamped to [1e-2, 3e3] as docs/DESIGN.md, "Pipeline and formats" states.
 layout(location = 0) out vec4 outAccum;
 layout(location = 1) out vec4 outReveal;
 

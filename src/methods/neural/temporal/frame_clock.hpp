@@ -1,4 +1,4 @@
-// Measures how long real and interpolated frames take, for `--temporal auto` (SPEC section 6).
+// Measures how long real and interpolated frames take, for `--temporal auto` (docs/DESIGN.md, "Temporal reprojection").
 //
 // On a GPU: a GL_TIMESTAMP query pair around the frame, read back without stalling at a later
 // frame once the result is available (a measurement still in flight skips the next frame).

@@ -1,4 +1,4 @@
-// GPU reprojection of the last real frame to a new camera (SPEC section 6): a copy of the real
+// GPU reprojection of the last real frame to a new camera (docs/DESIGN.md, "Temporal reprojection"): a copy of the real
 // frame, then one full-screen pass that searches each output pixel's source
 // (reprojection_search.frag.glsl). The algorithm, its fallback and a CPU reference are in
 // reprojection_cpu.hpp.

@@ -1,4 +1,4 @@
-// The temporal part of a neural method (SPEC section 6) behind one small interface: which frames
+// The temporal part of a neural method (docs/DESIGN.md, "Temporal reprojection") behind one small interface: which frames
 // are real, a copy of the last real frame, its reprojection on interpolated frames, and the
 // real- and interpolated-frame timing that `--temporal auto` needs.
 //

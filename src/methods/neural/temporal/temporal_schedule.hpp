@@ -1,5 +1,5 @@
 // Which frames of a sequence are real (full pipeline) and which are interpolated (reprojected),
-// SPEC section 6. Pure C++, no GL, so the rule is unit-tested on its own.
+// docs/DESIGN.md, "Temporal reprojection". Pure C++, no GL, so the rule is unit-tested on its own.
 //
 // Frames come in groups: one real frame, then interval - 1 interpolated frames. The interval of a
 // group is fixed when its real frame is issued, so it changes only at real frames.
@@ -9,7 +9,7 @@
 //                 R + (k - 1) I <= T   ->   k = clamp(1 + floor((T - R) / I), 1, 4),
 //             R and I the means of the last kAverageWindow real and interpolated frames. Real
 //             frames then come at least at the target rate and the interpolated ones raise the
-//             displayed rate. SPEC section 6's k = floor(fps_real / targetFps) is this rule with
+//             displayed rate. docs/DESIGN.md, "Temporal reprojection"'s k = floor(fps_real / targetFps) is this rule with
 //             I = R (every frame counted at a real frame's cost); it applies until an interpolated
 //             frame was measured, except that k is then at least 2: one interpolated frame must run
 //             to be measured (at a rate between T and T/2 the paper's rule would never try one).

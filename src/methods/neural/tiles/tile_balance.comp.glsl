@@ -1,4 +1,4 @@
-// One Jacobi iteration of the neighbour balance (SPEC 4): a tile whose finest 4-neighbour is more
+// One Jacobi iteration of the neighbour balance (docs/DESIGN.md, "Adaptive tiles and tile-guided resolution"): a tile whose finest 4-neighbour is more
 // than one level finer is split uniformly to that level minus one. Reads one mask buffer, writes
 // the other (ping-pong). Mirrors tiles::balanceOnce.
 #include "starnt/bindings.h"

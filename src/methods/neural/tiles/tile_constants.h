@@ -1,4 +1,4 @@
-// Adaptive screen-space tiles (SPEC section 4), shared by the C++ reference and the GLSL passes.
+// Adaptive screen-space tiles (docs/DESIGN.md, "Adaptive tiles and tile-guided resolution"), shared by the C++ reference and the GLSL passes.
 // Keep it to #defines: it is included from both languages.
 #ifndef STARNT_TILE_CONSTANTS_H
 #define STARNT_TILE_CONSTANTS_H
@@ -29,12 +29,12 @@
 #define STARNT_TILE_BALANCE_ITERATIONS 2
 
 // Scale offsets: s_p = clamp(2^(w_bar - delta_p), 0.25, 1) (the paper's formula; the default
-// rule snaps it to a power of two, SPEC 5).
+// rule snaps it to a power of two, docs/DESIGN.md, "Adaptive tiles and tile-guided resolution").
 #define STARNT_SCALE_DELTA_PASS2 2.2
 #define STARNT_SCALE_DELTA_PASS3 3.0
 #define STARNT_SCALE_MIN 0.25
 
-// Scale guard (beyond the paper, SPEC 5 / issue 13): on a probe frame (passes 2/3 at full
+// Scale guard (beyond the paper, docs/DESIGN.md, "Adaptive tiles and tile-guided resolution" / docs/DESIGN.md, "Scale guard"): on a probe frame (passes 2/3 at full
 // resolution) the loss of rendering passes 2/3 at 1/2 or 1/4 is predicted from the full-resolution
 // image: the sRGB squared error of replacing what the passes add by its bilinear reconstruction
 // from every 2nd / 4th pixel (tiles::guardScales). The cheapest scales whose predicted loss adds at

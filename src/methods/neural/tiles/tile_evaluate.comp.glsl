@@ -1,4 +1,4 @@
-// Tile evaluation (SPEC 4), one invocation per 16x16 tile, after a real frame's composite:
+// Tile evaluation (docs/DESIGN.md, "Adaptive tiles and tile-guided resolution"), one invocation per 16x16 tile, after a real frame's composite:
 // top-down split/merge with hysteresis against the previous mask, then the one-level-per-frame
 // limit; also records whether the tile is occupied (any pass-1 fragment). Mirrors
 // tiles::evaluateTileMask + tiles::limitLevelChange.

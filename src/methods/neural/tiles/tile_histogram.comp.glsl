@@ -1,4 +1,4 @@
-// Level histogram of the occupied tiles: N_0..N_3 (SPEC 4). The buffer is cleared before.
+// Level histogram of the occupied tiles: N_0..N_3 (docs/DESIGN.md, "Adaptive tiles and tile-guided resolution"). The buffer is cleared before.
 #include "starnt/bindings.h"
 #include "methods/neural/tiles/tile_masks.glsl"
 

@@ -1,4 +1,4 @@
-// The rules the runtime applies to what the tiles measure (SPEC sections 4-5): the tile grid,
+// The rules the runtime applies to what the tiles measure (docs/DESIGN.md, "Adaptive tiles and tile-guided resolution"): the tile grid,
 // w_bar from the level histogram, w_bar -> pass scales, the scale guard's choice, reduced sizes.
 // Runtime code (tiles_gpu.cpp, neural_method.cpp) and the CPU reference (tiles_cpu.*) share them.
 #pragma once
@@ -21,7 +21,7 @@ double meanLevel(const std::array<uint32_t, 4>& histogram);
 // s = clamp(2^(w_bar - delta), 0.25, 1) (the paper's formula, rule `continuous`).
 float passScale(double wBar, double delta);
 
-// How w_bar becomes a pass scale (SPEC 5, `--scale-rule`), and what the tiles measure (SPEC 4).
+// How w_bar becomes a pass scale (docs/DESIGN.md, "Adaptive tiles and tile-guided resolution", `--scale-rule`), and what the tiles measure (docs/DESIGN.md, "Adaptive tiles and tile-guided resolution").
 using ScaleRule = NeuralOptions::ScaleRule;
 using TileSignal = NeuralOptions::TileSignal;
 // snapped: 2^round(log2 passScale) in {1, 1/2, 1/4} (the default: integer ratios keep every

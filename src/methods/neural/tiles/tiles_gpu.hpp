@@ -1,4 +1,4 @@
-// GPU adaptive tiles (SPEC 4): evaluation, one-level limit, neighbour balance and the occupied-tile
+// GPU adaptive tiles (docs/DESIGN.md, "Adaptive tiles and tile-guided resolution"): evaluation, one-level limit, neighbour balance and the occupied-tile
 // histogram, run after each real frame's composite. The histogram is copied into a small ring of
 // readback buffers guarded by fences and picked up without waiting (pollHistogram), so the next
 // frame's passes never stall on it; the scales then lag by one real frame more only when the GPU
