@@ -54,8 +54,8 @@ int main(int argc, char** argv) {
     const int height = width * 9 / 16;
     try {
         HeadlessGlContext context(GlApi::Desktop);
-        const nn::Network dfaoit = loadMethodNetwork(dfaoitConfig(), {});
-        const nn::Network starnt = loadMethodNetwork(starntConfig(), {});
+        const nn::Network dfaoit = loadMethodNetwork(*neuralConfig("dfaoit"), {});
+        const nn::Network starnt = loadMethodNetwork(*neuralConfig("starnt"), {});
         std::printf("%-12s %-7s %12s %12s %9s %12s %9s\n", "scene", "method", "fp32 sums", "half nearest", "change",
                     "half trunc", "change");
         for (const std::string& name : names) {

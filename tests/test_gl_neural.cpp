@@ -105,7 +105,7 @@ void expectGpuMatchesCpu(const Case& c, const Image& gpu, Composite composite, f
 TEST(GlNeural, StarntMatchesCpuReferencePerPixel) {
     for (const char* scene : {"tubes", "smoke"}) {
         Case c = makeCase(scene, 30.0f);
-        const nn::Network net = loadMethodNetwork(starntConfig(), {});
+        const nn::Network net = loadMethodNetwork(*neuralConfig("starnt"), {});
         for (auto layout : kLayouts) {
             expectGpuMatchesCpu(c, renderWith(c, "starnt", withTargets(layout)),
                                 [&](const nn::PixelSums& s) { return nn::compositeStarnt(net, s, kBackground); }, 1e-3f, layout);
@@ -118,7 +118,7 @@ TEST(GlNeural, StarntMatchesCpuReferencePerPixel) {
 TEST(GlNeural, StarntResidualMatchesCpuReferencePerPixel) {
     for (const char* scene : {"tubes", "smoke"}) {
         Case c = makeCase(scene, 45.0f);
-        const nn::Network net = loadMethodNetwork(starntResidualConfig(), {});
+        const nn::Network net = loadMethodNetwork(*neuralConfig("starnt-residual"), {});
         for (auto layout : kLayouts) {
             expectGpuMatchesCpu(c, renderWith(c, "starnt-residual", withTargets(layout)),
                                 [&](const nn::PixelSums& s) { return nn::compositeStarntResidual(net, s, kBackground); },
@@ -196,7 +196,7 @@ INSTANTIATE_TEST_SUITE_P(BothMethods, GlTailMoments, ::testing::Values("hybrid-m
 
 TEST(GlNeural, DfaoitMatchesCpuReferencePerPixel) {
     Case c = makeCase("tubes", 200.0f);
-    const nn::Network net = loadMethodNetwork(dfaoitConfig(), {});
+    const nn::Network net = loadMethodNetwork(*neuralConfig("dfaoit"), {});
     for (auto layout : kLayouts) {
         // DFAOIT's default (every pass at full resolution, no tiles, no temporal frames) runs the
         // narrow layers with the compact targets.
@@ -280,7 +280,7 @@ TEST(GlNeural, DeepPixelSumsKeepTheirPrecision) {
     Case c(deepStack(sheets), kW, kH, 0.0f, 0.0f, kBackground);
     const CapturedFrame frags = c.capture();
     ASSERT_GE(frags.at(kW / 2, kH / 2).size(), size_t(136)) << "the central pixel must be deep";
-    const nn::Network net = loadMethodNetwork(starntConfig(), {});
+    const nn::Network net = loadMethodNetwork(*neuralConfig("starnt"), {});
     MethodOptions compactOptions = withTargets(NeuralOptions::Targets::Compact), fp32Options = withTargets(NeuralOptions::Targets::Float32);
     compactOptions.neural.spatial = fp32Options.neural.spatial = false;
     const Image compact = renderWith(c, "starnt", compactOptions), fp32 = renderWith(c, "starnt", fp32Options);

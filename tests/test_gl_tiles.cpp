@@ -583,7 +583,7 @@ TEST(GlTiles, CornerInferenceMatchesCpuReference) {
     const CapturedFrame frags = c.capture();
     const TileGrid grid = TileGrid::forImage(kW, kH);
     const auto masks = updateTiles(colorImage(first, kW, kH), alphaChannel(occupancyFromCapture(frags)), {}).masks;
-    const nn::Network net = loadMethodNetwork(starntConfig(), {});
+    const nn::Network net = loadMethodNetwork(*neuralConfig("starnt"), {});
     auto sums = [&](int x, int yGl) { return nn::sumsFromFragments(frags.at(x, kH - 1 - yGl)); };
     int evaluations = 0, deep = 0;
     const auto network = cornerInterpolatedNetwork(

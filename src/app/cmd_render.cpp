@@ -82,7 +82,7 @@ void addRenderCommand(CLI::App& app) {
         std::string scene = "builtin:tubes", method = "abuffer", camera, cameraPath, background = "1,1,1", out, exr, stats;
         std::string frameStats, tilesImage, referenceMethod;
         AccelerationFlags acceleration;
-        int width = 1920, height = 1080, frames = 1, peelLayers = 0;
+        int width = 1920, height = 1080, frames = 1, warmup = 0, peelLayers = 0;
         double alpha = -1.0, alphaCutoff = 0.03, abufferCapMib = 2048;
         bool unlit = false;
         std::string wboitWeight = "eq10", weights;
@@ -101,6 +101,10 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--background", a->background, "background colour R,G,B (linear, 0..1)")->capture_default_str();
     cmd->add_flag("--unlit", a->unlit, "output base colour unshaded for every material");
     cmd->add_option("--frames", a->frames, "frames to render; timings are medians without the first")->capture_default_str();
+    cmd->add_option("--warmup", a->warmup,
+                    "untimed frames at the first camera before the timed ones (shader compiles, tiles settle); with it, "
+                    "the first frame is timed too")
+        ->capture_default_str();
     cmd->add_option("--peel-layers", a->peelLayers, "peel: layers (0 = until empty, exact)")->capture_default_str();
     cmd->add_option("--wboit-weight", a->wboitWeight, "wboit: eq7|eq8|eq9|eq10")->capture_default_str();
     cmd->add_option("--mboit-moments", a->mboitMoments, "mboit: 4|6 power moments, t2|t3 trigonometric moments")
@@ -122,6 +126,7 @@ void addRenderCommand(CLI::App& app) {
         checkImageSize(a->width, a->height);
         const GlApi api = parseGlApi(a->api);
         if (a->frames < 1 || a->frames > 100000) throw Error("--frames must be in 1..100000");
+        if (a->warmup < 0 || a->warmup > 1000) throw Error("--warmup must be in 0..1000");
         if (alphaOption->count() > 0 && !(a->alpha >= 0.0 && a->alpha <= 1.0)) {
             throw Error("--alpha " + alphaOption->as<std::string>() + ": must be in [0, 1]");
         }
@@ -172,6 +177,7 @@ void addRenderCommand(CLI::App& app) {
         job.width = a->width;
         job.height = a->height;
         job.frames = a->frames;
+        job.warmupFrames = a->warmup;
         job.background = background;
         job.alphaCutoff = float(a->alphaCutoff);
         const float aspect = float(a->width) / float(a->height);

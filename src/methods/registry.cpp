@@ -13,7 +13,7 @@ using Factory = std::unique_ptr<OitMethod> (*)(const SurfaceShader&, const Metho
 // real" (interval 1, not auto) becomes the recommended interval: for no interpolated frames, ask
 // for starnt-d itself.
 std::unique_ptr<OitMethod> createRecommendedMethod(const SurfaceShader& surface, const MethodOptions& options) {
-    return createStarntDepthMethod(surface, recommendedOptions(options));
+    return createNeuralMethod(*neuralConfig("starnt-d"), surface, recommendedOptions(options));
 }
 struct Entry {
     const char* name;
@@ -27,13 +27,6 @@ const std::vector<Entry>& entries() {
         {"unsorted", createUnsortedMethod},
         {"wboit", createWboitMethod},
         {"mboit", createMboitMethod},
-        {"dfaoit", createDfaoitMethod},
-        {"starnt", createStarntMethod},
-        {"hybrid", createHybridMethod},
-        {"starnt-residual", createStarntResidualMethod},
-        {"hybrid-moments", createHybridMomentsMethod},
-        {"starnt-d", createStarntDepthMethod},
-        {"recommended", createRecommendedMethod},
     };
     return all;
 }
@@ -50,6 +43,8 @@ MethodOptions recommendedOptions(MethodOptions options) {
 std::vector<std::string> methodNames() {
     std::vector<std::string> names;
     for (const Entry& e : entries()) names.emplace_back(e.name);
+    for (const NeuralMethodConfig& c : neuralVariants()) names.push_back(c.name);
+    names.emplace_back("recommended");
     return names;
 }
 
@@ -60,16 +55,23 @@ std::unique_ptr<OitMethod> createMethod(const std::string& name, const SurfaceSh
         checkGlRequirements();
         return e.factory(surface, options);
     }
+    if (name == "recommended") {
+        checkGlRequirements();
+        return createRecommendedMethod(surface, options);
+    }
+    if (const NeuralMethodConfig* config = neuralConfig(name)) {
+        checkGlRequirements();
+        return createNeuralMethod(*config, surface, options);
+    }
     std::string valid;
-    for (const Entry& e : entries()) valid += (valid.empty() ? "" : ", ") + std::string(e.name);
+    for (const std::string& n : methodNames()) valid += (valid.empty() ? "" : ", ") + n;
     throw Error("unknown method '" + name + "' (valid: " + valid + ")");
 }
 
 const NeuralMethodConfig* neuralConfig(const std::string& name) {
-    if (name == "recommended") return &starntDepthConfig();
-    for (const NeuralMethodConfig* c : {&starntConfig(), &dfaoitConfig(), &hybridConfig(), &starntResidualConfig(),
-                                             &hybridMomentsConfig(), &starntDepthConfig()})
-        if (name == c->name) return c;
+    const std::string row = name == "recommended" ? "starnt-d" : name;
+    for (const NeuralMethodConfig& c : neuralVariants())
+        if (row == c.name) return &c;
     return nullptr;
 }
 

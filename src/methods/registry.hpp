@@ -1,6 +1,8 @@
 // Factories of the methods; createMethod (registry.cpp) dispatches on the name.
 #pragma once
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "starnt/oit_method.hpp"
 
@@ -11,22 +13,11 @@ std::unique_ptr<OitMethod> createPeelMethod(const SurfaceShader&, const MethodOp
 std::unique_ptr<OitMethod> createUnsortedMethod(const SurfaceShader&, const MethodOptions&);
 std::unique_ptr<OitMethod> createWboitMethod(const SurfaceShader&, const MethodOptions&);
 std::unique_ptr<OitMethod> createMboitMethod(const SurfaceShader&, const MethodOptions&);
-std::unique_ptr<OitMethod> createDfaoitMethod(const SurfaceShader&, const MethodOptions&);
-std::unique_ptr<OitMethod> createStarntMethod(const SurfaceShader&, const MethodOptions&);
-std::unique_ptr<OitMethod> createHybridMethod(const SurfaceShader&, const MethodOptions&);
-std::unique_ptr<OitMethod> createStarntResidualMethod(const SurfaceShader&, const MethodOptions&);
-std::unique_ptr<OitMethod> createHybridMomentsMethod(const SurfaceShader&, const MethodOptions&);
-std::unique_ptr<OitMethod> createStarntDepthMethod(const SurfaceShader&, const MethodOptions&);
-
 struct NeuralMethodConfig;
-const NeuralMethodConfig& starntConfig();
-const NeuralMethodConfig& dfaoitConfig();
-const NeuralMethodConfig& hybridConfig();
-const NeuralMethodConfig& starntResidualConfig();
-const NeuralMethodConfig& hybridMomentsConfig();
-const NeuralMethodConfig& starntDepthConfig();
-// The neural method called `name` (starnt, dfaoit, hybrid, starnt-residual, hybrid-moments,
-// starnt-d), null for the others.
+// The neural variants, one row each (neural_variants.cpp).
+const std::vector<NeuralMethodConfig>& neuralVariants();
+// The neural variant called `name` (a row of neuralVariants(); "recommended" is starnt-d's row),
+// null for the others.
 const NeuralMethodConfig* neuralConfig(const std::string& name);
 
 // True when `name` with `options` runs the adaptive tiles (a neural method with spatial on, by

@@ -404,6 +404,8 @@ private:
 }  // namespace
 
 nn::Network loadMethodNetwork(const NeuralMethodConfig& config, const MethodOptions& options) {
+    // A closed form's shaders declare a network of its inputs' shape that they never call.
+    if (!config.evaluatesNetwork) return nn::makeUntrained(config.kind, 1);
     if (!options.neural.weightsPath.empty()) return nn::loadWeights(options.neural.weightsPath, config.kind);
     return nn::parseWeights(gl::embeddedSource(config.defaultWeights), "shipped " + config.name + " weights", config.kind);
 }

@@ -12,12 +12,12 @@
 namespace starnt {
 
 struct NeuralMethodConfig {
-    std::string name;                // "starnt", "dfaoit", "hybrid", "starnt-residual", "hybrid-moments"
-    nn::NetworkKind kind;
+    std::string name;                // what createMethod takes
+    nn::NetworkKind kind;            // the network, or for closed forms the inputs' layout
     std::string compositeShader;     // embedded path of the composite fragment shader
-    std::string defaultWeights;      // embedded path of the shipped weights (JSON)
+    std::string defaultWeights = {};  // embedded path of the shipped weights (JSON); none for closed forms
     bool spatialByDefault = false;   // MethodOptions::spatial when unset
-    bool evaluatesNetwork = true;    // false for hybrid: it reads no weights file
+    bool evaluatesNetwork = true;    // false for the closed forms: they read no weights file
     // hybrid-moments: pass 3 also sums the tail's depth moments (NeuralPasses); every pass at full
     // resolution (tiles, reduced scales, corner inference and joint upsampling are refused).
     bool tailMoments = false;
