@@ -62,10 +62,12 @@ TEST(TemporalRefresh, GpuMatchesCpuReference) {
     TemporalFrames temporal(options);
     const glm::mat4 oldVP = test::turnedViewProj(w, h, 0.0f), newVP = test::turnedViewProj(w, h, 3.0f);
     ASSERT_TRUE(temporal.beginFrame(w, h));
-    EXPECT_THROW(temporal.endRealFrame(color.id(), depth.id(), oldVP, w, h), Error) << "refresh needs the nearest layer";
-    temporal.endRealFrame(color.id(), depth.id(), oldVP, w, h, kn.id());
+    EXPECT_THROW(temporal.endRealFrame(color.id(), {.nearestDepth = depth.id()}, oldVP, w, h), Error)
+        << "refresh needs the nearest layer";
+    temporal.endRealFrame(color.id(), {.nearest = kn.id(), .nearestDepth = depth.id()}, oldVP, w, h);
     ASSERT_FALSE(temporal.beginFrame(w, h));
-    temporal.interpolateRefresh(newVP, fresh.id(), freshDepthTexture.id(), kBackground, output.id());
+    EXPECT_EQ(temporal.interpolatedPasses(), TemporalFrames::Passes::Nearest);
+    temporal.interpolate(newVP, {.nearest = fresh.id(), .nearestDepth = freshDepthTexture.id()}, kBackground, output.id());
     const std::vector<glm::vec4> gpu = readRgba(output.id(), w, h);
     const Reprojection r = makeReprojection(oldVP, newVP);
     const std::vector<ReprojectionSource> sources = reprojectionSearchOnCpu(kept, r);

@@ -351,17 +351,18 @@ TEST(TemporalFrames, FixedTwoAlternatesAndKeepsItsOwnCopy) {
 
     ASSERT_TRUE(temporal.beginFrame(w, h));
     EXPECT_FALSE(temporal.lastWasInterpolated());
-    EXPECT_THROW(temporal.interpolate(vp, output.id()), Error);  // a real frame is not interpolated
-    temporal.endRealFrame(composite.id(), depth.id(), vp, w, h);
+    EXPECT_THROW(temporal.interpolate(vp, {}, glm::vec3(1.0f), output.id()), Error);  // a real frame is not interpolated
+    temporal.endRealFrame(composite.id(), {.nearestDepth = depth.id()}, vp, w, h);
     EXPECT_EQ(temporal.interval(), 2);
     // The method overwrites its targets: the kept copy must not change.
     starnt::gl::uploadTexture(composite.id(), w, h, GL_RGBA, GL_FLOAT, second.color.data());
 
     ASSERT_FALSE(temporal.beginFrame(w, h));
     EXPECT_TRUE(temporal.lastWasInterpolated());
-    EXPECT_THROW(temporal.endRealFrame(composite.id(), depth.id(), vp, w, h), Error);
+    EXPECT_THROW(temporal.endRealFrame(composite.id(), {.nearestDepth = depth.id()}, vp, w, h), Error);
     gl::GpuPassTimer timer(true);
-    temporal.interpolate(vp, output.id(), &timer);
+    EXPECT_EQ(temporal.interpolatedPasses(), TemporalFrames::Passes::None);
+    temporal.interpolate(vp, {}, glm::vec3(1.0f), output.id(), &timer);
     EXPECT_EQ(countDifferent(download(output.id(), w, h), first.color), 0u);
     EXPECT_EQ(timer.collect().count("reproject"), 1u);
 
@@ -379,12 +380,12 @@ TEST(TemporalFrames, SizeChangeAndResetForceARealFrame) {
     const ReprojectionFrame f = randomFrame(8, 8, 3);
     gl::Texture2D composite = uploadColor(f), depth = uploadDepth(f);
     ASSERT_TRUE(temporal.beginFrame(8, 8));
-    temporal.endRealFrame(composite.id(), depth.id(), glm::mat4(1.0f), 8, 8);
+    temporal.endRealFrame(composite.id(), {.nearestDepth = depth.id()}, glm::mat4(1.0f), 8, 8);
     EXPECT_FALSE(temporal.beginFrame(8, 8));
     EXPECT_TRUE(temporal.beginFrame(9, 8)) << "a resized frame cannot be reprojected";
     // That real frame never ended (e.g. it threw): nothing is kept, so the next one is real too.
     EXPECT_TRUE(temporal.beginFrame(8, 8));
-    temporal.endRealFrame(composite.id(), depth.id(), glm::mat4(1.0f), 8, 8);
+    temporal.endRealFrame(composite.id(), {.nearestDepth = depth.id()}, glm::mat4(1.0f), 8, 8);
     EXPECT_FALSE(temporal.beginFrame(8, 8));
     temporal.reset();
     EXPECT_TRUE(temporal.beginFrame(8, 8));
@@ -399,7 +400,7 @@ TEST(TemporalFrames, IntervalOneKeepsNothing) {
     EXPECT_FALSE(temporal.interpolates());
     for (int i = 0; i < 3; ++i) {
         ASSERT_TRUE(temporal.beginFrame(8, 8));
-        temporal.endRealFrame(composite.id(), depth.id(), glm::mat4(1.0f), 8, 8);
+        temporal.endRealFrame(composite.id(), {.nearestDepth = depth.id()}, glm::mat4(1.0f), 8, 8);
     }
     EXPECT_EQ(temporal.gpuMemoryBytes(), 0u);
     MethodOptions bad;
@@ -421,8 +422,8 @@ TEST(TemporalFrames, AutoMeasuresRealFramesAndRaisesTheInterval) {
         for (int i = 0; i < 7; ++i) {
             const bool real = temporal.beginFrame(16, 16);
             pattern += real ? 'R' : 'i';
-            if (real) temporal.endRealFrame(composite.id(), depth.id(), glm::mat4(1.0f), 16, 16);
-            else temporal.interpolate(glm::mat4(1.0f), output.id());
+            if (real) temporal.endRealFrame(composite.id(), {.nearestDepth = depth.id()}, glm::mat4(1.0f), 16, 16);
+            else temporal.interpolate(glm::mat4(1.0f), {}, glm::vec3(1.0f), output.id());
         }
         EXPECT_GT(temporal.averageRealFrameMs(), 0.0);
         // Interpolated frames are timed too (auto weighs their cost); none ran at 10^9 fps.
@@ -460,11 +461,12 @@ TEST(TemporalFrames, TimingAt720p) {
             if (temporal.beginFrame(w, h)) {
                 glFinish();
                 const auto t0 = std::chrono::steady_clock::now();
-                temporal.endRealFrame(composite.id(), depth.id(), vp, w, h);
+                temporal.endRealFrame(composite.id(), {.nearestDepth = depth.id()}, vp, w, h);
                 glFinish();
                 capture.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
             } else {
-                temporal.interpolate(vp, output.id(), &timer);
+                EXPECT_EQ(temporal.interpolatedPasses(), TemporalFrames::Passes::None);
+    temporal.interpolate(vp, {}, glm::vec3(1.0f), output.id(), &timer);
                 reproject.push_back(timer.collect()["reproject"]);
             }
         }

@@ -147,21 +147,14 @@ public:
         }
         const glm::mat4 viewProjection = frame.projection * frame.view;
         if (!temporal_.beginFrame(frame.width, frame.height)) {
-            if (temporal_.corrects()) {
-                // Corrected: passes 1 and 3 fresh at this camera, the closed form behind the
-                // nearest layer, the last real frame's network correction reprojected.
-                passes_.runNearestAndSums(frame, draw);
-                temporal_.interpolateCorrected(viewProjection, passes_.nearest().id(), passes_.nearestDepth().id(),
-                                               passes_.alphaColor().id(), passes_.transmittance().id(), frame.background,
-                                               out_.texture, frame.timing);
-            } else if (temporal_.refreshes()) {
-                // Refresh: the nearest layer fresh at this camera, what lay behind it reprojected.
-                passes_.runNearest(frame, draw);
-                temporal_.interpolateRefresh(viewProjection, passes_.nearest().id(), passes_.nearestDepth().id(),
-                                             frame.background, out_.texture, frame.timing);
-            } else {
-                temporal_.interpolate(viewProjection, out_.texture, frame.timing);
+            // Interpolated: the passes the temporal mode asks for, fresh at this camera, then the
+            // temporal frames' composite (no inference, no tiles).
+            switch (temporal_.interpolatedPasses()) {
+                case TemporalFrames::Passes::NearestAndSums: passes_.runNearestAndSums(frame, draw); break;
+                case TemporalFrames::Passes::Nearest: passes_.runNearest(frame, draw); break;
+                case TemporalFrames::Passes::None: break;
             }
+            temporal_.interpolate(viewProjection, temporalTargets(true), frame.background, out_.texture, frame.timing);
             return;
         }
         renderReal(frame, draw);
@@ -170,14 +163,19 @@ public:
         } else if (temporal_.interpolates()) {
             gl::ScopedPass timing(frame.timing, "temporal_capture");
             // Corrected frames need this frame's pass-3 sums at full resolution (none when it ran reduced).
-            const bool sums = temporal_.corrects() && passes_.pass3Size() == Size2{frame.width, frame.height};
-            temporal_.endRealFrame(out_.texture, passes_.nearestDepth().id(), viewProjection, frame.width, frame.height,
-                                   passes_.nearest().id(), sums ? passes_.alphaColor().id() : 0,
-                                   sums ? passes_.transmittance().id() : 0, frame.background);
+            const bool sums = passes_.pass3Size() == Size2{frame.width, frame.height};
+            temporal_.endRealFrame(out_.texture, temporalTargets(sums), viewProjection, frame.width, frame.height,
+                                   frame.background);
         }
     }
 
 private:
+    // This frame's pass targets for the temporal frames; pass 3's only with `sums`.
+    TemporalPassTargets temporalTargets(bool sums) const {
+        return {passes_.nearest().id(), passes_.nearestDepth().id(), sums ? passes_.alphaColor().id() : 0u,
+                sums ? passes_.transmittance().id() : 0u};
+    }
+
     void renderReal(const FrameDesc& frame, const DrawCallback& draw) {
         chooseScales();
         const Size2 full{frame.width, frame.height};

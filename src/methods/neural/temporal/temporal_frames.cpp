@@ -35,19 +35,42 @@ bool TemporalFrames::beginFrame(int width, int height) {
     return real;
 }
 
-void TemporalFrames::endRealFrame(GLuint compositeTexture, GLuint nearestDepthTexture, const glm::mat4& viewProj,
-                                  int width, int height, GLuint nearestTexture, GLuint sumAlphaColor,
-                                  GLuint transmittance, const glm::vec3& background) {
+void TemporalFrames::endRealFrame(GLuint compositeTexture, const TemporalPassTargets& passes, const glm::mat4& viewProj,
+                                  int width, int height, const glm::vec3& background) {
     if (lastInterpolated_) throw Error("internal: TemporalFrames::endRealFrame on an interpolated frame");
     if (!interpolates()) return;  // every frame is real: nothing to keep
-    if ((refreshes() || corrects()) && !nearestTexture) {
+    if ((refreshes() || corrects()) && !passes.nearest) {
         throw Error("internal: refresh and corrected frames need the real frame's nearest layer");
     }
     if (corrects()) {
-        corrected_->capture(compositeTexture, nearestDepthTexture, nearestTexture, sumAlphaColor, transmittance, width, height,
-                           viewProj, background);
+        corrected_->capture(compositeTexture, passes.nearestDepth, passes.nearest, passes.sumAlphaColor, passes.transmittance,
+                           width, height, viewProj, background);
     } else {
-        reprojector_->capture(compositeTexture, nearestDepthTexture, width, height, viewProj, refreshes() ? nearestTexture : 0);
+        reprojector_->capture(compositeTexture, passes.nearestDepth, width, height, viewProj, refreshes() ? passes.nearest : 0);
+    }
+    clock_.stop();
+}
+
+TemporalFrames::Passes TemporalFrames::interpolatedPasses() const {
+    return corrects() ? Passes::NearestAndSums : refreshes() ? Passes::Nearest : Passes::None;
+}
+
+void TemporalFrames::interpolate(const glm::mat4& viewProj, const TemporalPassTargets& passes, const glm::vec3& background,
+                                 GLuint outputTexture, PassTimingHook* timer) {
+    if (!lastInterpolated_) throw Error("internal: TemporalFrames::interpolate on a real frame");
+    {
+        gl::ScopedPass timing(timer, "reproject");
+        if (corrects()) {
+            // Corrected: the closed form behind the fresh nearest layer plus the kept correction.
+            corrected_->composite(viewProj, passes.nearest, passes.nearestDepth, passes.sumAlphaColor, passes.transmittance,
+                                  background, outputTexture);
+        } else if (refreshes()) {
+            // Refresh: the fresh nearest layer over what lay behind it, reprojected.
+            reprojector_->reprojectRefresh(viewProj, passes.nearest, skipEmptyPixels_ ? passes.nearestDepth : 0, background,
+                                          outputTexture);
+        } else {
+            reprojector_->reproject(viewProj, outputTexture);  // warp: the kept composite alone
+        }
     }
     clock_.stop();
 }
@@ -61,37 +84,6 @@ temporal::CorrectedFrames::FusedTargets TemporalFrames::beginFusedCapture(GLenum
 void TemporalFrames::endRealFrameFused() {
     if (lastInterpolated_ || !corrected_) throw Error("internal: a fused capture outside a real frame with corrected frames");
     corrected_->endFusedCapture();
-    clock_.stop();
-}
-
-void TemporalFrames::interpolate(const glm::mat4& viewProj, GLuint outputTexture, PassTimingHook* timer) {
-    if (!lastInterpolated_) throw Error("internal: TemporalFrames::interpolate on a real frame");
-    {
-        gl::ScopedPass timing(timer, "reproject");
-        reprojector_->reproject(viewProj, outputTexture);
-    }
-    clock_.stop();
-}
-
-void TemporalFrames::interpolateRefresh(const glm::mat4& viewProj, GLuint nearestTexture, GLuint nearestDepth,
-                                        const glm::vec3& background, GLuint outputTexture, PassTimingHook* timer) {
-    if (!lastInterpolated_) throw Error("internal: TemporalFrames::interpolateRefresh on a real frame");
-    {
-        gl::ScopedPass timing(timer, "reproject");
-        reprojector_->reprojectRefresh(viewProj, nearestTexture, skipEmptyPixels_ ? nearestDepth : 0, background,
-                                      outputTexture);
-    }
-    clock_.stop();
-}
-
-void TemporalFrames::interpolateCorrected(const glm::mat4& viewProj, GLuint nearest, GLuint nearestDepth, GLuint sumAlphaColor,
-                                          GLuint transmittance, const glm::vec3& background, GLuint outputTexture,
-                                          PassTimingHook* timer) {
-    if (!lastInterpolated_) throw Error("internal: TemporalFrames::interpolateCorrected on a real frame");
-    {
-        gl::ScopedPass timing(timer, "reproject");
-        corrected_->composite(viewProj, nearest, nearestDepth, sumAlphaColor, transmittance, background, outputTexture);
-    }
     clock_.stop();
 }
 

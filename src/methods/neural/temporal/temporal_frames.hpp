@@ -5,10 +5,13 @@
 //   TemporalFrames temporal(options);                    // with a current GL context
 //   if (temporal.beginFrame(w, h)) {                     // real frame: full pipeline
 //       ... passes, inference, composite into output, tiles ...
-//       temporal.endRealFrame(output, nearestDepth, proj * view, w, h);
+//       temporal.endRealFrame(output, targets, proj * view, w, h, background);
 //   } else {
-//       temporal.interpolate(proj * view, output, frame.timing);   // no geometry, no inference
+//       ... the passes temporal.interpolatedPasses() names, at this frame's camera ...
+//       temporal.interpolate(proj * view, targets, background, output, frame.timing);
 //   }
+// The mode (warp, refresh, correct) is TemporalFrames' business: the caller renders the passes it
+// asks for and hands over the targets.
 #pragma once
 #include <memory>
 
@@ -22,6 +25,14 @@
 
 namespace starnt {
 
+// The pass targets of a frame, as the temporal frames read them (0 where that pass did not run).
+struct TemporalPassTargets {
+    GLuint nearest = 0;        // pass 1: C1, a1 (full resolution)
+    GLuint nearestDepth = 0;   // pass 1: DEPTH_COMPONENT32F, 1 = far plane where nothing was drawn
+    GLuint sumAlphaColor = 0;  // pass 3 at full resolution: sum a C, sum a (0 when it ran reduced)
+    GLuint transmittance = 0;  // pass 3 at full resolution: prod (1 - a)
+};
+
 class TemporalFrames {
 public:
     // Throws starnt::Error for an interval outside 1..4 or a bad target rate. Needs a current GL
@@ -31,36 +42,29 @@ public:
     // Starts a frame of the given size; true = render it for real. Always true for the first frame,
     // after reset(), and when the size differs from the kept real frame's.
     bool beginFrame(int width, int height);
-    // After a real frame: keeps copies of its composite (RGBA32F) and pass-1 depth
-    // (DEPTH_COMPONENT32F, 1 = far plane where no transparent fragment) with the view-projection it
-    // used, and ends the real-frame time measurement (which includes this copy).
-    // In refresh and correct modes `nearestTexture` (pass-1 colour + alpha) is required. In correct
-    // mode `sumAlphaColor` / `transmittance` are pass 3's full-resolution sums (0 when pass 3 ran
-    // reduced: the frame is kept without a correction) and `background` the frame's.
-    void endRealFrame(GLuint compositeTexture, GLuint nearestDepthTexture, const glm::mat4& viewProj, int width,
-                      int height, GLuint nearestTexture = 0, GLuint sumAlphaColor = 0, GLuint transmittance = 0,
-                      const glm::vec3& background = glm::vec3(0.0f));
-    // An interpolated frame: the kept real frame reprojected to `viewProj`, rendered into
+    // After a real frame: keeps what its interpolated frames need of its composite (RGBA32F or
+    // RGBA16F) and `passes` with the view-projection it used, and ends the real-frame time
+    // measurement (which includes this). Every mode needs pass 1's depth; refresh and correct modes
+    // pass 1's colour; correct mode pass 3's sums (without them the frame is kept without a
+    // correction) and the frame's `background`.
+    void endRealFrame(GLuint compositeTexture, const TemporalPassTargets& passes, const glm::mat4& viewProj, int width,
+                      int height, const glm::vec3& background = glm::vec3(0.0f));
+    // The passes an interpolated frame renders at its own camera before interpolate(): none (warp),
+    // pass 1 (refresh), passes 1 and 3 (correct; pass 3 with its sums only).
+    enum class Passes { None, Nearest, NearestAndSums };
+    Passes interpolatedPasses() const;
+    // An interpolated frame at `viewProj` from the kept real frame and the passes
+    // interpolatedPasses() named (`passes`, rendered at `viewProj` by the caller), into
     // `outputTexture` (a colour-renderable RGBA texture of the frame size; the framebuffer binding is
     // 0 afterwards). Timed as pass "reproject" when a timer is given.
+    void interpolate(const glm::mat4& viewProj, const TemporalPassTargets& passes, const glm::vec3& background,
+                     GLuint outputTexture, PassTimingHook* timer = nullptr);
     // Corrected frames only: the real frame's composite captures the correction itself
     // (CorrectedFrames::beginFusedCapture); endRealFrameFused then keeps the frame instead of
     // endRealFrame.
     temporal::CorrectedFrames::FusedTargets beginFusedCapture(GLenum compositeFormat, GLuint depth, int width, int height,
                                                              const glm::mat4& viewProj);
     void endRealFrameFused();
-    void interpolate(const glm::mat4& viewProj, GLuint outputTexture, PassTimingHook* timer = nullptr);
-    // A refresh frame: `nearestTexture` is pass 1 rendered at `viewProj` (the caller renders it) and
-    // `nearestDepth` its depth;
-    // what lay behind the kept frame's nearest layer is reprojected under it. Timed as "reproject".
-    void interpolateRefresh(const glm::mat4& viewProj, GLuint nearestTexture, GLuint nearestDepth,
-                            const glm::vec3& background, GLuint outputTexture, PassTimingHook* timer = nullptr);
-    // A corrected frame (correct mode): `nearest` / `nearestDepth` pass 1 and `sumAlphaColor` /
-    // `transmittance` pass 3 at full resolution, rendered at `viewProj` by the caller. Timed as
-    // "reproject".
-    void interpolateCorrected(const glm::mat4& viewProj, GLuint nearest, GLuint nearestDepth, GLuint sumAlphaColor,
-                              GLuint transmittance, const glm::vec3& background, GLuint outputTexture,
-                              PassTimingHook* timer = nullptr);
     NeuralOptions::TemporalMode mode() const { return mode_; }
     // Interpolated frames render pass 1 fresh (refresh, correct) and pass 3 too (correct).
     bool refreshes() const { return mode_ == NeuralOptions::TemporalMode::Refresh; }
