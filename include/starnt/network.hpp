@@ -34,7 +34,6 @@ inline bool readsStarntInputs(NetworkKind kind) {
 // the network beyond (every kind but DFAOIT's).
 inline bool compositesThreeLayers(NetworkKind kind) { return kind != NetworkKind::DFAOIT; }
 // Whether the kind reads pass 3's tail depth moments (its method runs every pass at full resolution).
-inline bool readsTailMoments(NetworkKind kind) { return kind == NetworkKind::StarNTDepth; }
 
 // Feature guards (the inference shaders and the CPU reference in nn.hpp apply the same ones).
 inline constexpr float kTransmittanceEpsilon = 1e-6f;

@@ -278,7 +278,6 @@ void setFramebufferDefaultSize(GLuint framebuffer, int width, int height) {
     }
 }
 
-bool hasFractionalViewport() { return !isEs() || epoxy_has_gl_extension("GL_OES_viewport_array"); }
 
 void setViewportF(float x, float y, float width, float height) {
     if (!isEs()) {

@@ -134,7 +134,6 @@ void setFramebufferDefaultSize(GLuint framebuffer, int width, int height);
 // (llvmpipe and most ES 3.2 drivers have it); without it, a fractional origin is an error, since
 // the reduced passes' samples would miss the full-resolution pixel centres.
 void setViewportF(float x, float y, float width, float height);
-bool hasFractionalViewport();
 
 // An empty vertex array for attribute-less full-screen triangles (gl_VertexID based). Each
 // owner keeps its own: vertex arrays are not shared between contexts.

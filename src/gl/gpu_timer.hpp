@@ -41,7 +41,6 @@ public:
     // `finishAndWallClock`: time passes with glFinish + steady_clock (software rasterisers).
     explicit GpuPassTimer(bool finishAndWallClock = false);
     ~GpuPassTimer();
-    bool usesWallClock() const { return wallClock_; }
     GpuPassTimer(const GpuPassTimer&) = delete;
     GpuPassTimer& operator=(const GpuPassTimer&) = delete;
 

@@ -60,6 +60,16 @@ std::string numbered(const std::string& src) {
     return out.str();
 }
 
+// The info log of a shader (glGetShaderiv, glGetShaderInfoLog) or a program (the glGetProgram* pair).
+template <class GetIv, class GetLog>
+std::string infoLog(GLuint object, GetIv getIv, GetLog getLog) {
+    GLint len = 0;
+    getIv(object, GL_INFO_LOG_LENGTH, &len);
+    std::string log(size_t(len > 0 ? len : 1), '\0');
+    getLog(object, len, nullptr, log.data());
+    return log;
+}
+
 GLuint compile(GLenum stage, const std::string& label, const std::string& body, const std::string& defines) {
     std::string src = header(stage) + defines + "\n" + expandIncludes(body, label, 0);
     GLuint s = glCreateShader(stage);
@@ -69,10 +79,7 @@ GLuint compile(GLenum stage, const std::string& label, const std::string& body, 
     GLint ok = 0;
     glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
     if (!ok) {
-        GLint len = 0;
-        glGetShaderiv(s, GL_INFO_LOG_LENGTH, &len);
-        std::string log(size_t(len > 0 ? len : 1), '\0');
-        glGetShaderInfoLog(s, len, nullptr, log.data());
+        const std::string log = infoLog(s, glGetShaderiv, glGetShaderInfoLog);
         glDeleteShader(s);
         const char* kind = stage == GL_VERTEX_SHADER ? "vertex" : stage == GL_FRAGMENT_SHADER ? "fragment" : "compute";
         std::string message = "shader compile failed (" + label + ", " + kind + "): " + log;
@@ -93,10 +100,7 @@ Program link(const std::string& label, const std::vector<GLuint>& shaders) {
     GLint ok = 0;
     glGetProgramiv(p, GL_LINK_STATUS, &ok);
     if (!ok) {
-        GLint len = 0;
-        glGetProgramiv(p, GL_INFO_LOG_LENGTH, &len);
-        std::string log(size_t(len > 0 ? len : 1), '\0');
-        glGetProgramInfoLog(p, len, nullptr, log.data());
+        const std::string log = infoLog(p, glGetProgramiv, glGetProgramInfoLog);
         glDeleteProgram(p);
         throw Error("shader link failed (" + label + "): " + log);
     }

@@ -399,6 +399,5 @@ void OutputFiles::commit() {
 namespace starnt::detail {
 
 void setImagePixelBudget(long long pixels) { gImagePixelBudget = pixels; }
-long long imagePixelBudget() { return gImagePixelBudget; }
 
 }  // namespace starnt::detail

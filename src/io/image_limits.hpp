@@ -12,6 +12,5 @@ namespace starnt::detail {
 // Largest pixel count loadImage decodes; starts at kMaxImagePixels. Not thread-safe: set it once
 // before loading.
 void setImagePixelBudget(long long pixels);
-long long imagePixelBudget();
 
 }  // namespace starnt::detail

@@ -26,7 +26,6 @@ public:
     // Uniform in [0, 1).
     double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
     double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
-    float uniformf(float lo, float hi) { return static_cast<float>(uniform(lo, hi)); }
     // Uniform integer in [0, n), n > 0 (multiply-shift; bias is negligible for our n).
     uint64_t below(uint64_t n) {
         return static_cast<uint64_t>((static_cast<unsigned __int128>(next()) * n) >> 64);

@@ -63,7 +63,7 @@ struct RenderOutput {
 };
 
 // Largest width or height accepted (larger is an error).
-constexpr int kMaxImageSize = 16384;
+constexpr int kMaxImageSize = kMaxImageSide;  // starnt/tools/image.hpp: what the tools read and write
 // Throws starnt::Error unless 1 <= width, height <= kMaxImageSize.
 void checkImageSize(int width, int height);
 

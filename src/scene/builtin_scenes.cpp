@@ -27,6 +27,7 @@
 #include <numbers>
 #include <random>
 
+#include "scene/catmull_rom.hpp"
 #include "scene/hue_color.hpp"
 #include "starnt/error.hpp"
 #include "starnt/tools/scene.hpp"
@@ -35,9 +36,11 @@ namespace starnt {
 
 namespace {
 
-class Rng {
+// The built-in scenes' own generator (mt19937, 24-bit floats): it fixes their geometry, which every
+// figure measured on them depends on, so it stays apart from the trainer's nn::detail::Rng.
+class SceneRng {
 public:
-    explicit Rng(uint32_t seed) : gen_(seed) {}
+    explicit SceneRng(uint32_t seed) : gen_(seed) {}
     // Uniform in [0, 1) from the top 24 bits of one mt19937 output.
     float uniform() { return float(gen_() >> 8) * (1.0f / 16777216.0f); }
     float range(float lo, float hi) { return lo + (hi - lo) * uniform(); }
@@ -57,7 +60,7 @@ private:
 };
 
 // A saturated-ish random colour: a random hue at full saturation, mixed with white by `pastel`.
-glm::vec3 randomColor(Rng& rng, float pastel) { return hueColor<float>(rng.uniform(), pastel); }
+glm::vec3 randomColor(SceneRng& rng, float pastel) { return hueColor<float>(rng.uniform(), pastel); }
 
 Material blendMaterial(bool unlit) {
     Material m;
@@ -66,12 +69,6 @@ Material blendMaterial(bool unlit) {
     m.doubleSided = true;
     m.alphaMode = AlphaMode::Blend;
     return m;
-}
-
-glm::vec3 catmullRom(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& p3, float t) {
-    const float t2 = t * t, t3 = t2 * t;
-    return 0.5f * ((2.0f * p1) + (-p0 + p2) * t + (2.0f * p0 - 5.0f * p1 + 4.0f * p2 - p3) * t2 +
-                   (-p0 + 3.0f * p1 - 3.0f * p2 + p3) * t3);
 }
 
 glm::vec3 anyPerpendicular(const glm::vec3& t) {
@@ -94,7 +91,7 @@ void appendQuad(Mesh& mesh, const std::array<glm::vec3, 4>& corners, const glm::
 Scene makeTubes(uint32_t seed) {
     constexpr int kTubes = 150, kControl = 7, kSegments = 48, kSides = 6;
     constexpr float kRadius = 0.012f, kSphere = 0.85f;
-    Rng rng(seed);
+    SceneRng rng(seed);
     Scene s;
     s.materials.push_back(blendMaterial(false));
     Mesh mesh;
@@ -144,7 +141,7 @@ Scene makeTubes(uint32_t seed) {
 
 Scene makeSmoke(uint32_t seed) {
     constexpr int kParticles = 1200;
-    Rng rng(seed);
+    SceneRng rng(seed);
     Scene s;
     s.materials.push_back(blendMaterial(true));
     Mesh mesh;
@@ -183,7 +180,7 @@ Scene makePanes() {
 
 Scene makeRandom(uint32_t seed) {
     constexpr int kTriangles = 60;
-    Rng rng(seed);
+    SceneRng rng(seed);
     Scene s;
     s.materials.push_back(blendMaterial(true));
     Mesh mesh;
@@ -215,7 +212,7 @@ Scene makeRandom(uint32_t seed) {
 
 Scene makeCurtains(uint32_t seed) {
     constexpr int kSheets = 6;
-    Rng rng(seed);
+    SceneRng rng(seed);
     Scene s;
     s.materials.push_back(blendMaterial(false));
     Mesh mesh;

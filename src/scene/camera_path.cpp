@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "scene/catmull_rom.hpp"
 #include "starnt/error.hpp"
 
 namespace starnt {
@@ -24,13 +25,6 @@ glm::vec3 readVec3(const nlohmann::json& j, const char* key, const std::string& 
     glm::vec3 out(v[0].get<float>(), v[1].get<float>(), v[2].get<float>());
     if (!finite3(out)) throw Error(where + ": '" + key + "' is not finite");
     return out;
-}
-
-// Uniform Catmull-Rom through p1..p2 with neighbours p0, p3; u in [0, 1].
-glm::vec3 catmullRom(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& p3, float u) {
-    const float u2 = u * u, u3 = u2 * u;
-    return 0.5f * ((2.0f * p1) + (-p0 + p2) * u + (2.0f * p0 - 5.0f * p1 + 4.0f * p2 - p3) * u2 +
-                   (-p0 + 3.0f * p1 - 3.0f * p2 + p3) * u3);
 }
 
 glm::vec3 fallbackUp(const glm::vec3& up) {

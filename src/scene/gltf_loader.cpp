@@ -5,6 +5,8 @@
 #include <cmath>
 #include <algorithm>
 #include <cstring>
+#include <type_traits>
+#include <limits>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -67,6 +69,17 @@ int componentCount(int type) {
 }
 
 // A bounds-checked view of an accessor's elements. base == nullptr: no buffer view, all zeros.
+// One component of type T at `p`, as stored or normalised to [0, 1] (unsigned) or [-1, 1] (signed,
+// the most negative value clamped), as glTF defines normalised integers.
+template <class T>
+double readComponent(const unsigned char* p, bool normalized) {
+    T v;
+    std::memcpy(&v, p, sizeof v);
+    if (!normalized) return double(v);
+    const double scaled = double(v) / double(std::numeric_limits<T>::max());
+    return std::is_signed_v<T> ? std::max(scaled, -1.0) : scaled;
+}
+
 struct AccessorView {
     const unsigned char* base = nullptr;
     size_t stride = 0;
@@ -79,41 +92,13 @@ struct AccessorView {
         if (base == nullptr) return 0.0;
         const unsigned char* p = base + element * stride + size_t(c) * componentSize(componentType);
         switch (componentType) {
-            case TINYGLTF_COMPONENT_TYPE_BYTE: {
-                int8_t v;
-                std::memcpy(&v, p, 1);
-                return normalized ? std::max(double(v) / 127.0, -1.0) : double(v);
-            }
-            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
-                uint8_t v;
-                std::memcpy(&v, p, 1);
-                return normalized ? double(v) / 255.0 : double(v);
-            }
-            case TINYGLTF_COMPONENT_TYPE_SHORT: {
-                int16_t v;
-                std::memcpy(&v, p, 2);
-                return normalized ? std::max(double(v) / 32767.0, -1.0) : double(v);
-            }
-            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-                uint16_t v;
-                std::memcpy(&v, p, 2);
-                return normalized ? double(v) / 65535.0 : double(v);
-            }
-            case TINYGLTF_COMPONENT_TYPE_INT: {
-                int32_t v;
-                std::memcpy(&v, p, 4);
-                return double(v);
-            }
-            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-                uint32_t v;
-                std::memcpy(&v, p, 4);
-                return normalized ? double(v) / 4294967295.0 : double(v);
-            }
-            default: {
-                float v;
-                std::memcpy(&v, p, 4);
-                return double(v);
-            }
+            case TINYGLTF_COMPONENT_TYPE_BYTE: return readComponent<int8_t>(p, normalized);
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return readComponent<uint8_t>(p, normalized);
+            case TINYGLTF_COMPONENT_TYPE_SHORT: return readComponent<int16_t>(p, normalized);
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return readComponent<uint16_t>(p, normalized);
+            case TINYGLTF_COMPONENT_TYPE_INT: return readComponent<int32_t>(p, false);  // never normalised
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return readComponent<uint32_t>(p, normalized);
+            default: return readComponent<float>(p, false);
         }
     }
 };

@@ -1,5 +1,7 @@
 #include "viewer/frame_statistics.hpp"
 
+#include "render/offscreen_renderer.hpp"
+
 #include <algorithm>
 
 namespace starnt::viewer {
@@ -10,11 +12,7 @@ void RunningMedian::add(double value) {
 }
 
 double RunningMedian::median() const {
-    if (values_.empty()) return 0.0;
-    std::vector<double> sorted(values_.begin(), values_.end());
-    std::sort(sorted.begin(), sorted.end());
-    const size_t n = sorted.size();
-    return n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+    return starnt::median(std::vector<double>(values_.begin(), values_.end()));  // 0 when empty
 }
 
 void FrameStatistics::addFrame(double frameMs, const std::map<std::string, double>& passMs, bool interpolated) {

@@ -25,7 +25,6 @@ public:
     bool hasFrame() const { return hasFrame_; }
     int width() const { return width_; }
     int height() const { return height_; }
-    const glm::mat4& capturedViewProj() const { return viewProj_; }
 
     // Renders the captured frame as seen with `newViewProj` into `outputTexture`, a colour-renderable
     // RGBA texture of the captured size. Throws starnt::Error when nothing was captured.
