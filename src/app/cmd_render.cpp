@@ -60,6 +60,208 @@ std::string framePath(const std::string& pattern, int frame) {
     return buf;
 }
 
+struct RenderArgs {
+    std::string scene = "builtin:tubes", method = "abuffer", camera, cameraPath, background = "1,1,1", out, exr, stats;
+    std::string frameStats, tilesImage, referenceMethod;
+    AccelerationFlags acceleration;
+    int width = 1920, height = 1080, frames = 1, warmup = 0, peelLayers = 0;
+    double alpha = -1.0, alphaCutoff = 0.03, abufferCapMib = 2048;
+    bool unlit = false;
+    std::string wboitWeight = "eq10", weights;
+    std::string mboitMoments = "6";
+    std::string api = "gl";
+    bool alphaGiven = false, temporalModeGiven = false;  // --alpha, --temporal-mode on the command line
+    std::string alphaText;                               // --alpha as typed
+};
+
+// What --method and the acceleration and per-method flags make of MethodOptions.
+MethodOptions methodOptions(const RenderArgs& a) {
+    MethodOptions options;
+    applyAccelerationFlags(a.acceleration, options);
+    options.peel.layers = a.peelLayers;
+    options.wboit.weight = a.wboitWeight;
+    options.mboit.moments = a.mboitMoments;
+    options.neural.weightsPath = a.weights;
+    options.abuffer.memoryCapBytes = abufferCapBytes(a.abufferCapMib, "--abuffer-cap-mib");
+    return options;
+}
+
+void runRender(const RenderArgs& a);
+
+void declareRenderOptions(CLI::App& app, const std::shared_ptr<RenderArgs>& args) {
+    RenderArgs& a = *args;
+    CLI::App* cmd = app.add_subcommand("render", "render a scene with one OIT method");
+    cmd->add_option("--scene", a.scene, "scene file (.gltf/.glb/.obj) or builtin:NAME")->capture_default_str();
+    cmd->add_option("--method", a.method, methodNameList())->capture_default_str();
+    cmd->add_option("--width", a.width, "image width")->capture_default_str();
+    cmd->add_option("--height", a.height, "image height")->capture_default_str();
+    cmd->add_option("--camera", a.camera, "orbit:DEG[,ELEV] or a camera .json (default: auto-framed)");
+    cmd->add_option("--alpha", a.alpha, "override every material's alpha (0..1)");
+    cmd->add_option("--alpha-cutoff", a.alphaCutoff, "discard fragments with alpha below this")->capture_default_str();
+    cmd->add_option("--background", a.background, "background colour R,G,B (linear, 0..1)")->capture_default_str();
+    cmd->add_flag("--unlit", a.unlit, "output base colour unshaded for every material");
+    cmd->add_option("--frames", a.frames, "frames to render; timings are medians without the first")->capture_default_str();
+    cmd->add_option("--warmup", a.warmup,
+                    "untimed frames at the first camera before the timed ones (shader compiles, tiles settle); with it, "
+                    "the first frame is timed too")
+        ->capture_default_str();
+    cmd->add_option("--peel-layers", a.peelLayers, "peel: layers (0 = until empty, exact)")->capture_default_str();
+    cmd->add_option("--wboit-weight", a.wboitWeight, "wboit: eq7|eq8|eq9|eq10")->capture_default_str();
+    cmd->add_option("--mboit-moments", a.mboitMoments, "mboit: 4|6 power moments, t2|t3 trigonometric moments")
+        ->capture_default_str();
+    cmd->add_option("--abuffer-cap-mib", a.abufferCapMib, "abuffer: memory cap in MiB")->capture_default_str();
+    cmd->add_option("--api", a.api, "gl (OpenGL 4.5 core) or gles (OpenGL ES 3.2, the mobile path)")->capture_default_str();
+    cmd->add_option("--camera-path", a.cameraPath, "sequence camera: orbit:START,END[,ELEV] or a keyframe .json");
+    addAccelerationOptions(cmd, a.acceleration);
+    cmd->add_option("--tiles-image", a.tilesImage, "write the tile levels over the last frame (.png)");
+    cmd->add_option("--frame-stats", a.frameStats, "write one JSON line per frame (.jsonl)");
+    cmd->add_option("--reference-method", a.referenceMethod,
+                    "also render this method (e.g. abuffer) per frame and record MSE/FLIP against it");
+    cmd->add_option("--weights", a.weights, "starnt, starnt-residual, starnt-d, dfaoit: weights file (default: the shipped weights)");
+    cmd->add_option("--out", a.out, "output image (.png, sRGB); frame_%04d.png writes every frame")->required();
+    cmd->add_option("--exr", a.exr, "also write linear float EXR");
+    cmd->add_option("--stats", a.stats, "write statistics JSON");
+    cmd->callback([args, cmd] {
+        args->alphaGiven = cmd->get_option("--alpha")->count() > 0;
+        if (args->alphaGiven) args->alphaText = cmd->get_option("--alpha")->as<std::string>();
+        args->temporalModeGiven = cmd->get_option("--temporal-mode")->count() > 0;
+        runRender(*args);
+    });
+}
+
+// Every value checked before any work: a bad one fails with one error naming it.
+void checkRenderArgs(const RenderArgs& a) {
+    checkImageSize(a.width, a.height);
+    parseGlApi(a.api);
+    if (a.frames < 1 || a.frames > 100000) throw Error("--frames must be in 1..100000");
+    if (a.warmup < 0 || a.warmup > 1000) throw Error("--warmup must be in 0..1000");
+    if (a.alphaGiven && !(a.alpha >= 0.0 && a.alpha <= 1.0)) {
+        throw Error("--alpha " + a.alphaText + ": must be in [0, 1]");
+    }
+    if (!(a.alphaCutoff >= 0.0 && a.alphaCutoff <= 1.0)) throw Error("--alpha-cutoff must be in [0, 1]");
+    mboit::parseMomentKind(a.mboitMoments);  // a bad value fails before any work
+    abufferCapBytes(a.abufferCapMib, "--abuffer-cap-mib");  // a bad value fails before any work
+    if (!a.weights.empty()) {
+        const NeuralMethodConfig* config = neuralConfig(a.method);
+        if (!config || !config->evaluatesNetwork) {
+            throw Error("--weights " + a.weights + ": method " + a.method +
+                        " has no network (only starnt, starnt-residual, starnt-d and dfaoit read a weights file)");
+        }
+        nn::loadWeights(a.weights, config->kind);  // a bad file fails before any rendering
+    }
+    const MethodOptions options = methodOptions(a);  // the acceleration flags' values
+    if (!a.camera.empty() && !a.cameraPath.empty()) throw Error("--camera and --camera-path exclude each other");
+    if (a.temporalModeGiven && !methodHasNearestPass(a.method)) {
+        throw Error("--temporal-mode: method " + a.method +
+                    " has no interpolated frames to correct, refresh or warp (use starnt, hybrid or dfaoit)");
+    }
+    if (isFramePattern(a.out)) checkFramePattern(a.out, "--out");
+    if (isFramePattern(a.exr)) checkFramePattern(a.exr, "--exr");
+    checkOutputPath(isFramePattern(a.out) ? framePath(a.out, 0) : a.out, ".png", "--out");
+    checkOutputPath(a.tilesImage, ".png", "--tiles-image");
+    if (!a.tilesImage.empty() && !methodUsesTiles(a.method, options)) {
+        throw Error("--tiles-image: method " + a.method +
+                    " runs no tiles with these options (use starnt, or dfaoit with --spatial on or --inference corners)");
+    }
+    checkOutputPath(a.frameStats, ".jsonl", "--frame-stats");
+    if (!a.referenceMethod.empty()) {
+        const auto names = methodNames();
+        if (std::find(names.begin(), names.end(), a.referenceMethod) == names.end()) {
+            throw Error("--reference-method '" + a.referenceMethod + "' is not a method (see `starnt methods`)");
+        }
+    }
+    checkOutputPath(isFramePattern(a.exr) ? framePath(a.exr, 0) : a.exr, ".exr", "--exr");
+    checkOutputPath(a.stats, ".json", "--stats");
+    parseColor(a.background, "--background");
+}
+
+RenderJob makeRenderJob(const RenderArgs& a, const Scene& scene) {
+    RenderJob job;
+    job.method = a.method;
+    job.width = a.width;
+    job.height = a.height;
+    job.frames = a.frames;
+    job.warmupFrames = a.warmup;
+    job.background = parseColor(a.background, "--background");
+    job.alphaCutoff = float(a.alphaCutoff);
+    const float aspect = float(a.width) / float(a.height);
+    job.camera = parseCameraSpec(a.camera, scene.bounds(), aspect);
+    if (!a.cameraPath.empty()) job.path = parseCameraPathSpec(a.cameraPath, scene.bounds(), aspect);
+    job.referenceMethod = a.referenceMethod;
+    job.readTileOverlay = !a.tilesImage.empty();
+    if (a.alphaGiven) job.surface.alphaOverride = float(a.alpha);
+    job.surface.forceUnlit = a.unlit;
+    job.methodOptions = methodOptions(a);
+    return job;
+}
+
+void runRender(const RenderArgs& a) {
+    checkRenderArgs(a);
+    const Scene scene = loadScene(a.scene);
+    HeadlessGlContext context(parseGlApi(a.api));
+    SceneGpu sceneGpu(scene);
+    RenderJob job = makeRenderJob(a, scene);
+    const bool numbered = isFramePattern(a.out);
+    std::string frameLines;
+    const bool numberedExr = isFramePattern(a.exr);
+    if (numbered || numberedExr) job.readEveryFrame = true;
+    // Every output is staged under a temporary name and renamed only when all are written, so a
+    // failure (a later frame, the stats file) leaves none of them.
+    OutputFiles outputs;
+    RenderProgress progress(stderr, a.frames);
+    std::vector<double> timedMs[2];  // [interpolated]: frame times without the first frame
+    job.onFrame = [&](const FrameRecord& record) {
+        frameLines += record.stats.dump() + "\n";
+        if (numbered) outputs.stageImage(*record.image, framePath(a.out, record.index));
+        if (numberedExr) outputs.stageImage(*record.image, framePath(a.exr, record.index));
+        if (record.index > 0 || a.frames == 1) {
+            timedMs[record.stats.value("interpolated", false) ? 1 : 0].push_back(record.stats.value("frame_ms", 0.0));
+        }
+        progress.frameDone(record.index);
+    };
+    RenderOutput out = renderScene(sceneGpu, job);
+    if (!a.tilesImage.empty()) {
+        if (!out.tileOverlay) throw Error("--tiles-image: method " + a.method + " produced no tile overlay");
+        outputs.stageImage(*out.tileOverlay, a.tilesImage);
+    }
+
+    out.stats["scene"] = a.scene;
+    out.stats["triangles"] = scene.triangleCount();
+    out.stats["gl_renderer"] = context.info().renderer;
+    out.stats["gl_api"] = glApiName(context.info().api);
+    out.stats["gl_version"] = context.info().version;
+    if (!numbered) outputs.stageImage(out.image, a.out);
+    if (!a.exr.empty() && !numberedExr) outputs.stageImage(out.image, a.exr);
+    if (!a.frameStats.empty()) outputs.stage(a.frameStats, frameLines);
+    if (!a.stats.empty()) outputs.stage(a.stats, out.stats.dump(2) + "\n");
+    outputs.commit();
+    auto meanOf = [](const std::vector<double>& v) {
+        double s = 0.0;
+        for (double x : v) s += x;
+        return v.empty() ? 0.0 : s / double(v.size());
+    };
+    if (!timedMs[1].empty()) {
+        // Temporal run: the median lands on interpolated frames; give the means instead.
+        const size_t timed = timedMs[0].size() + timedMs[1].size();
+        std::printf("%s: %s %dx%d, frame %.2f ms (mean of %zu), real frames %.2f ms (mean of %zu), interpolated "
+                    "%.2f ms (mean of %zu), max %u fragments/pixel -> %s\n",
+                    a.method.c_str(), a.scene.c_str(), a.width, a.height,
+                    (meanOf(timedMs[0]) * double(timedMs[0].size()) + meanOf(timedMs[1]) * double(timedMs[1].size())) /
+                        double(timed),
+                    timed, meanOf(timedMs[0]), timedMs[0].size(), meanOf(timedMs[1]), timedMs[1].size(),
+                    out.stats["max_fragments"].get<unsigned>(), a.out.c_str());
+    } else {
+        std::printf("%s: %s %dx%d, frame %.2f ms (median of %d), max %u fragments/pixel -> %s\n", a.method.c_str(),
+                    a.scene.c_str(), a.width, a.height, out.stats["frame_ms"].get<double>(),
+                    out.stats["timed_frames"].get<int>(), out.stats["max_fragments"].get<unsigned>(), a.out.c_str());
+    }
+    if (out.stats.contains("error") && out.stats["error"].contains("interpolated_flash")) {
+        const auto& flash = out.stats["error"]["interpolated_flash"];
+        std::printf("worst interpolated frame: %d, MSE %.2fx that of the real frames beside it\n",
+                    flash["frame"].get<int>(), flash["worst_ratio"].get<double>());
+    }
+}
+
 }  // namespace
 
 glm::vec3 parseColor(const std::string& text, const char* flag) {
@@ -78,180 +280,8 @@ glm::vec3 parseColor(const std::string& text, const char* flag) {
 }
 
 void addRenderCommand(CLI::App& app) {
-    struct Args {
-        std::string scene = "builtin:tubes", method = "abuffer", camera, cameraPath, background = "1,1,1", out, exr, stats;
-        std::string frameStats, tilesImage, referenceMethod;
-        AccelerationFlags acceleration;
-        int width = 1920, height = 1080, frames = 1, warmup = 0, peelLayers = 0;
-        double alpha = -1.0, alphaCutoff = 0.03, abufferCapMib = 2048;
-        bool unlit = false;
-        std::string wboitWeight = "eq10", weights;
-        std::string mboitMoments = "6";
-        std::string api = "gl";
-    };
-    auto a = std::make_shared<Args>();
-    CLI::App* cmd = app.add_subcommand("render", "render a scene with one OIT method");
-    cmd->add_option("--scene", a->scene, "scene file (.gltf/.glb/.obj) or builtin:NAME")->capture_default_str();
-    cmd->add_option("--method", a->method, methodNameList())->capture_default_str();
-    cmd->add_option("--width", a->width, "image width")->capture_default_str();
-    cmd->add_option("--height", a->height, "image height")->capture_default_str();
-    cmd->add_option("--camera", a->camera, "orbit:DEG[,ELEV] or a camera .json (default: auto-framed)");
-    CLI::Option* alphaOption = cmd->add_option("--alpha", a->alpha, "override every material's alpha (0..1)");
-    cmd->add_option("--alpha-cutoff", a->alphaCutoff, "discard fragments with alpha below this")->capture_default_str();
-    cmd->add_option("--background", a->background, "background colour R,G,B (linear, 0..1)")->capture_default_str();
-    cmd->add_flag("--unlit", a->unlit, "output base colour unshaded for every material");
-    cmd->add_option("--frames", a->frames, "frames to render; timings are medians without the first")->capture_default_str();
-    cmd->add_option("--warmup", a->warmup,
-                    "untimed frames at the first camera before the timed ones (shader compiles, tiles settle); with it, "
-                    "the first frame is timed too")
-        ->capture_default_str();
-    cmd->add_option("--peel-layers", a->peelLayers, "peel: layers (0 = until empty, exact)")->capture_default_str();
-    cmd->add_option("--wboit-weight", a->wboitWeight, "wboit: eq7|eq8|eq9|eq10")->capture_default_str();
-    cmd->add_option("--mboit-moments", a->mboitMoments, "mboit: 4|6 power moments, t2|t3 trigonometric moments")
-        ->capture_default_str();
-    cmd->add_option("--abuffer-cap-mib", a->abufferCapMib, "abuffer: memory cap in MiB")->capture_default_str();
-    cmd->add_option("--api", a->api, "gl (OpenGL 4.5 core) or gles (OpenGL ES 3.2, the mobile path)")->capture_default_str();
-    cmd->add_option("--camera-path", a->cameraPath, "sequence camera: orbit:START,END[,ELEV] or a keyframe .json");
-    addAccelerationOptions(cmd, a->acceleration);
-    cmd->add_option("--tiles-image", a->tilesImage, "write the tile levels over the last frame (.png)");
-    cmd->add_option("--frame-stats", a->frameStats, "write one JSON line per frame (.jsonl)");
-    cmd->add_option("--reference-method", a->referenceMethod,
-                    "also render this method (e.g. abuffer) per frame and record MSE/FLIP against it");
-    cmd->add_option("--weights", a->weights, "starnt, starnt-residual, starnt-d, dfaoit: weights file (default: the shipped weights)");
-    cmd->add_option("--out", a->out, "output image (.png, sRGB); frame_%04d.png writes every frame")->required();
-    cmd->add_option("--exr", a->exr, "also write linear float EXR");
-    cmd->add_option("--stats", a->stats, "write statistics JSON");
-    const CLI::Option* temporalModeOption = cmd->get_option("--temporal-mode");
-    cmd->callback([a, alphaOption, temporalModeOption] {
-        checkImageSize(a->width, a->height);
-        const GlApi api = parseGlApi(a->api);
-        if (a->frames < 1 || a->frames > 100000) throw Error("--frames must be in 1..100000");
-        if (a->warmup < 0 || a->warmup > 1000) throw Error("--warmup must be in 0..1000");
-        if (alphaOption->count() > 0 && !(a->alpha >= 0.0 && a->alpha <= 1.0)) {
-            throw Error("--alpha " + alphaOption->as<std::string>() + ": must be in [0, 1]");
-        }
-        if (!(a->alphaCutoff >= 0.0 && a->alphaCutoff <= 1.0)) throw Error("--alpha-cutoff must be in [0, 1]");
-        mboit::parseMomentKind(a->mboitMoments);  // a bad value fails before any work
-        const size_t abufferCap = abufferCapBytes(a->abufferCapMib, "--abuffer-cap-mib");
-        if (!a->weights.empty()) {
-            const NeuralMethodConfig* config = neuralConfig(a->method);
-            if (!config || !config->evaluatesNetwork) {
-                throw Error("--weights " + a->weights + ": method " + a->method +
-                            " has no network (only starnt, starnt-residual, starnt-d and dfaoit read a weights file)");
-            }
-            nn::loadWeights(a->weights, config->kind);  // a bad file fails before any rendering
-        }
-        MethodOptions options;
-        applyAccelerationFlags(a->acceleration, options);
-        if (!a->camera.empty() && !a->cameraPath.empty()) throw Error("--camera and --camera-path exclude each other");
-        if (temporalModeOption->count() > 0 && !methodHasNearestPass(a->method)) {
-            throw Error("--temporal-mode: method " + a->method +
-                        " has no interpolated frames to correct, refresh or warp (use starnt, hybrid or dfaoit)");
-        }
-        const bool numbered = isFramePattern(a->out);
-        if (numbered) checkFramePattern(a->out, "--out");
-        if (isFramePattern(a->exr)) checkFramePattern(a->exr, "--exr");
-        checkOutputPath(numbered ? framePath(a->out, 0) : a->out, ".png", "--out");
-        checkOutputPath(a->tilesImage, ".png", "--tiles-image");
-        if (!a->tilesImage.empty() && !methodUsesTiles(a->method, options)) {
-            throw Error("--tiles-image: method " + a->method +
-                        " runs no tiles with these options (use starnt, or dfaoit with --spatial on or --inference corners)");
-        }
-        checkOutputPath(a->frameStats, ".jsonl", "--frame-stats");
-        if (!a->referenceMethod.empty()) {
-            const auto names = methodNames();
-            if (std::find(names.begin(), names.end(), a->referenceMethod) == names.end()) {
-                throw Error("--reference-method '" + a->referenceMethod + "' is not a method (see `starnt methods`)");
-            }
-        }
-        checkOutputPath(isFramePattern(a->exr) ? framePath(a->exr, 0) : a->exr, ".exr", "--exr");
-        checkOutputPath(a->stats, ".json", "--stats");
-        const glm::vec3 background = parseColor(a->background, "--background");
-
-        Scene scene = loadScene(a->scene);
-        HeadlessGlContext context(api);
-        SceneGpu sceneGpu(scene);
-
-        RenderJob job;
-        job.method = a->method;
-        job.width = a->width;
-        job.height = a->height;
-        job.frames = a->frames;
-        job.warmupFrames = a->warmup;
-        job.background = background;
-        job.alphaCutoff = float(a->alphaCutoff);
-        const float aspect = float(a->width) / float(a->height);
-        job.camera = parseCameraSpec(a->camera, scene.bounds(), aspect);
-        if (!a->cameraPath.empty()) job.path = parseCameraPathSpec(a->cameraPath, scene.bounds(), aspect);
-        job.referenceMethod = a->referenceMethod;
-        job.readTileOverlay = !a->tilesImage.empty();
-        if (alphaOption->count() > 0) job.surface.alphaOverride = float(a->alpha);
-        job.surface.forceUnlit = a->unlit;
-        job.methodOptions = options;
-        job.methodOptions.peel.layers = a->peelLayers;
-        job.methodOptions.wboit.weight = a->wboitWeight;
-        job.methodOptions.mboit.moments = a->mboitMoments;
-        job.methodOptions.neural.weightsPath = a->weights;
-        job.methodOptions.abuffer.memoryCapBytes = abufferCap;
-        std::string frameLines;
-        const bool numberedExr = isFramePattern(a->exr);
-        if (numbered || numberedExr) job.readEveryFrame = true;
-        // Every output is staged under a temporary name and renamed only when all are written, so a
-        // failure (a later frame, the stats file) leaves none of them.
-        OutputFiles outputs;
-        RenderProgress progress(stderr, a->frames);
-        std::vector<double> timedMs[2];  // [interpolated]: frame times without the first frame
-        job.onFrame = [&](const FrameRecord& record) {
-            frameLines += record.stats.dump() + "\n";
-            if (numbered) outputs.stageImage(*record.image, framePath(a->out, record.index));
-            if (numberedExr) outputs.stageImage(*record.image, framePath(a->exr, record.index));
-            if (record.index > 0 || a->frames == 1) {
-                timedMs[record.stats.value("interpolated", false) ? 1 : 0].push_back(record.stats.value("frame_ms", 0.0));
-            }
-            progress.frameDone(record.index);
-        };
-        RenderOutput out = renderScene(sceneGpu, job);
-        if (!a->tilesImage.empty()) {
-            if (!out.tileOverlay) throw Error("--tiles-image: method " + a->method + " produced no tile overlay");
-            outputs.stageImage(*out.tileOverlay, a->tilesImage);
-        }
-
-        out.stats["scene"] = a->scene;
-        out.stats["triangles"] = scene.triangleCount();
-        out.stats["gl_renderer"] = context.info().renderer;
-        out.stats["gl_api"] = glApiName(context.info().api);
-        out.stats["gl_version"] = context.info().version;
-        if (!numbered) outputs.stageImage(out.image, a->out);
-        if (!a->exr.empty() && !numberedExr) outputs.stageImage(out.image, a->exr);
-        if (!a->frameStats.empty()) outputs.stage(a->frameStats, frameLines);
-        if (!a->stats.empty()) outputs.stage(a->stats, out.stats.dump(2) + "\n");
-        outputs.commit();
-        auto meanOf = [](const std::vector<double>& v) {
-            double s = 0.0;
-            for (double x : v) s += x;
-            return v.empty() ? 0.0 : s / double(v.size());
-        };
-        if (!timedMs[1].empty()) {
-            // Temporal run: the median lands on interpolated frames; give the means instead.
-            const size_t timed = timedMs[0].size() + timedMs[1].size();
-            std::printf("%s: %s %dx%d, frame %.2f ms (mean of %zu), real frames %.2f ms (mean of %zu), interpolated "
-                        "%.2f ms (mean of %zu), max %u fragments/pixel -> %s\n",
-                        a->method.c_str(), a->scene.c_str(), a->width, a->height,
-                        (meanOf(timedMs[0]) * double(timedMs[0].size()) + meanOf(timedMs[1]) * double(timedMs[1].size())) /
-                            double(timed),
-                        timed, meanOf(timedMs[0]), timedMs[0].size(), meanOf(timedMs[1]), timedMs[1].size(),
-                        out.stats["max_fragments"].get<unsigned>(), a->out.c_str());
-        } else {
-            std::printf("%s: %s %dx%d, frame %.2f ms (median of %d), max %u fragments/pixel -> %s\n", a->method.c_str(),
-                        a->scene.c_str(), a->width, a->height, out.stats["frame_ms"].get<double>(),
-                        out.stats["timed_frames"].get<int>(), out.stats["max_fragments"].get<unsigned>(), a->out.c_str());
-        }
-        if (out.stats.contains("error") && out.stats["error"].contains("interpolated_flash")) {
-            const auto& flash = out.stats["error"]["interpolated_flash"];
-            std::printf("worst interpolated frame: %d, MSE %.2fx that of the real frames beside it\n",
-                        flash["frame"].get<int>(), flash["worst_ratio"].get<double>());
-        }
-    });
+    // CLI11 writes into the arguments and the callback reads them: they live as long as the app.
+    declareRenderOptions(app, std::make_shared<RenderArgs>());
 }
 
 }  // namespace starnt::app

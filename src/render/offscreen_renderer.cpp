@@ -66,180 +66,220 @@ nlohmann::json countersJson(const std::map<std::string, gl::PassCounters>& count
 
 }  // namespace
 
-RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) {
-    checkImageSize(job.width, job.height);
-    if (job.frames < 1) throw Error("--frames must be at least 1");
-    const SurfaceShader surface = SceneGpu::surfaceShader();
-    auto method = createMethod(job.method, surface, job.methodOptions);
-    std::unique_ptr<OitMethod> reference;
-    if (!job.referenceMethod.empty()) reference = createMethod(job.referenceMethod, surface, {});
-    if (job.referenceImages) {
-        if (reference) throw Error("internal: referenceMethod and referenceImages exclude each other");
-        if (job.referenceImages->size() < size_t(job.frames)) throw Error("internal: fewer reference images than frames");
-        for (const Image& ref : *job.referenceImages) {
-            if (ref.width != job.width || ref.height != job.height) throw Error("internal: reference image size differs from the job's");
+namespace {
+
+// One renderScene call, in the order the data flows: check the job, warm up, then per frame render
+// (timed), read back, measure the error against the reference and record; finally the summary.
+class SceneRun {
+public:
+    SceneRun(const SceneGpu& scene, const RenderJob& job)
+        : scene_(scene), job_(job), surface_(SceneGpu::surfaceShader()), timer_(gl::wallClockTimingNeeded()) {
+        checkImageSize(job.width, job.height);
+        if (job.frames < 1) throw Error("--frames must be at least 1");
+        method_ = createMethod(job.method, surface_, job.methodOptions);
+        if (!job.referenceMethod.empty()) reference_ = createMethod(job.referenceMethod, surface_, {});
+        if (job.referenceImages) {
+            if (reference_) throw Error("internal: referenceMethod and referenceImages exclude each other");
+            if (job.referenceImages->size() < size_t(job.frames)) throw Error("internal: fewer reference images than frames");
+            for (const Image& ref : *job.referenceImages) {
+                if (ref.width != job.width || ref.height != job.height) throw Error("internal: reference image size differs from the job's");
+            }
+        }
+        compared_ = reference_ || job.referenceImages;
+        frame_.width = job.width;
+        frame_.height = job.height;
+        frame_.background = job.background;
+        frame_.alphaCutoff = job.alphaCutoff;
+    }
+
+    RenderOutput run() {
+        warmUp();
+        for (int i = 0; i < job_.frames; ++i) renderFrame(i);
+        return summary();
+    }
+
+private:
+    Camera cameraOf(int i) const { return job_.path ? job_.path->frame(i, job_.frames) : job_.camera; }
+    void aimAt(FrameDesc& frame, const Camera& camera) const {
+        frame.view = camera.view();
+        frame.projection = camera.projection(float(job_.width) / float(job_.height));
+    }
+
+    // Untimed frames at the first camera: shader compiles; the tiles settle.
+    void warmUp() {
+        for (int w = 0; w < job_.warmupFrames; ++w) {
+            FrameDesc warm = frame_;
+            aimAt(warm, cameraOf(0));
+            warm.timing = nullptr;
+            method_->render(warm, scene_.callback(warm.view, warm.projection, job_.surface));
+            glFinish();
         }
     }
-    const bool compared = reference || job.referenceImages;
 
-    const float aspect = float(job.width) / float(job.height);
-    FrameDesc frame;
-    frame.width = job.width;
-    frame.height = job.height;
-    frame.background = job.background;
-    frame.alphaCutoff = job.alphaCutoff;
-    gl::GpuPassTimer timer(gl::wallClockTimingNeeded());
-
-    // Per-frame timings; the first frame compiles shaders on first use and is excluded when there
-    // are others.
-    std::vector<double> frameMs, realMs, interpolatedMs;
-    std::map<std::string, std::vector<double>> passMs;
-    std::map<std::string, gl::PassCounters> counterSums;  // over the timed frames
-    std::vector<double> mseReal, mseInterp, flipReal, flipInterp;
-    std::vector<std::pair<bool, double>> msePerFrame;  // (interpolated, MSE) of every compared frame
-    int interpolatedFrames = 0;
-    Image image, referenceImage;
-    DrawCallback draw;
-    for (int w = 0; w < job.warmupFrames; ++w) {
-        const Camera camera = job.path ? job.path->frame(0, job.frames) : job.camera;
-        FrameDesc warm = frame;
-        warm.view = camera.view();
-        warm.projection = camera.projection(aspect);
-        warm.timing = nullptr;
-        method->render(warm, scene.callback(warm.view, warm.projection, job.surface));
-        glFinish();
-    }
-    for (int i = 0; i < job.frames; ++i) {
-        const Camera camera = job.path ? job.path->frame(i, job.frames) : job.camera;
-        frame.view = camera.view();
-        frame.projection = camera.projection(aspect);
-        frame.timing = &timer;
-        draw = scene.callback(frame.view, frame.projection, job.surface);
+    void renderFrame(int i) {
+        const Camera camera = cameraOf(i);
+        aimAt(frame_, camera);
+        frame_.timing = &timer_;
+        draw_ = scene_.callback(frame_.view, frame_.projection, job_.surface);
 
         glFinish();
-        auto t0 = std::chrono::steady_clock::now();
-        method->render(frame, draw);
+        const auto t0 = std::chrono::steady_clock::now();
+        method_->render(frame_, draw_);
         glFinish();
-        auto t1 = std::chrono::steady_clock::now();
-        const double ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
-        auto passes = timer.collect();
-        const auto counters = timer.collectCounters();
-        const FrameStats typedStats = method->lastFrameStats();
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        const auto passes = timer_.collect();
+        const auto counters = timer_.collectCounters();
+        const FrameStats typedStats = method_->lastFrameStats();
         const nlohmann::json methodStats = frameStatsJson(typedStats);
         const bool interpolated = typedStats.interpolated();
-        interpolatedFrames += interpolated ? 1 : 0;
+        interpolatedFrames_ += interpolated ? 1 : 0;
 
         FrameRecord record;
         record.index = i;
         record.camera = camera;
         record.stats = {{"frame", i}, {"frame_ms", ms}, {"interpolated", interpolated}, {"pass_ms", passes},
-                        {"pass_counters", countersJson(counters)}, {"memory_bytes", method->gpuMemoryBytes()},
+                        {"pass_counters", countersJson(counters)}, {"memory_bytes", method_->gpuMemoryBytes()},
                         {"rss_bytes", residentMemoryBytes()}};
         for (const char* key : {"scale_pass2", "scale_pass3", "w_bar", "tile_levels", "probe_frame"}) {
             if (methodStats.contains(key)) record.stats[key] = methodStats[key];
         }
-        const bool last = i + 1 == job.frames;
         // With qualityEvery = n > 1, the error is measured on three frames in every n (a real frame
         // and the interpolated frames beside it at K <= 3): FLIP runs on the CPU, and a long timed
         // run on a GPU would otherwise spend most of its time there.
-        const bool compareThis = compared && (job.qualityEvery <= 1 || i % job.qualityEvery < 3);
-        if (job.readEveryFrame || compareThis || last) image = gl::readTexture(method->outputTexture(), job.width, job.height);
-        const Image* referenceOfFrame = nullptr;
-        if (reference && compareThis) {
-            FrameDesc untimed = frame;
-            untimed.timing = nullptr;
-            reference->render(untimed, draw);
-            referenceImage = gl::readTexture(reference->outputTexture(), job.width, job.height);
-            referenceOfFrame = &referenceImage;
-        } else if (job.referenceImages && compareThis) {
-            referenceOfFrame = &(*job.referenceImages)[size_t(i)];
+        const bool compareThis = compared_ && (job_.qualityEvery <= 1 || i % job_.qualityEvery < 3);
+        if (job_.readEveryFrame || compareThis || i + 1 == job_.frames) {
+            image_ = gl::readTexture(method_->outputTexture(), job_.width, job_.height);
         }
-        if (referenceOfFrame) {
-            const double mse = mseSrgb(*referenceOfFrame, image);
-            const double flipMean = flip(*referenceOfFrame, image, job.flipPixelsPerDegree).mean;
-            record.stats["mse"] = mse;
-            record.stats["flip"] = flipMean;
-            (interpolated ? mseInterp : mseReal).push_back(mse);
-            msePerFrame.emplace_back(interpolated, mse);
-            (interpolated ? flipInterp : flipReal).push_back(flipMean);
-        }
-        if (job.onFrame) {
-            record.image = (job.readEveryFrame || compareThis) ? &image : nullptr;
+        const Image* referenceOfFrame = compareThis ? referenceOf(i) : nullptr;
+        if (referenceOfFrame) measureError(*referenceOfFrame, interpolated, record);
+        if (job_.onFrame) {
+            record.image = (job_.readEveryFrame || compareThis) ? &image_ : nullptr;
             record.reference = referenceOfFrame;
-            job.onFrame(record);
+            job_.onFrame(record);
         }
-        if (i == 0 && job.frames > 1 && job.warmupFrames == 0) continue;
-        frameMs.push_back(ms);
-        (interpolated ? interpolatedMs : realMs).push_back(ms);
-        for (auto& [name, value] : passes) passMs[name].push_back(value);
-        for (auto& [name, value] : counters) counterSums[name] += value;
+        // Without warm-up frames the first frame compiles shaders on first use: not timed then.
+        if (i == 0 && job_.frames > 1 && job_.warmupFrames == 0) return;
+        frameMs_.push_back(ms);
+        (interpolated ? interpolatedMs_ : realMs_).push_back(ms);
+        for (auto& [name, value] : passes) passMs_[name].push_back(value);
+        for (auto& [name, value] : counters) counterSums_[name] += value;
     }
 
-    RenderOutput out;
-    out.image = std::move(image);
-    // Memory of the frames as rendered: taken before the debug overlay below is allocated.
-    const size_t memoryBytes = method->gpuMemoryBytes();
-    nlohmann::json memoryTargets = nlohmann::json::object();
-    for (const auto& [name, bytes] : method->gpuMemoryTargets()) memoryTargets[name] = bytes;
-    if (job.readTileOverlay) {
-        if (GLuint overlay = method->tileOverlayTexture()) out.tileOverlay = gl::readTexture(overlay, job.width, job.height);
+    // Frame i of the reference: rendered now by the reference method, or precomputed.
+    const Image* referenceOf(int i) {
+        if (reference_) {
+            FrameDesc untimed = frame_;
+            untimed.timing = nullptr;
+            reference_->render(untimed, draw_);
+            referenceImage_ = gl::readTexture(reference_->outputTexture(), job_.width, job_.height);
+            return &referenceImage_;
+        }
+        return job_.referenceImages ? &(*job_.referenceImages)[size_t(i)] : nullptr;
     }
 
-    // Depth complexity is measured by a separate counting pass at the last camera, outside the
-    // timed frames, so every method reports the same max_fragments.
-    DepthComplexityCounter counter(surface);
-    FrameDesc untimed = frame;
-    untimed.timing = nullptr;
-    const unsigned maxFragments = counter.count(untimed, draw);
-
-    nlohmann::json passes = nlohmann::json::object();
-    for (auto& [name, values] : passMs) passes[name] = median(values);
-    nlohmann::json methodStats = frameStatsJson(method->lastFrameStats());
-    out.stats = {
-        {"method", job.method},
-        {"width", job.width},
-        {"height", job.height},
-        {"frame_ms", median(frameMs)},
-        {"frame_ms_mean", mean(frameMs)},
-        {"real_frame_ms", realMs.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(realMs))},
-        {"interpolated_frame_ms", interpolatedMs.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(interpolatedMs))},
-        {"real_frame_ms_mean", realMs.empty() ? nlohmann::json(nullptr) : nlohmann::json(mean(realMs))},
-        {"interpolated_frame_ms_mean", interpolatedMs.empty() ? nlohmann::json(nullptr) : nlohmann::json(mean(interpolatedMs))},
-        {"pass_ms", passes},
-        {"pass_counters", countersJson(counterSums, frameMs.size())},
-        {"pass_counters_source", timer.countersAvailable() ? "GL_ARB_pipeline_statistics_query, mean per timed frame"
-                                                           : "unavailable (no pipeline statistics queries)"},
-        {"scale_pass2", 1.0},
-        {"scale_pass3", 1.0},
-        {"w_bar", nullptr},
-        {"tile_levels", nlohmann::json::array({0, 0, 0, 0})},
-        {"max_fragments", maxFragments},
-        {"memory_bytes", memoryBytes},
-        {"memory_targets", memoryTargets},
-        {"scene_memory_bytes", scene.gpuMemoryBytes()},
-        {"frames", job.frames},
-        {"timed_frames", frameMs.size()},
-        {"warmup_frames", job.warmupFrames},
-        {"interpolated_frames", interpolatedFrames},
-        {"pass_timing", gl::passTimingDescription()},
-        {"method_stats", methodStats},
-    };
-    for (auto& [key, value] : methodStats.items()) {
-        if (out.stats.contains(key) && key != "max_fragments" && key != "frames") out.stats[key] = value;
+    void measureError(const Image& reference, bool interpolated, FrameRecord& record) {
+        const double mse = mseSrgb(reference, image_);
+        const double flipMean = flip(reference, image_, job_.flipPixelsPerDegree).mean;
+        record.stats["mse"] = mse;
+        record.stats["flip"] = flipMean;
+        (interpolated ? mseInterp_ : mseReal_).push_back(mse);
+        msePerFrame_.emplace_back(interpolated, mse);
+        (interpolated ? flipInterp_ : flipReal_).push_back(flipMean);
     }
-    if (compared) {
-        out.stats["reference_method"] = reference ? job.referenceMethod : std::string("precomputed images");
-        out.stats["error"] = {
-            {"real", {{"frames", mseReal.size()}, {"mse_mean", nullableMean(mseReal)}, {"flip_mean", nullableMean(flipReal)}}},
-            {"interpolated",
-             {{"frames", mseInterp.size()}, {"mse_mean", nullableMean(mseInterp)}, {"flip_mean", nullableMean(flipInterp)}}},
+
+    RenderOutput summary() {
+        RenderOutput out;
+        out.image = std::move(image_);
+        // Memory of the frames as rendered: taken before the debug overlay below is allocated.
+        const size_t memoryBytes = method_->gpuMemoryBytes();
+        nlohmann::json memoryTargets = nlohmann::json::object();
+        for (const auto& [name, bytes] : method_->gpuMemoryTargets()) memoryTargets[name] = bytes;
+        if (job_.readTileOverlay) {
+            if (GLuint overlay = method_->tileOverlayTexture()) out.tileOverlay = gl::readTexture(overlay, job_.width, job_.height);
+        }
+
+        // Depth complexity is measured by a separate counting pass at the last camera, outside the
+        // timed frames, so every method reports the same max_fragments.
+        DepthComplexityCounter counter(surface_);
+        FrameDesc untimed = frame_;
+        untimed.timing = nullptr;
+        const unsigned maxFragments = counter.count(untimed, draw_);
+
+        auto orNull = [](const std::vector<double>& v, double (*f)(std::vector<double>)) {
+            return v.empty() ? nlohmann::json(nullptr) : nlohmann::json(f(v));
         };
-        if (const auto flash = worstInterpolatedFlash(msePerFrame)) {
-            out.stats["error"]["interpolated_flash"] = {{"worst_ratio", flash->ratio}, {"frame", flash->frame}};
+        auto meanOf = [](std::vector<double> v) { return mean(v); };
+        nlohmann::json passes = nlohmann::json::object();
+        for (auto& [name, values] : passMs_) passes[name] = median(values);
+        nlohmann::json methodStats = frameStatsJson(method_->lastFrameStats());
+        out.stats = {
+            {"method", job_.method},
+            {"width", job_.width},
+            {"height", job_.height},
+            {"frame_ms", median(frameMs_)},
+            {"frame_ms_mean", mean(frameMs_)},
+            {"real_frame_ms", orNull(realMs_, median)},
+            {"interpolated_frame_ms", orNull(interpolatedMs_, median)},
+            {"real_frame_ms_mean", orNull(realMs_, meanOf)},
+            {"interpolated_frame_ms_mean", orNull(interpolatedMs_, meanOf)},
+            {"pass_ms", passes},
+            {"pass_counters", countersJson(counterSums_, frameMs_.size())},
+            {"pass_counters_source", timer_.countersAvailable() ? "GL_ARB_pipeline_statistics_query, mean per timed frame"
+                                                                : "unavailable (no pipeline statistics queries)"},
+            {"scale_pass2", 1.0},
+            {"scale_pass3", 1.0},
+            {"w_bar", nullptr},
+            {"tile_levels", nlohmann::json::array({0, 0, 0, 0})},
+            {"max_fragments", maxFragments},
+            {"memory_bytes", memoryBytes},
+            {"memory_targets", memoryTargets},
+            {"scene_memory_bytes", scene_.gpuMemoryBytes()},
+            {"frames", job_.frames},
+            {"timed_frames", frameMs_.size()},
+            {"warmup_frames", job_.warmupFrames},
+            {"interpolated_frames", interpolatedFrames_},
+            {"pass_timing", gl::passTimingDescription()},
+            {"method_stats", methodStats},
+        };
+        for (auto& [key, value] : methodStats.items()) {
+            if (out.stats.contains(key) && key != "max_fragments" && key != "frames") out.stats[key] = value;
         }
+        if (compared_) {
+            out.stats["reference_method"] = reference_ ? job_.referenceMethod : std::string("precomputed images");
+            out.stats["error"] = {
+                {"real", {{"frames", mseReal_.size()}, {"mse_mean", nullableMean(mseReal_)}, {"flip_mean", nullableMean(flipReal_)}}},
+                {"interpolated",
+                 {{"frames", mseInterp_.size()}, {"mse_mean", nullableMean(mseInterp_)}, {"flip_mean", nullableMean(flipInterp_)}}},
+            };
+            if (const auto flash = worstInterpolatedFlash(msePerFrame_)) {
+                out.stats["error"]["interpolated_flash"] = {{"worst_ratio", flash->ratio}, {"frame", flash->frame}};
+            }
+        }
+        return out;
     }
-    return out;
-}
+
+    const SceneGpu& scene_;
+    const RenderJob& job_;
+    const SurfaceShader surface_;
+    std::unique_ptr<OitMethod> method_, reference_;
+    bool compared_ = false;
+    FrameDesc frame_;
+    gl::GpuPassTimer timer_;
+    DrawCallback draw_;             // the last frame's, for the depth-complexity count
+    Image image_, referenceImage_;  // the last frame read back, and its reference
+    // Timed frames (after the warm-up): frame times, per-pass times and work counters.
+    std::vector<double> frameMs_, realMs_, interpolatedMs_;
+    std::map<std::string, std::vector<double>> passMs_;
+    std::map<std::string, gl::PassCounters> counterSums_;
+    int interpolatedFrames_ = 0;
+    // Errors of the compared frames, by kind, and in order (for the flash).
+    std::vector<double> mseReal_, mseInterp_, flipReal_, flipInterp_;
+    std::vector<std::pair<bool, double>> msePerFrame_;
+};
+
+}  // namespace
+
+RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) { return SceneRun(scene, job).run(); }
 
 std::optional<InterpolatedFlash> worstInterpolatedFlash(const std::vector<std::pair<bool, double>>& msePerFrame) {
     std::optional<InterpolatedFlash> worst;
