@@ -7,7 +7,7 @@
 #include "starnt/error.hpp"
 #include "test_support.hpp"
 #include "viewer/camera_controller.hpp"
-#include "viewer/frame_statistics.hpp"
+#include "viewer/frame_time_medians.hpp"
 #include "viewer/scene_catalog.hpp"
 #include "viewer/viewer_script.hpp"
 #include "viewer/viewer_settings.hpp"
@@ -208,7 +208,7 @@ TEST(ViewerStatistics, RunningMedianOverAWindow) {
     EXPECT_EQ(m.median(), 2.0);
     EXPECT_EQ(m.size(), 3u);
 
-    FrameStatistics f;
+    FrameTimeMedians f;
     f.addFrame(5.0, {{"pass1", 2.0}}, false);
     f.addFrame(50.0, {{"pass1", 20.0}}, true);
     f.addFrame(6.0, {{"pass1", 3.0}}, false);

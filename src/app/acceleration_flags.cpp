@@ -1,5 +1,5 @@
 #include "app/commands.hpp"
-#include "render/method_options.hpp"
+#include "render/option_text.hpp"
 
 namespace starnt::app {
 

@@ -7,7 +7,7 @@
 #include "bench/bench_output.hpp"
 #include "bench/bench_plan.hpp"
 #include "bench/bench_runner.hpp"
-#include "render/method_options.hpp"
+#include "render/option_text.hpp"
 #include "render/offscreen_renderer.hpp"
 #include "starnt/error.hpp"
 

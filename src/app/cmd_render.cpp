@@ -9,7 +9,7 @@
 #include "methods/mboit/mboit_settings.hpp"
 #include "methods/neural/neural_method.hpp"
 #include "methods/registry.hpp"
-#include "render/method_options.hpp"
+#include "render/option_text.hpp"
 #include "render/offscreen_renderer.hpp"
 #include "starnt/error.hpp"
 #include "starnt/tools/gl_context.hpp"

@@ -1,5 +1,5 @@
 #include "bench/bench_plan.hpp"
-#include "render/method_options.hpp"
+#include "render/option_text.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -5,7 +5,7 @@
 #include <set>
 #include <sstream>
 
-#include "render/method_options.hpp"
+#include "render/option_text.hpp"
 
 namespace starnt::bench {
 namespace {

@@ -1,6 +1,6 @@
 #include "render/frame_stats_json.hpp"
 
-#include "render/method_options.hpp"
+#include "render/option_text.hpp"
 
 namespace starnt {
 

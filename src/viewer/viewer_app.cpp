@@ -11,7 +11,7 @@
 #include <memory>
 #include <optional>
 
-#include "render/method_options.hpp"
+#include "render/option_text.hpp"
 #include "render/offscreen_renderer.hpp"
 #include "starnt/error.hpp"
 #include "viewer/display_pass.hpp"
@@ -426,7 +426,7 @@ private:
     DisplayPass displayPass_;
     ErrorView errorView_;
     CameraController camera_;
-    FrameStatistics stats_;
+    FrameTimeMedians stats_;
     RenderedFrame lastFrame_;
     UiRequests pendingUi_;
 

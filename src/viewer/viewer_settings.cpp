@@ -5,7 +5,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "render/method_options.hpp"
+#include "render/option_text.hpp"
 #include "starnt/error.hpp"
 
 namespace starnt::viewer {

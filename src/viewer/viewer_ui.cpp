@@ -6,7 +6,7 @@
 #include <cstdio>
 
 #include "methods/neural/tiles/tile_constants.h"
-#include "render/method_options.hpp"
+#include "render/option_text.hpp"
 #include "starnt/error.hpp"
 
 namespace starnt::viewer {
@@ -180,7 +180,7 @@ void timingPanel(const UiModel& m) {
     else ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - 8, 8), ImGuiCond_FirstUseEver, ImVec2(1, 0));
     ImGui::SetNextWindowBgAlpha(0.85f);
     ImGui::Begin("Timing", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
-    const FrameStatistics& s = *m.stats;
+    const FrameTimeMedians& s = *m.stats;
     ImGui::Text("%dx%d  %s", m.width, m.height, m.renderer.c_str());
     ImGui::Text("method frame %.2f ms (median), %.1f FPS", s.frameMedianMs(), s.frameMedianMs() > 0 ? 1000.0 / s.frameMedianMs() : 0.0);
     ImGui::Text("whole frame %.2f ms (with display, UI, swap)", s.displayFrameMedianMs());

@@ -13,7 +13,7 @@
 
 #include "starnt/oit_method.hpp"
 #include "viewer/camera_controller.hpp"
-#include "viewer/frame_statistics.hpp"
+#include "viewer/frame_time_medians.hpp"
 #include "viewer/scene_catalog.hpp"
 #include "viewer/viewer_settings.hpp"
 
@@ -27,7 +27,7 @@ struct UiModel {
     std::string error;    // shown in red until the next successful action
     std::string message;  // e.g. where the last screenshot went
     CameraMode cameraMode = CameraMode::Orbit;
-    const FrameStatistics* stats = nullptr;
+    const FrameTimeMedians* stats = nullptr;
     FrameStats methodStats;  // the primary method's lastFrameStats()
     std::map<std::string, gl::PassCounters> passCounters;  // the primary method's last frame
     bool tilesAvailable = false;

@@ -1,4 +1,4 @@
-#include "render/method_options.hpp"
+#include "render/option_text.hpp"
 
 #include <cmath>
 #include <iomanip>

@@ -1,4 +1,4 @@
-#include "viewer/frame_statistics.hpp"
+#include "viewer/frame_time_medians.hpp"
 
 #include "render/offscreen_renderer.hpp"
 
@@ -15,7 +15,7 @@ double RunningMedian::median() const {
     return starnt::median(std::vector<double>(values_.begin(), values_.end()));  // 0 when empty
 }
 
-void FrameStatistics::addFrame(double frameMs, const std::map<std::string, double>& passMs, bool interpolated) {
+void FrameTimeMedians::addFrame(double frameMs, const std::map<std::string, double>& passMs, bool interpolated) {
     frame_.add(frameMs);
     for (const auto& [name, ms] : passMs) passes_[name].add(ms);
     graph_.push_back(float(frameMs));
@@ -23,9 +23,9 @@ void FrameStatistics::addFrame(double frameMs, const std::map<std::string, doubl
     (interpolated ? interpolatedFrames_ : realFrames_) += 1;
 }
 
-void FrameStatistics::clear() { *this = FrameStatistics(); }
+void FrameTimeMedians::clear() { *this = FrameTimeMedians(); }
 
-std::map<std::string, double> FrameStatistics::passMedianMs() const {
+std::map<std::string, double> FrameTimeMedians::passMedianMs() const {
     std::map<std::string, double> out;
     for (const auto& [name, m] : passes_) out[name] = m.median();
     return out;

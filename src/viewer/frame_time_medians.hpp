@@ -23,7 +23,7 @@ private:
     std::deque<double> values_;
 };
 
-class FrameStatistics {
+class FrameTimeMedians {
 public:
     static constexpr size_t kGraphFrames = 240;
 
