@@ -145,3 +145,15 @@ TEST(Misuse, EngineStateLeftSetDoesNotChangeTheImage) {
         glDepthRangef(0.0f, 1.0f);
     }
 }
+
+// The suite's GL tests fail on any GL error raised while they run (test_support.cpp, KHR_debug):
+// the watch itself sees an error provoked on purpose.
+TEST(Misuse, TheSuiteSeesGlErrors) {
+    if (!test::glErrorsWatched()) GTEST_SKIP() << "this context delivers no KHR_debug error messages (Mesa's ES context)";
+    test::takeExpectedGlErrors();
+    GLuint never = 0xBAD0;
+    glBindBuffer(GL_ARRAY_BUFFER, never);  // not a buffer name: GL_INVALID_OPERATION
+    EXPECT_EQ(takeGlError(), GLenum(GL_INVALID_OPERATION));
+    const std::vector<std::string> seen = test::takeExpectedGlErrors();
+    EXPECT_FALSE(seen.empty()) << "the KHR_debug watch missed a GL error";
+}

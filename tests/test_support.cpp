@@ -31,13 +31,81 @@ std::filesystem::path makeTempDir(const std::string& tag) {
 
 #include "starnt/tools/gl_context.hpp"
 
+#include <epoxy/gl.h>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
 namespace starnt::test {
+namespace {
+
+// GL errors of the running test, from the context's KHR_debug output (docs/INTEGRATION.md: the
+// library raises no GL error in any documented call sequence). A test that provokes one on purpose
+// clears them with takeExpectedGlErrors().
+std::vector<std::string>& glErrorsSeen() {
+    static std::vector<std::string> errors;
+    return errors;
+}
+
+void GLAPIENTRY onGlDebugMessage(GLenum, GLenum type, GLuint, GLenum, GLsizei, const GLchar* message, const void*) {
+    if (type == GL_DEBUG_TYPE_ERROR && glErrorsSeen().size() < 16) glErrorsSeen().emplace_back(message);
+}
+
+// Fails the test process when a test raised a GL error (a listener cannot mark the test failed
+// once it has ended; the non-zero exit fails it in CTest, which runs one test per process).
+class GlErrorListener : public ::testing::EmptyTestEventListener {
+    void OnTestStart(const ::testing::TestInfo&) override { glErrorsSeen().clear(); }
+    void OnTestEnd(const ::testing::TestInfo& info) override {
+        if (glErrorsSeen().empty()) return;
+        std::fprintf(stderr, "FAILED: %s.%s raised %zu GL error(s) (KHR_debug):\n", info.test_suite_name(), info.name(),
+                     glErrorsSeen().size());
+        for (const auto& e : glErrorsSeen()) std::fprintf(stderr, "  %s\n", e.c_str());
+        std::fflush(stderr);
+        std::_Exit(3);
+    }
+};
+
+bool gWatching = false;
+
+// Watches where the context delivers error messages: checked by provoking one (Mesa's desktop
+// contexts do; its ES contexts, not created as debug contexts, deliver none).
+void watchGlErrors() {
+    const bool debug = epoxy_is_desktop_gl() ? epoxy_gl_version() >= 43 : epoxy_gl_version() >= 32;
+    if (!debug) return;
+    glEnable(GL_DEBUG_OUTPUT);
+    glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+    glDebugMessageCallback(onGlDebugMessage, nullptr);
+    glBindBuffer(GL_ARRAY_BUFFER, 0xBAD0);  // not a buffer name
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    gWatching = !glErrorsSeen().empty();
+    glErrorsSeen().clear();
+    if (gWatching) ::testing::UnitTest::GetInstance()->listeners().Append(new GlErrorListener);
+}
+
+}  // namespace
+
+bool glErrorsWatched() {
+    glContext();
+    return gWatching;
+}
+
+std::vector<std::string> takeExpectedGlErrors() {
+    std::vector<std::string> taken;
+    taken.swap(glErrorsSeen());
+    return taken;
+}
+
 HeadlessGlContext& glContext() {
     // STARNT_TEST_GL_API=gles runs a GL test executable on an OpenGL ES 3.2 context instead (CTest
     // registers the GL tests a second time that way, as Gles.*).
     static HeadlessGlContext* context = [] {
         const char* api = std::getenv("STARNT_TEST_GL_API");
-        return new HeadlessGlContext(api ? parseGlApi(api) : GlApi::Desktop);
+        auto* made = new HeadlessGlContext(api ? parseGlApi(api) : GlApi::Desktop);
+        made->makeCurrent();
+        watchGlErrors();
+        return made;
     }();  // lives until exit
     context->makeCurrent();
     return *context;

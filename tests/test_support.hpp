@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "reference/fragment_capture.hpp"
 #include "render/offscreen_renderer.hpp"
@@ -34,8 +35,12 @@ class HeadlessGlContext;
 }
 
 namespace starnt::test {
-// One headless GL context per test process, created on first use.
+// One headless GL context per test process, created on first use. GL errors raised while a test
+// runs (KHR_debug) fail it, unless the test clears the ones it provoked with takeExpectedGlErrors().
 HeadlessGlContext& glContext();
+std::vector<std::string> takeExpectedGlErrors();  // and returns them
+// Whether this context delivers KHR_debug error messages (the watch above runs only then).
+bool glErrorsWatched();
 }  // namespace starnt::test
 
 
