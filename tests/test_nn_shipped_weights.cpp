@@ -49,8 +49,8 @@ TEST_P(ShippedWeights, RetrainingWithTheDefaultsGivesTheSameBytes) {
         if (first.empty()) first = got;
         EXPECT_TRUE(got == first) << network << extra << ": two trainings of the same set differ";
         if (got == want) continue;
-        // Another CPU: the C library's transcendental functions and llvmpipe's JIT code differ in
-        // their last bits between processors (measured: the same input normalisation to the last
+        // Another CPU: most likely the C library's transcendental functions and llvmpipe's JIT code,
+        // which differ in their last bits between processors (measured: the same input normalisation to the last
         // digit, different weights), and training amplifies that. The file must still be the same
         // recipe (every field but the weights and the validation error) reaching the same quality.
         nlohmann::json a = nlohmann::json::parse(got), b = nlohmann::json::parse(want);
