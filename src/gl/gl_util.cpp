@@ -21,8 +21,10 @@ bool hasCurrentContext() {
         GetCurrent egl = nullptr, glx = nullptr;
     };
     static thread_local Api api;  // per thread: no lock, and cheap after the first look-up
-    // Looked up again until one is found: the engine may load its library after us.
-    if (!api.egl || !api.glx) {
+    // Looked up until one is found (the engine may load its library after us), then never again:
+    // render() and every released name ask, and a context can only be current once the library
+    // that made it is loaded, so the first look-up with a context current finds it.
+    if (!api.egl && !api.glx) {
         auto find = [](std::initializer_list<const char*> libraries, const char* symbol) -> GetCurrent {
             for (const char* library : libraries) {
                 if (void* handle = dlopen(library, RTLD_LAZY | RTLD_NOLOAD)) {

@@ -49,6 +49,7 @@ double mean(const std::vector<double>& v) {
 namespace {
 
 nlohmann::json nullableMean(const std::vector<double>& v) { return v.empty() ? nlohmann::json(nullptr) : nlohmann::json(mean(v)); }
+nlohmann::json nullableMedian(const std::vector<double>& v) { return v.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(v)); }
 
 // `pass_counters`: pass name -> {"vertex_invocations", "fragment_invocations", "primitives"},
 // each divided by `frames` (the mean per frame over several frames; passes a frame did not run
@@ -205,10 +206,6 @@ private:
         untimed.timing = nullptr;
         const unsigned maxFragments = counter.count(untimed, draw_);
 
-        auto orNull = [](const std::vector<double>& v, double (*f)(std::vector<double>)) {
-            return v.empty() ? nlohmann::json(nullptr) : nlohmann::json(f(v));
-        };
-        auto meanOf = [](std::vector<double> v) { return mean(v); };
         nlohmann::json passes = nlohmann::json::object();
         for (auto& [name, values] : passMs_) passes[name] = median(values);
         nlohmann::json methodStats = frameStatsJson(method_->lastFrameStats());
@@ -218,10 +215,10 @@ private:
             {"height", job_.height},
             {"frame_ms", median(frameMs_)},
             {"frame_ms_mean", mean(frameMs_)},
-            {"real_frame_ms", orNull(realMs_, median)},
-            {"interpolated_frame_ms", orNull(interpolatedMs_, median)},
-            {"real_frame_ms_mean", orNull(realMs_, meanOf)},
-            {"interpolated_frame_ms_mean", orNull(interpolatedMs_, meanOf)},
+            {"real_frame_ms", nullableMedian(realMs_)},
+            {"interpolated_frame_ms", nullableMedian(interpolatedMs_)},
+            {"real_frame_ms_mean", nullableMean(realMs_)},
+            {"interpolated_frame_ms_mean", nullableMean(interpolatedMs_)},
             {"pass_ms", passes},
             {"pass_counters", countersJson(counterSums_, frameMs_.size())},
             {"pass_counters_source", timer_.countersAvailable() ? "GL_ARB_pipeline_statistics_query, mean per timed frame"

@@ -293,20 +293,17 @@ void NeuralPasses::runNearestAndSums(const FrameDesc& frame, const DrawCallback&
     runNearest(frame, draw);
     prepareNearestAndSums();
     pass3Size_ = {width_, height_};
-    {
-        const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1};
-        gl::ScopedPass timing(frame.timing, "pass3");
-        glBindFramebuffer(GL_FRAMEBUFFER, sumsFb_.id());
-        glViewport(0, 0, width_, height_);
-        glClearBufferfv(GL_COLOR, 0, zero);
-        glClearBufferfv(GL_COLOR, 1, one);
-        glEnable(GL_BLEND);
-        glBlendFunci(0, GL_ONE, GL_ONE);
-        glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
-        MethodBase::runGeometryPass("pass3", pass3Sums_, frame, draw);
-        resetPassState();
-    }
+    const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1};
+    gl::ScopedPass timing(frame.timing, "pass3");
+    glBindFramebuffer(GL_FRAMEBUFFER, sumsFb_.id());
     glViewport(0, 0, width_, height_);
+    glClearBufferfv(GL_COLOR, 0, zero);
+    glClearBufferfv(GL_COLOR, 1, one);
+    glEnable(GL_BLEND);
+    glBlendFunci(0, GL_ONE, GL_ONE);
+    glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
+    MethodBase::runGeometryPass("pass3", pass3Sums_, frame, draw);
+    resetPassState();
 }
 
 void NeuralPasses::bindInputs(const gl::Program& program) const {
