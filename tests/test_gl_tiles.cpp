@@ -416,7 +416,8 @@ void main() {
 TEST(GlTiles, ReducedPassesSampleFullPixelCentres) {
     test::TestScene c(makeBuiltinScene("tubes", 3), 96, 64, 30.0f, 20.0f, kBackground);
     // 32-bit targets: the algorithm against its CPU reference (the compact rounding is tested apart).
-    NeuralPasses passes(SceneGpu::surfaceShader(), true, NeuralOptions::Targets::Float32);
+    OpaqueScene opaque;
+    NeuralPasses passes(SceneGpu::surfaceShader(), opaque, true, NeuralOptions::Targets::Float32);
     const FrameDesc frame = c.frame();
     const DrawCallback draw = c.gpu->callback(frame.view, frame.projection, {});
     const Size2 full{c.width, c.height};

@@ -99,10 +99,10 @@ TEST(TemporalCorrected, GpuMatchesCpuReference) {
     TemporalFrames temporal(correctedOptions());
     const glm::mat4 oldVP = test::turnedViewProj(w, h, 0.0f), newVP = test::turnedViewProj(w, h, 1.0f);
     ASSERT_TRUE(temporal.beginFrame(w, h));
-    EXPECT_THROW(temporal.endRealFrame(rc.id(), {.nearestDepth = rd.id()}, oldVP, w, h), Error) << "corrected frames need the nearest layer";
-    temporal.endRealFrame(rc.id(), {rn.id(), rd.id(), rs.id(), rt.id()}, oldVP, w, h, kBackground);
+    EXPECT_THROW(temporal.endRealFrame(rc.id(), {.nearestDepth = rd.id()}, oldVP, w, h, OpaqueScene(kBackground)), Error) << "corrected frames need the nearest layer";
+    temporal.endRealFrame(rc.id(), {rn.id(), rd.id(), rs.id(), rt.id()}, oldVP, w, h, OpaqueScene(kBackground));
     ASSERT_FALSE(temporal.beginFrame(w, h));
-    temporal.interpolate(newVP, {fn.id(), fd.id(), fs.id(), ft.id()}, kBackground, output.id());
+    temporal.interpolate(newVP, {fn.id(), fd.id(), fs.id(), ft.id()}, OpaqueScene(kBackground), output.id());
     const std::vector<glm::vec4> gpu = readRgba(output.id(), w, h);
 
     CorrectionSource source{w, h, composite, real.depth, real.nearest, real.sums, real.transmittance};
@@ -139,9 +139,9 @@ TEST(TemporalCorrected, WithoutSumsTheClosedFormAloneAndResetsAreReal) {
     TemporalFrames temporal(correctedOptions());
     const glm::mat4 oldVP = test::turnedViewProj(w, h, 0.0f), newVP = test::turnedViewProj(w, h, 1.0f);
     ASSERT_TRUE(temporal.beginFrame(w, h));
-    temporal.endRealFrame(rc.id(), {.nearest = rn.id(), .nearestDepth = rd.id()}, oldVP, w, h, kBackground);
+    temporal.endRealFrame(rc.id(), {.nearest = rn.id(), .nearestDepth = rd.id()}, oldVP, w, h, OpaqueScene(kBackground));
     ASSERT_FALSE(temporal.beginFrame(w, h));
-    temporal.interpolate(newVP, {fn.id(), fd.id(), fs.id(), ft.id()}, kBackground, output.id());
+    temporal.interpolate(newVP, {fn.id(), fd.id(), fs.id(), ft.id()}, OpaqueScene(kBackground), output.id());
     const std::vector<glm::vec4> gpu = readRgba(output.id(), w, h);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
@@ -151,7 +151,7 @@ TEST(TemporalCorrected, WithoutSumsTheClosedFormAloneAndResetsAreReal) {
             for (int ch = 0; ch < 3; ++ch) ASSERT_NEAR(gpu[i][ch], want[ch], 1e-5f) << x << "," << y;
         }
     EXPECT_TRUE(temporal.beginFrame(w, h)) << "K = 2: real";
-    temporal.endRealFrame(rc.id(), {.nearest = rn.id(), .nearestDepth = rd.id()}, oldVP, w, h, kBackground);
+    temporal.endRealFrame(rc.id(), {.nearest = rn.id(), .nearestDepth = rd.id()}, oldVP, w, h, OpaqueScene(kBackground));
     EXPECT_TRUE(temporal.beginFrame(w + 1, h)) << "another size: real";
     temporal.reset();
     EXPECT_TRUE(temporal.beginFrame(w, h)) << "after a reset: real";

@@ -62,12 +62,12 @@ TEST(TemporalRefresh, GpuMatchesCpuReference) {
     TemporalFrames temporal(options);
     const glm::mat4 oldVP = test::turnedViewProj(w, h, 0.0f), newVP = test::turnedViewProj(w, h, 3.0f);
     ASSERT_TRUE(temporal.beginFrame(w, h));
-    EXPECT_THROW(temporal.endRealFrame(color.id(), {.nearestDepth = depth.id()}, oldVP, w, h), Error)
+    EXPECT_THROW(temporal.endRealFrame(color.id(), {.nearestDepth = depth.id()}, oldVP, w, h, OpaqueScene(kBackground)), Error)
         << "refresh needs the nearest layer";
-    temporal.endRealFrame(color.id(), {.nearest = kn.id(), .nearestDepth = depth.id()}, oldVP, w, h);
+    temporal.endRealFrame(color.id(), {.nearest = kn.id(), .nearestDepth = depth.id()}, oldVP, w, h, OpaqueScene(kBackground));
     ASSERT_FALSE(temporal.beginFrame(w, h));
     EXPECT_EQ(temporal.interpolatedPasses(), TemporalFrames::Passes::Nearest);
-    temporal.interpolate(newVP, {.nearest = fresh.id(), .nearestDepth = freshDepthTexture.id()}, kBackground, output.id());
+    temporal.interpolate(newVP, {.nearest = fresh.id(), .nearestDepth = freshDepthTexture.id()}, OpaqueScene(kBackground), output.id());
     const std::vector<glm::vec4> gpu = readRgba(output.id(), w, h);
     const Reprojection r = makeReprojection(oldVP, newVP);
     const std::vector<ReprojectionSource> sources = reprojectionSearchOnCpu(kept, r);

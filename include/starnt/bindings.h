@@ -12,7 +12,7 @@
 #define STARNT_BINDINGS_H
 
 /* ---- What is left to the engine ---- */
-#define STARNT_ENGINE_FIRST_TEXTURE_UNIT 8
+#define STARNT_ENGINE_FIRST_TEXTURE_UNIT 9
 #define STARNT_ENGINE_FIRST_IMAGE_UNIT 2
 #define STARNT_ENGINE_FIRST_SSBO_BINDING 9
 
@@ -30,6 +30,11 @@
  * corner inference for it; narrow layers are DFAOIT's). */
 #define STARNT_UNIT_TAIL_MOMENT1 6
 #define STARNT_UNIT_TAIL_MOMENT2 7
+/* Every method: the engine's opaque scene (FrameDesc::backgroundTexture in the composites,
+ * FrameDesc::opaqueDepth where the methods copy it into their own depth targets). Bound through a
+ * sampler object of the method's (nearest, clamped, no depth compare), so the engine's texture
+ * parameters never matter and are never changed. */
+#define STARNT_UNIT_OPAQUE 8
 
 /* ---- Shader storage buffer bindings ---- */
 #define STARNT_SSBO_ABUFFER_HEADS 0

@@ -6,8 +6,9 @@
 //     wraps it in each of its geometry passes' fragment `main`;
 //   - a DrawCallback, called once per geometry pass with the pass's program already bound and the
 //     pass's GL state set; the engine sets its own uniforms on that program and issues its draws.
-// After render() the result is in outputTexture(): linear RGBA float, composited over the background,
-// alpha 1, at the frame size; RGBA32F for most methods, RGBA16F for starnt, dfaoit, hybrid and
+// After render() the result is in outputTexture(): linear RGBA float, composited over the background
+// (FrameDesc::background or backgroundTexture), alpha 1 (or premultiplied: FrameDesc::premultipliedOutput),
+// at the frame size; RGBA32F for most methods, RGBA16F for starnt, dfaoit, hybrid and
 // starnt-residual with their default compact targets (NeuralOptions::Targets; hybrid-moments and
 // starnt-d: 16-bit values in an RGBA32F texture), which may hand out one of their pass targets,
 // written over in place. Read it before the next render().
@@ -69,11 +70,28 @@ public:
 struct FrameDesc {
     int width = 0;
     int height = 0;
-    glm::vec3 background{1.0f};  // linear
+    glm::vec3 background{1.0f};  // linear; where backgroundTexture is 0
     glm::mat4 view{1.0f};
     glm::mat4 projection{1.0f};
     float alphaCutoff = 0.03f;          // fragments with alpha below are discarded in every pass
     PassTimingHook* timing = nullptr;   // optional per-pass timing (not owned)
+
+    // The engine's opaque scene, drawn before the methods run (docs/INTEGRATION.md, "Opaque
+    // geometry"). Both are read, never written; 0 = none.
+    // opaqueDepth: the engine's depth texture (GL_TEXTURE_2D, DEPTH_COMPONENT16/24/32F or
+    // DEPTH24_STENCIL8 / DEPTH32F_STENCIL8, frame size, written with this view and projection and
+    // depth range 0..1). Every geometry pass of every method drops the fragments at or behind it
+    // (window depth >= the opaque depth), by a depth test before the fragment shader runs.
+    GLname opaqueDepth = 0;
+    // backgroundTexture: the engine's opaque colour (GL_TEXTURE_2D, a colour format, linear RGB,
+    // frame size). The output is composited over it per pixel instead of over `background`.
+    GLname backgroundTexture = 0;
+    // Premultiplied output for engines that blend the result into their own target: the output's
+    // RGB is the transparent layers composited over black and its alpha the total transmittance
+    // prod(1 - a), so that blending it with glBlendFunc(GL_ONE, GL_SRC_ALPHA) onto the engine's
+    // colour (dst = src.rgb + src.a * dst) gives the composite over that colour. backgroundTexture
+    // and background are then not read.
+    bool premultipliedOutput = false;
 };
 
 class OitMethod {

@@ -63,6 +63,7 @@ void deleteFramebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
 void deleteVertexArray(GLuint id) { glDeleteVertexArrays(1, &id); }
 void deleteProgram(GLuint id) { glDeleteProgram(id); }
 void deleteQuery(GLuint id) { glDeleteQueries(1, &id); }
+void deleteSampler(GLuint id) { glDeleteSamplers(1, &id); }
 
 size_t bytesPerTexel(GLenum f) {
     switch (f) {
@@ -257,6 +258,55 @@ FramebufferHandle makeFramebufferName() {
         glCreateFramebuffers(1, &id);
     }
     return FramebufferHandle(id);
+}
+
+bool isDepthFormat(GLenum f) {
+    switch (f) {
+        case GL_DEPTH_COMPONENT16:
+        case GL_DEPTH_COMPONENT24:
+        case GL_DEPTH_COMPONENT32:
+        case GL_DEPTH_COMPONENT32F:
+        case GL_DEPTH24_STENCIL8:
+        case GL_DEPTH32F_STENCIL8:
+            return true;
+        default:
+            return false;
+    }
+}
+
+TextureDescription describeTexture(GLuint texture, GLuint unit) {
+    TextureDescription d;
+    if (texture == 0 || !glIsTexture(texture)) return d;
+    GLint width = 0, height = 0, format = 0, redType = 0;
+    if (isEs()) {
+        glActiveTexture(GL_TEXTURE0 + unit);
+        glBindTexture(GL_TEXTURE_2D, 0);
+        glBindTexture(GL_TEXTURE_2D, texture);
+        GLint bound = 0;
+        glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
+        if (GLuint(bound) != texture) {
+            glGetError();  // the failed bind's GL_INVALID_OPERATION
+            return d;
+        }
+        glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &width);
+        glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &height);
+        glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+        glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_RED_TYPE, &redType);
+    } else {
+        GLint target = 0;
+        glGetTextureParameteriv(texture, GL_TEXTURE_TARGET, &target);
+        if (target != GL_TEXTURE_2D) return d;
+        glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_WIDTH, &width);
+        glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_HEIGHT, &height);
+        glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+        glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_RED_TYPE, &redType);
+    }
+    d.is2D = true;
+    d.width = width;
+    d.height = height;
+    d.internalFormat = GLenum(format);
+    d.integer = redType == GL_INT || redType == GL_UNSIGNED_INT;
+    return d;
 }
 
 GLenum attachTexture(GLuint framebuffer, GLenum attachment, GLuint texture) {

@@ -56,10 +56,12 @@ void deleteFramebuffer(GLuint id);
 void deleteVertexArray(GLuint id);
 void deleteProgram(GLuint id);
 void deleteQuery(GLuint id);
+void deleteSampler(GLuint id);
 
 using FramebufferHandle = Handle<deleteFramebuffer>;
 using VertexArrayHandle = Handle<deleteVertexArray>;
 using QueryHandle = Handle<deleteQuery>;
+using SamplerHandle = Handle<deleteSampler>;
 
 // Bytes per texel of the sized internal formats we use.
 size_t bytesPerTexel(GLenum internalFormat);
@@ -123,6 +125,19 @@ std::vector<float> readTextureFloats(GLuint texture, int width, int height, int 
 void uploadTexture(GLuint texture, int width, int height, GLenum format, GLenum type, const void* pixels);
 // The sized internal format of level 0 (glGetTextureLevelParameteriv; ES 3.1: glGetTexLevelParameteriv).
 GLenum textureInternalFormat(GLuint texture);
+// What a texture name the engine gave is (FrameDesc::opaqueDepth, backgroundTexture): whether it
+// names a 2D texture, and level 0's size and sized internal format. Desktop: glIsTexture and the
+// direct-state queries, which raise no GL error. ES cannot ask a texture's target: it binds the name
+// to GL_TEXTURE_2D of `unit` and reads the binding back (a texture of another target fails that
+// bind with a GL_INVALID_OPERATION, which this then clears).
+struct TextureDescription {
+    bool is2D = false;
+    int width = 0, height = 0;
+    GLenum internalFormat = 0;
+    bool integer = false;  // an integer colour format (sampled by a float sampler: undefined)
+};
+TextureDescription describeTexture(GLuint texture, GLuint unit);
+bool isDepthFormat(GLenum internalFormat);
 // A framebuffer name (glCreateFramebuffers; ES: glGenFramebuffers + a first bind, which creates it).
 FramebufferHandle makeFramebufferName();
 // Attaches level 0 of `texture` (or 0 to detach) and checks completeness; returns the status.

@@ -21,7 +21,9 @@ FragmentCapture::FragmentCapture(const SurfaceShader& surface, const MethodOptio
                                   "#define STARNT_ABUFFER_CAPTURE_ORDER 1\n")) {}
 
 CapturedFrame FragmentCapture::capture(const FrameDesc& frame, const DrawCallback& draw) {
-    lists_.build(frame, draw, build_);
+    opaque_.begin(frame);
+    lists_.build(frame, draw, build_, &opaque_);
+    opaque_.end();
     glFinish();
     const size_t pixelCount = size_t(frame.width) * size_t(frame.height);
     const size_t count = size_t(lists_.fragmentCount());
@@ -69,9 +71,13 @@ unsigned DepthComplexityCounter::count(const FrameDesc& frame, const DrawCallbac
     bindOutputFramebuffer();
     const float zero[4] = {0, 0, 0, 0};
     glClearBufferfv(GL_COLOR, 0, zero);
+    opaque_.begin(frame);
+    opaque_.beginDepthTest(outputFb_.id(), width_, height_, width_, height_);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
     runGeometryPass("count", program_, frame, draw);
+    opaque_.endDepthTest(outputFb_.id());
+    opaque_.end();
     resetPassState();
     const std::vector<float> counts = gl::readTextureFloats(output_.id(), width_, height_, 1);
     float m = 0.0f;

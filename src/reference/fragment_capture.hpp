@@ -18,11 +18,12 @@ struct CapturedFrame {
 class FragmentCapture : public MethodBase {
 public:
     explicit FragmentCapture(const SurfaceShader& surface, const MethodOptions& options = {});
+    // Every fragment the methods' passes see: clipped by the frame's opaque depth, if it has one.
     CapturedFrame capture(const FrameDesc& frame, const DrawCallback& draw);
 
     // OitMethod (unused: capture has no image output)
     std::string name() const override { return "capture"; }
-    void render(const FrameDesc& frame, const DrawCallback& draw) override { capture(frame, draw); }
+    void renderFrame(const FrameDesc& frame, const DrawCallback& draw) override { capture(frame, draw); }
     size_t gpuMemoryBytes() const override { return lists_.gpuMemoryBytes(); }
 
 private:
@@ -35,10 +36,11 @@ private:
 class DepthComplexityCounter : public MethodBase {
 public:
     explicit DepthComplexityCounter(const SurfaceShader& surface);
+    // Clipped by the frame's opaque depth, if it has one.
     unsigned count(const FrameDesc& frame, const DrawCallback& draw);
 
     std::string name() const override { return "count"; }
-    void render(const FrameDesc& frame, const DrawCallback& draw) override { count(frame, draw); }
+    void renderFrame(const FrameDesc& frame, const DrawCallback& draw) override { count(frame, draw); }
     size_t gpuMemoryBytes() const override { return outputBytes(); }
 
 private:

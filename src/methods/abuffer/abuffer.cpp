@@ -25,14 +25,14 @@ public:
         return stats;
     }
 
-    void render(const FrameDesc& frame, const DrawCallback& draw) override {
+    void renderFrame(const FrameDesc& frame, const DrawCallback& draw) override {
         resizeOutput(frame.width, frame.height);
-        lists_.build(frame, draw, build_);
+        lists_.build(frame, draw, build_, &opaque_);
         gl::ScopedPass timing(frame.timing, "resolve");
         lists_.bindBuffers();
         glUseProgram(resolve_.id());
         glUniform2i(resolve_.uniform("u_size"), width_, height_);
-        glUniform3fv(resolve_.uniform("u_background"), 1, &frame.background[0]);
+        bindBackground(resolve_);
         glBindImageTexture(0, output_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         glDispatchCompute(GLuint((width_ + 7) / 8), GLuint((height_ + 7) / 8), 1);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);

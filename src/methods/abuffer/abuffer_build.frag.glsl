@@ -4,6 +4,10 @@
 // frame needed and can grow the pool and render again: no fragment is ever silently dropped.
 #include "starnt/bindings.h"
 
+// The depth test against the engine's opaque depth (OpaqueScene) must drop a fragment before it
+// is appended: a late test would run after the shader's stores.
+layout(early_fragment_tests) in;
+
 layout(std430, binding = STARNT_SSBO_ABUFFER_HEADS) coherent buffer Heads { uint heads[]; };
 layout(std430, binding = STARNT_SSBO_ABUFFER_NODES) writeonly buffer Nodes { uvec4 nodes[]; };
 layout(std430, binding = STARNT_SSBO_ABUFFER_COUNTERS) coherent buffer Counters { uint counters[4]; };

@@ -44,7 +44,8 @@ void ABufferLists::bindBuffers() const {
     if (captureOrder_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, STARNT_SSBO_ABUFFER_ORDERS, orders_.id());
 }
 
-void ABufferLists::build(const FrameDesc& frame, const DrawCallback& draw, const gl::Program& program) {
+void ABufferLists::build(const FrameDesc& frame, const DrawCallback& draw, const gl::Program& program,
+                         OpaqueScene* clip) {
     const double initial = double(frame.width) * double(frame.height) * std::max(0.0, options_.abuffer.initialNodesPerPixel);
     uint64_t wanted = std::max<uint64_t>({capacity_, uint64_t(initial), 16});
     if (frame.width != width_ || frame.height != height_ || wanted != capacity_) {
@@ -64,9 +65,12 @@ void ABufferLists::build(const FrameDesc& frame, const DrawCallback& draw, const
         glUniform1i(program.uniform("u_width"), width_);
         {
             gl::ScopedPass timing(frame.timing, "build");
+            if (clip) clip->beginDepthTest(emptyFb_.id(), width_, height_, width_, height_);
+            glUseProgram(program.id());
             glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
             MethodBase::runGeometryPass(captureOrder_ ? "abuffer_capture" : "abuffer_build", program, frame, draw);
             glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+            if (clip) clip->endDepthTest(emptyFb_.id());
         }
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         GLuint count = 0;

@@ -16,7 +16,9 @@ class ABufferLists {
 public:
     ABufferLists(bool captureOrder, const MethodOptions& options);
 
-    void build(const FrameDesc& frame, const DrawCallback& draw, const gl::Program& program);
+    // `clip` (the method's opaque scene, or null for a capture of every fragment) drops the
+    // fragments behind the engine's opaque depth.
+    void build(const FrameDesc& frame, const DrawCallback& draw, const gl::Program& program, OpaqueScene* clip = nullptr);
     // Binds heads, nodes and counters (and orders in capture mode) to their SSBO slots.
     void bindBuffers() const;
 

@@ -16,7 +16,7 @@ layout(std430, binding = STARNT_SSBO_ABUFFER_NODES) readonly buffer Nodes { uvec
 layout(binding = 0, rgba32f) writeonly uniform highp image2D u_output;
 
 uniform ivec2 u_size;
-uniform vec3 u_background;
+#include "methods/common/background.glsl"
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -48,5 +48,5 @@ void main() {
         previousDepth = bestDepth;
         previousNode = bestNode;
     }
-    imageStore(u_output, p, vec4(color + transmittance * u_background, 1.0));
+    imageStore(u_output, p, vec4(color + transmittance * backgroundAt(p), outputAlpha(transmittance)));
 }

@@ -31,6 +31,20 @@ gl::Program MethodBase::buildFullscreenProgram(const std::string& label, const s
     return gl::buildProgram(label, "#include \"methods/common/fullscreen.vert.glsl\"\n", fragment, defines);
 }
 
+void MethodBase::render(const FrameDesc& frame, const DrawCallback& draw) {
+    // No GL call before these checks (docs/INTEGRATION.md, "Misuse").
+    if (!gl::hasCurrentContext()) throw Error("render(): no OpenGL context is current on this thread");
+    gl::checkFrameSize(frame.width, frame.height);
+    opaque_.begin(frame);
+    try {
+        renderFrame(frame, draw);
+    } catch (...) {
+        opaque_.end();
+        throw;
+    }
+    opaque_.end();
+}
+
 bool MethodBase::resizeOutput(int width, int height) {
     const bool changed = setFrameSize(width, height) || !output_;
     allocateOutput(GL_RGBA32F);

@@ -4,6 +4,7 @@
 #include "gl/gl_util.hpp"
 #include "gl/gpu_timer.hpp"
 #include "gl/shader.hpp"
+#include "methods/common/opaque_scene.hpp"
 #include "starnt/oit_method.hpp"
 
 namespace starnt {
@@ -16,6 +17,9 @@ gl::Program buildSurfaceProgram(const SurfaceShader& surface, const std::string&
 class MethodBase : public OitMethod {
 public:
     GLuint outputTexture() const override { return output_.id(); }
+    // Checks the frame (a current context, its size, its opaque scene: nothing is drawn when one
+    // is wrong), then renderFrame; the method's sampler is unbound at the end either way.
+    void render(const FrameDesc& frame, const DrawCallback& draw) final;
 
     // Binds `program` with the per-pass uniforms every geometry pass has and calls the engine.
     static void runGeometryPass(const char* name, const gl::Program& program, const FrameDesc& frame,
@@ -23,6 +27,7 @@ public:
 
 protected:
     explicit MethodBase(SurfaceShader surface);
+    virtual void renderFrame(const FrameDesc& frame, const DrawCallback& draw) = 0;
 
     // Geometry-pass program: engine vertex shader; fragment = engine surface code +
     // methods/common/surface_fetch.glsl + `fragmentFile` (which has main()).
@@ -46,12 +51,15 @@ protected:
     void drawFullscreen() const { gl::drawFullscreenTriangle(fullscreenVao_); }
     void bindOutputFramebuffer() const;
     size_t outputBytes() const { return output_.bytes(); }
+    // Sets a composite program's background uniforms (background.glsl).
+    void bindBackground(const gl::Program& program) const { opaque_.bindBackground(program); }
 
     SurfaceShader surface_;
     int width_ = 0, height_ = 0;
     gl::Texture2D output_;
     gl::FramebufferHandle outputFb_;
     gl::VertexArrayHandle fullscreenVao_;
+    OpaqueScene opaque_;  // this frame's opaque depth and background
 };
 
 // Restores the GL state every pass may change to the defaults the methods assume.

@@ -5,7 +5,7 @@
 // Pixels without fragments take the background only (f is not evaluated there).
 #include "methods/neural/neural_inputs.glsl"
 
-uniform vec3 u_background;
+#include "methods/common/background.glsl"
 
 bool networkApplies(PixelSums s) { return s.count >= 0.5; }
 
@@ -31,6 +31,6 @@ void networkInputs(PixelSums s, out float x[STARNT_NN_INPUTS]) {
 }
 
 vec3 compositePixel(PixelSums s, vec3 networkOutput) {
-    if (s.count < 0.5) return u_background;
-    return networkOutput + s.transmittance * u_background;
+    if (s.count < 0.5) return background();
+    return networkOutput + s.transmittance * background();
 }

@@ -3,7 +3,7 @@
 // Exact for N <= 3 like starnt. No network: networkApplies() is false, so nnEvaluate is never called.
 #include "methods/neural/neural_inputs.glsl"
 
-uniform vec3 u_background;
+#include "methods/common/background.glsl"
 
 bool networkApplies(PixelSums s) { return false; }
 
@@ -12,5 +12,5 @@ void networkInputs(PixelSums s, out float x[STARNT_NN_INPUTS]) {
 }
 
 vec3 compositePixel(PixelSums s, vec3 networkOutput) {
-    return threeLayerComposite(s, (1.0 - tailTransmittance(s)) * tailMeanColor(s), u_background);
+    return threeLayerComposite(s, (1.0 - tailTransmittance(s)) * tailMeanColor(s), background());
 }

@@ -4,7 +4,7 @@
 #include "methods/neural/neural_inputs.glsl"
 #include "methods/hybrid_moments/tail_moments.glsl"
 
-uniform vec3 u_background;
+#include "methods/common/background.glsl"
 
 bool networkApplies(PixelSums s) { return false; }
 
@@ -14,5 +14,5 @@ void networkInputs(PixelSums s, out float x[STARNT_NN_INPUTS]) {
 
 vec3 compositePixel(PixelSums s, vec3 networkOutput) {
     return threeLayerComposite(s, (1.0 - tailTransmittance(s)) * momentWeightedTailColor(s, ivec2(gl_FragCoord.xy)),
-                               u_background);
+                               background());
 }

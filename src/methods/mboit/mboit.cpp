@@ -48,7 +48,7 @@ public:
         return stats;
     }
 
-    void render(const FrameDesc& frame, const DrawCallback& draw) override {
+    void renderFrame(const FrameDesc& frame, const DrawCallback& draw) override {
         if (resizeOutput(frame.width, frame.height)) {
             b0_ = gl::Texture2D(GL_R32F, width_, height_);
             moments_tex_ = gl::Texture2D(GL_RGBA32F, width_, height_);
@@ -78,12 +78,14 @@ public:
             glBindFramebuffer(GL_FRAMEBUFFER, momentsFb_.id());
             glViewport(0, 0, width_, height_);
             for (int i = 0; i < (extra_ ? 3 : 2); ++i) glClearBufferfv(GL_COLOR, i, zero);
+            opaque_.beginDepthTest(momentsFb_.id(), width_, height_, width_, height_);
             glEnable(GL_BLEND);
             glBlendFunc(GL_ONE, GL_ONE);
             glUseProgram(moments_.id());
             setWarp(moments_);
             glUniform1f(moments_.uniform("u_maxAlpha"), mboit::kMaxAlpha);
             runGeometryPass("mboit_moments", moments_, frame, draw);
+            opaque_.endDepthTest(momentsFb_.id());
             resetPassState();
         }
         {
@@ -91,6 +93,7 @@ public:
             glBindFramebuffer(GL_FRAMEBUFFER, accumFb_.id());
             glViewport(0, 0, width_, height_);
             glClearBufferfv(GL_COLOR, 0, zero);
+            opaque_.beginDepthTest(accumFb_.id(), width_, height_, width_, height_);
             glEnable(GL_BLEND);
             glBlendFunc(GL_ONE, GL_ONE);
             glUseProgram(shade_.id());
@@ -102,6 +105,7 @@ public:
             gl::bindTexture(1, moments_tex_.id());
             if (extra_) gl::bindTexture(2, extra_.id());
             runGeometryPass("mboit_shade", shade_, frame, draw);
+            opaque_.endDepthTest(accumFb_.id());
             resetPassState();
         }
         {
@@ -110,7 +114,7 @@ public:
             glUseProgram(resolve_.id());
             gl::bindTexture(0, b0_.id());
             gl::bindTexture(1, accum_.id());
-            glUniform3fv(resolve_.uniform("u_background"), 1, &frame.background[0]);
+            bindBackground(resolve_);
             drawFullscreen();
         }
     }

@@ -4,7 +4,7 @@
 layout(location = 0) out vec4 outColor;
 layout(binding = 0) uniform sampler2D u_b0;
 layout(binding = 1) uniform sampler2D u_accum;
-uniform vec3 u_background;
+#include "methods/common/background.glsl"
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
@@ -12,5 +12,5 @@ void main() {
     vec4 accum = texelFetch(u_accum, p, 0);
     float total = exp(-max(b0, 0.0));
     vec3 average = accum.a > 0.0 ? accum.rgb / accum.a : vec3(0.0);
-    outColor = vec4(average * (1.0 - total) + u_background * total, 1.0);
+    outColor = vec4(average * (1.0 - total) + background() * total, outputAlpha(total));
 }

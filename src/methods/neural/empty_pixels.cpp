@@ -30,14 +30,14 @@ void EmptyPixelSkip::bindCovered(GLuint colorTexture, GLuint pass1Depth, int wid
     glDepthFunc(GL_GREATER);
 }
 
-void EmptyPixelSkip::fillEmpty(const glm::vec3& background, bool halfOutput, const gl::VertexArrayHandle& emptyVao) const {
+void EmptyPixelSkip::fillEmpty(const OpaqueScene& background, bool halfOutput, const gl::VertexArrayHandle& emptyVao) const {
     if (second_) {
         const GLenum first[2] = {GL_COLOR_ATTACHMENT0, GL_NONE};  // the background shader writes location 0 only
         glDrawBuffers(2, first);
     }
     glDepthFunc(GL_LEQUAL);
     glUseProgram(background_.id());
-    glUniform3fv(background_.uniform("u_background"), 1, glm::value_ptr(background));
+    background.bindBackground(background_);
     glUniform1i(background_.uniform("u_halfOutput"), halfOutput ? 1 : 0);
     gl::drawFullscreenTriangle(emptyVao);
     glDepthFunc(GL_LESS);

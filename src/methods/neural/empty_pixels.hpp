@@ -19,6 +19,7 @@
 
 #include "gl/gl_util.hpp"
 #include "gl/shader.hpp"
+#include "methods/common/opaque_scene.hpp"
 
 namespace starnt {
 
@@ -35,7 +36,7 @@ public:
     void bindCovered(GLuint colorTexture, GLuint pass1Depth, int width, int height, GLuint secondColor = 0);
     // After the covered pixels were drawn: writes the background into the empty ones and restores
     // the default depth state (test off, function LESS, writes on). The depth range is not touched.
-    void fillEmpty(const glm::vec3& background, bool halfOutput, const gl::VertexArrayHandle& emptyVao) const;
+    void fillEmpty(const OpaqueScene& background, bool halfOutput, const gl::VertexArrayHandle& emptyVao) const;
 
 private:
     gl::Program background_;

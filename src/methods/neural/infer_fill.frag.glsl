@@ -31,5 +31,5 @@ void main() {
             network = nnEvaluate(x);
         }
     }
-    outColor = targetValue(vec4(compositePixel(s, network), 1.0));
+    outColor = targetValue(vec4(compositePixel(s, network), outputAlpha(s.transmittance)));
 }

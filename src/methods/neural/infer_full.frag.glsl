@@ -21,12 +21,12 @@ void main() {
         networkInputs(s, x);
         network = nnEvaluate(x);
     }
-    vec4 color = targetValue(vec4(compositePixel(s, network), 1.0));
+    vec4 color = targetValue(vec4(compositePixel(s, network), outputAlpha(s.transmittance)));
     outColor = color;
 #ifdef STARNT_CAPTURE_CORRECTION
     ivec2 t = ivec2(gl_FragCoord.xy);
     outCorrection = keptCorrection(t, u_fullSize, u_sourceScale, color.rgb, texelFetch(u_nearest, t, 0),
                                    texelFetch(u_alphaColor, t, 0), texelFetch(u_transmittance, t, 0).r,
-                                   texelFetch(u_captureDepth, t, 0).r, u_background);
+                                   texelFetch(u_captureDepth, t, 0).r, background());
 #endif
 }

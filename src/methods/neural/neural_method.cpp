@@ -40,7 +40,7 @@ public:
           corners_(options.neural.inference == NeuralOptions::Inference::Corners),
           network_(loadMethodNetwork(config, options)),
           // Only DFAOIT's inputs read the unweighted colour sum of pass 3 (docs/DESIGN.md, "Pipeline and formats").
-          passes_(surface, config.kind == nn::NetworkKind::DFAOIT, options_.neural.targets,
+          passes_(surface, opaque_, config.kind == nn::NetworkKind::DFAOIT, options_.neural.targets,
                   narrowLayersApply(config, options_, spatial_, corners_), config.tailMoments),
           temporal_(options_) {
         if (spatial_ || corners_) tiles_ = std::make_unique<tiles::GpuTiles>();
@@ -140,12 +140,13 @@ public:
     // One displayed frame: real (passes -> upsample -> infer -> tiles) or, with temporal
     // reprojection, interpolated from the last real frame (no geometry, no inference; the tiles
     // and scales keep the last real frame's state).
-    void render(const FrameDesc& frame, const DrawCallback& draw) override {
+    void renderFrame(const FrameDesc& frame, const DrawCallback& draw) override {
         if (setFrameSize(frame.width, frame.height)) {
             out_ = {};
             if (tiles_) tiles_->resize(frame.width, frame.height);
         }
         const glm::mat4 viewProjection = frame.projection * frame.view;
+        checkTemporalModeTakesTheFrame(frame);
         if (!temporal_.beginFrame(frame.width, frame.height)) {
             // Interpolated: the passes the temporal mode asks for, fresh at this camera, then the
             // temporal frames' composite (no inference, no tiles).
@@ -154,7 +155,7 @@ public:
                 case TemporalFrames::Passes::Nearest: passes_.runNearest(frame, draw); break;
                 case TemporalFrames::Passes::None: break;
             }
-            temporal_.interpolate(viewProjection, temporalTargets(true), frame.background, out_.texture, frame.timing);
+            temporal_.interpolate(viewProjection, temporalTargets(true), opaque_, out_.texture, frame.timing);
             return;
         }
         renderReal(frame, draw);
@@ -164,12 +165,24 @@ public:
             gl::ScopedPass timing(frame.timing, "temporal_capture");
             // Corrected frames need this frame's pass-3 sums at full resolution (none when it ran reduced).
             const bool sums = passes_.pass3Size() == Size2{frame.width, frame.height};
-            temporal_.endRealFrame(out_.texture, temporalTargets(sums), viewProjection, frame.width, frame.height,
-                                   frame.background);
+            temporal_.endRealFrame(out_.texture, temporalTargets(sums), viewProjection, frame.width, frame.height, opaque_);
         }
     }
 
 private:
+    // Warp and refresh frames reuse the last real frame's composite, background included, and
+    // write alpha 1: they cannot follow an engine's opaque image, depth or premultiplied output from
+    // frame to frame (docs/DESIGN.md, "Opaque geometry"). Corrected frames composite every frame
+    // over the frame's own background.
+    void checkTemporalModeTakesTheFrame(const FrameDesc& frame) const {
+        if (!temporal_.interpolates() || temporal_.corrects()) return;
+        if (frame.opaqueDepth || frame.backgroundTexture || frame.premultipliedOutput) {
+            throw Error(config_.name + ": warp and refresh temporal frames (MethodOptions::neural.temporalMode) cannot take "
+                        "FrameDesc::opaqueDepth, backgroundTexture or premultipliedOutput: they reuse the last real "
+                        "frame's composite; use the corrected mode (TemporalMode::Correct, the default)");
+        }
+    }
+
     // This frame's pass targets for the temporal frames; pass 3's only with `sums`.
     TemporalPassTargets temporalTargets(bool sums) const {
         return {passes_.nearest().id(), passes_.nearestDepth().id(), sums ? passes_.alphaColor().id() : 0u,
@@ -229,8 +242,7 @@ private:
     // After the composite: the background into the pixels it skipped.
     void finishOutput(const FrameDesc& frame) const {
         if (skipEmpty()) {
-            emptyPixels_.fillEmpty(frame.background, options_.neural.targets == NeuralOptions::Targets::Compact,
-                                   fullscreenVao_);
+            emptyPixels_.fillEmpty(opaque_, options_.neural.targets == NeuralOptions::Targets::Compact, fullscreenVao_);
         }
     }
 
@@ -329,7 +341,7 @@ private:
             const glm::mat4 inverse = glm::inverse(frame.projection);
             glUniform4f(program.uniform("u_depthUnproject"), inverse[2][2], inverse[3][2], inverse[2][3], inverse[3][3]);
         }
-        glUniform3fv(program.uniform("u_background"), 1, &frame.background[0]);
+        bindBackground(program);
         glUniform2i(program.uniform("u_tiles"), tiles_ ? tiles_->tilesX() : 0, tiles_ ? tiles_->tilesY() : 0);
     }
 

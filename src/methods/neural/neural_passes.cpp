@@ -104,9 +104,10 @@ std::string layerPassDefines(NeuralOptions::Targets targets, bool narrowLayers) 
 
 }  // namespace
 
-NeuralPasses::NeuralPasses(const SurfaceShader& surface, bool colorSums, NeuralOptions::Targets targets, bool narrowLayers,
-                           bool tailMoments)
-    : pass1_(buildSurfaceProgram(surface, "neural_pass1", "methods/neural/pass1_nearest.frag.glsl",
+NeuralPasses::NeuralPasses(const SurfaceShader& surface, OpaqueScene& opaque, bool colorSums, NeuralOptions::Targets targets,
+                           bool narrowLayers, bool tailMoments)
+    : opaque_(opaque),
+      pass1_(buildSurfaceProgram(surface, "neural_pass1", "methods/neural/pass1_nearest.frag.glsl",
                                  layerPassDefines(targets, narrowLayers))),
       pass2_(buildSurfaceProgram(surface, "neural_pass2", "methods/neural/pass2_second.frag.glsl",
                                  layerPassDefines(targets, narrowLayers))),
@@ -194,24 +195,25 @@ void NeuralPasses::addMemoryTargets(OitMethod::MemoryTargets& out) const {
                            {"pass3_transmittance", transmittance_.bytes()},
                            {"layer_alphas", layerAlpha_.bytes()},
                            {"pass3_tail_moments", tailMoment1_.bytes() + tailMoment2_.bytes()},
-                           {"pass3_resolve_copies_es", esResolveCopies_.bytes()}});
+                           {"pass3_resolve_copies_es", esResolveCopies_.bytes()},
+                           {"pass1_depth_copy_opaque", nearestDepthCopy_.bytes()}});
 }
 
 size_t NeuralPasses::gpuMemoryBytes() const {
     return nearest_.bytes() + nearestDepth_.bytes() + second_.bytes() + secondDepth_.bytes() +
            alphaColor_.bytes() + colorCount_.bytes() + transmittance_.bytes() + layerAlpha_.bytes() +
-           tailMoment1_.bytes() + tailMoment2_.bytes() + esResolveCopies_.bytes();
+           tailMoment1_.bytes() + tailMoment2_.bytes() + esResolveCopies_.bytes() + nearestDepthCopy_.bytes();
 }
 
 void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) {
     resize(frame.width, frame.height);
-    const float zero[4] = {0, 0, 0, 0}, farDepth = 1.0f;
+    const float zero[4] = {0, 0, 0, 0};
     resetPassState();
     gl::ScopedPass timing(frame.timing, "pass1");
     useRectangle({width_, height_});
     glBindFramebuffer(GL_FRAMEBUFFER, pass1Fb_.id());
     glClearBufferfv(GL_COLOR, 0, zero);
-    glClearBufferfv(GL_DEPTH, 0, &farDepth);
+    opaque_.clearDepth(width_, height_, width_, height_);
     if (narrowLayers_) {
         glClearBufferfv(GL_COLOR, 1, zero);                        // both alphas (before the mask)
         glColorMaski(1, GL_TRUE, GL_FALSE, GL_FALSE, GL_FALSE);  // pass 1 writes a1 alone
@@ -220,6 +222,30 @@ void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) 
     glDepthFunc(GL_LESS);
     MethodBase::runGeometryPass("pass1", pass1_, frame, draw);
     resetPassState();
+    if (opaque_.clips()) uncoverEmptyPixels();
+}
+
+void NeuralPasses::uncoverEmptyPixels() {
+    if (!uncover_) {
+        uncover_ = gl::buildProgram("pass1_uncover", gl::embeddedSource("methods/common/fullscreen.vert.glsl"),
+                                    gl::embeddedSource("methods/neural/pass1_uncover.frag.glsl"));
+    }
+    if (nearestDepthCopy_.width() != width_ || nearestDepthCopy_.height() != height_) {
+        nearestDepthCopy_ = gl::Texture2D(GL_DEPTH_COMPONENT32F, width_, height_);
+    }
+    glCopyImageSubData(nearestDepth_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, nearestDepthCopy_.id(), GL_TEXTURE_2D, 0, 0, 0, 0,
+                       width_, height_, 1);
+    glBindFramebuffer(GL_FRAMEBUFFER, pass1Fb_.id());
+    glViewport(0, 0, width_, height_);
+    glUseProgram(uncover_.id());
+    gl::bindTexture(0, nearestDepthCopy_.id());
+    opaque_.bindOpaqueDepth();
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_ALWAYS);
+    gl::drawFullscreenTriangle(emptyVao_);
+    resetPassState();
+    opaque_.end();
 }
 
 void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float peelEpsilon, Size2 pass2Size,
@@ -228,14 +254,14 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
     const Size2 full{width_, height_};
     pass2Size_ = pass2Size;
     pass3Size_ = pass3Size;
-    const float zero[4] = {0, 0, 0, 0}, farDepth = 1.0f;
+    const float zero[4] = {0, 0, 0, 0};
     const bool reduced2 = !(pass2Size == full);
     {
         gl::ScopedPass timing(frame.timing, "pass2");
         useReducedRectangle(pass2Size, full);
         glBindFramebuffer(GL_FRAMEBUFFER, pass2Fb_.id());
         glClearBufferfv(GL_COLOR, 0, zero);
-        glClearBufferfv(GL_DEPTH, 0, &farDepth);
+        opaque_.clearDepth(pass2Size.width, pass2Size.height, full.width, full.height);
         if (narrowLayers_) glColorMaski(1, GL_FALSE, GL_TRUE, GL_FALSE, GL_FALSE);  // a2 beside pass 1's a1
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
@@ -266,6 +292,7 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
     glClearBufferfv(GL_COLOR, 0, zero);
     glClearBufferfv(GL_COLOR, 1, zero);
     glClearBufferfv(GL_COLOR, 2, one);
+    opaque_.beginDepthTest(pass3Fb_.id(), pass3Size.width, pass3Size.height, full.width, full.height);
     glEnable(GL_BLEND);
     // Per-target blend functions: core in GL 4.0 and GLES 3.2 (EXT_draw_buffers_indexed on 3.1).
     glBlendFunci(0, GL_ONE, GL_ONE);
@@ -279,6 +306,7 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
         gl::bindTexture(0, secondDepth_.id());  // z2 (tail moments run at full resolution only)
     }
     MethodBase::runGeometryPass("pass3", pass3_, frame, draw);
+    opaque_.endDepthTest(pass3Fb_.id());
     resetPassState();
 }
 
@@ -299,10 +327,12 @@ void NeuralPasses::runNearestAndSums(const FrameDesc& frame, const DrawCallback&
     glViewport(0, 0, width_, height_);
     glClearBufferfv(GL_COLOR, 0, zero);
     glClearBufferfv(GL_COLOR, 1, one);
+    opaque_.beginDepthTest(sumsFb_.id(), width_, height_, width_, height_);
     glEnable(GL_BLEND);
     glBlendFunci(0, GL_ONE, GL_ONE);
     glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
     MethodBase::runGeometryPass("pass3", pass3Sums_, frame, draw);
+    opaque_.endDepthTest(sumsFb_.id());
     resetPassState();
 }
 

@@ -89,9 +89,11 @@ public:
     // z2 (window depth, z2 read from pass 2's depth; tail_moments_constants.h), into two RGBA32F targets (32 bytes a pixel: 16-bit sums cannot
     // be centred on the tail's mean depth; tail_moments_constants.h), and keeps sum a C, sum a and
     // the transmittance in 32-bit float (+10 bytes), since the centring and the weights read them.
-    explicit NeuralPasses(const SurfaceShader& surface, bool colorSums = true,
-                          NeuralOptions::Targets targets = NeuralOptions::Targets::Compact, bool narrowLayers = false,
-                          bool tailMoments = false);
+    // `opaque`: the method's view of the engine's opaque scene (OpaqueScene), which clips every
+    // pass; it outlives this object.
+    NeuralPasses(const SurfaceShader& surface, OpaqueScene& opaque, bool colorSums = true,
+                 NeuralOptions::Targets targets = NeuralOptions::Targets::Compact, bool narrowLayers = false,
+                 bool tailMoments = false);
     // The define the programs that read pass 3 (neural_inputs.glsl, the tail resolve) need.
     const char* countLayoutDefine() const { return colorSums_ ? "" : "#define STARNT_COUNT_ONLY\n"; }
     // "#define STARNT_SPLIT_ALPHA" for the programs that read the narrow layers' alphas apart.
@@ -149,6 +151,13 @@ public:
 
 private:
     void runSums(const FrameDesc& frame, const DrawCallback& draw, Size2 pass3Size);  // pass 3
+    // After pass 1 clipped by an opaque depth: where it kept no fragment its depth still holds the
+    // opaque depth; this puts the far plane back there, so that pass-1 depth 1 keeps meaning
+    // "nothing transparent here" (the empty-pixel skip, the temporal frames).
+    void uncoverEmptyPixels();
+    OpaqueScene& opaque_;
+    gl::Program uncover_;            // built on first need
+    gl::Texture2D nearestDepthCopy_;  // what uncoverEmptyPixels reads (only with an opaque depth)
     gl::Program pass1_;
     gl::Program pass2_;
     gl::Program pass3_;

@@ -36,7 +36,7 @@ public:
         return stats;
     }
 
-    void render(const FrameDesc& frame, const DrawCallback& draw) override {
+    void renderFrame(const FrameDesc& frame, const DrawCallback& draw) override {
         if (resizeOutput(frame.width, frame.height)) {
             layerColor_ = gl::Texture2D(GL_RGBA32F, width_, height_);
             accum_ = gl::Texture2D(GL_RGBA32F, width_, height_);
@@ -61,9 +61,9 @@ public:
                 gl::ScopedPass timing(frame.timing, "peel");
                 glBindFramebuffer(GL_FRAMEBUFFER, layerFb_[cur].id());
                 const float clearColor[4] = {0, 0, 0, 0};
-                const float clearDepth = 1.0f;
                 glClearBufferfv(GL_COLOR, 0, clearColor);
-                glClearBufferfv(GL_DEPTH, 0, &clearDepth);
+                glViewport(0, 0, width_, height_);
+                opaque_.clearDepth(width_, height_, width_, height_);  // the far plane, or the opaque depth
                 glEnable(GL_DEPTH_TEST);
                 glDepthFunc(GL_LESS);
                 glDepthMask(GL_TRUE);
@@ -97,7 +97,7 @@ public:
         bindOutputFramebuffer();
         glUseProgram(composite_.id());
         gl::bindTexture(0, accum_.id());
-        glUniform3fv(composite_.uniform("u_background"), 1, &frame.background[0]);
+        bindBackground(composite_);
         drawFullscreen();
     }
 

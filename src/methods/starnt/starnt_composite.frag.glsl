@@ -6,11 +6,11 @@
 // nnEvaluate() is generated from the weights file and prepended.
 #include "methods/neural/neural_inputs.glsl"
 
-uniform vec3 u_background;
+#include "methods/common/background.glsl"
 
 bool networkApplies(PixelSums s) { return s.count >= 3.5; }
 
 void networkInputs(PixelSums s, out float x[STARNT_NN_INPUTS]) { starntInputs(s, x); }
 
 // `networkOutput` is f(x) where networkApplies(s), unused elsewhere.
-vec3 compositePixel(PixelSums s, vec3 networkOutput) { return threeLayerComposite(s, networkOutput, u_background); }
+vec3 compositePixel(PixelSums s, vec3 networkOutput) { return threeLayerComposite(s, networkOutput, background()); }

@@ -8,7 +8,7 @@
 #include "methods/neural/neural_inputs.glsl"
 #include "methods/hybrid_moments/tail_moments.glsl"
 
-uniform vec3 u_background;
+#include "methods/common/background.glsl"
 
 bool networkApplies(PixelSums s) { return s.count >= 3.5; }
 
@@ -39,5 +39,5 @@ void networkInputs(PixelSums s, out float x[STARNT_NN_INPUTS]) {
 vec3 compositePixel(PixelSums s, vec3 networkOutput) {
     vec3 moment = pixelTailMomentColor(s);
     vec3 deepTail = (1.0 - tailTransmittance(s)) * max(moment + networkOutput, vec3(0.0));
-    return threeLayerComposite(s, deepTail, u_background);
+    return threeLayerComposite(s, deepTail, background());
 }

@@ -8,7 +8,7 @@
 // from the weights file and prepended.
 #include "methods/neural/neural_inputs.glsl"
 
-uniform vec3 u_background;
+#include "methods/common/background.glsl"
 
 bool networkApplies(PixelSums s) { return s.count >= 3.5; }
 
@@ -17,5 +17,5 @@ void networkInputs(PixelSums s, out float x[STARNT_NN_INPUTS]) { starntInputs(s,
 // `networkOutput` is f(x) where networkApplies(s), unused elsewhere.
 vec3 compositePixel(PixelSums s, vec3 networkOutput) {
     vec3 deepTail = (1.0 - tailTransmittance(s)) * max(tailMeanColor(s) + networkOutput, vec3(0.0));
-    return threeLayerComposite(s, deepTail, u_background);
+    return threeLayerComposite(s, deepTail, background());
 }

@@ -28,7 +28,7 @@ public:
         return {{"output", outputBytes()}, {"accum", accum_.bytes()}, {"revealage", reveal_.bytes()}};
     }
 
-    void render(const FrameDesc& frame, const DrawCallback& draw) override {
+    void renderFrame(const FrameDesc& frame, const DrawCallback& draw) override {
         if (resizeOutput(frame.width, frame.height)) {
             accum_ = gl::Texture2D(GL_RGBA32F, width_, height_);
             reveal_ = gl::Texture2D(GL_R32F, width_, height_);
@@ -42,6 +42,7 @@ public:
             const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1};
             glClearBufferfv(GL_COLOR, 0, zero);
             glClearBufferfv(GL_COLOR, 1, one);
+            opaque_.beginDepthTest(fb_.id(), width_, height_, width_, height_);
             glEnable(GL_BLEND);
             glBlendFunci(0, GL_ONE, GL_ONE);
             glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);
@@ -49,6 +50,7 @@ public:
             glUniform1i(accumulate_.uniform("u_weightFunction"), weightFunction_);
             glUniform2f(accumulate_.uniform("u_projZ"), frame.projection[2][2], frame.projection[3][2]);
             runGeometryPass("wboit_accumulate", accumulate_, frame, draw);
+            opaque_.endDepthTest(fb_.id());
             resetPassState();
         }
         {
@@ -57,7 +59,7 @@ public:
             glUseProgram(composite_.id());
             gl::bindTexture(0, accum_.id());
             gl::bindTexture(1, reveal_.id());
-            glUniform3fv(composite_.uniform("u_background"), 1, &frame.background[0]);
+            bindBackground(composite_);
             drawFullscreen();
         }
     }

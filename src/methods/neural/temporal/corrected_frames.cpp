@@ -14,7 +14,7 @@ CorrectedFrames::CorrectedFrames()
       emptyVao_(gl::makeEmptyVertexArray()) {}
 
 void CorrectedFrames::capture(GLuint composite, GLuint depth, GLuint nearest, GLuint sumAlphaColor, GLuint transmittance,
-                              int width, int height, const glm::mat4& viewProj, const glm::vec3& background) {
+                              int width, int height, const glm::mat4& viewProj, const OpaqueScene& background) {
     if (width < 1 || height < 1) throw Error("corrected frames: empty frame size");
     const GLenum format = gl::textureInternalFormat(composite);
     if (format != GL_RGBA32F && format != GL_RGBA16F) throw Error("corrected frames: the composite must be RGBA32F or RGBA16F");
@@ -31,7 +31,7 @@ void CorrectedFrames::capture(GLuint composite, GLuint depth, GLuint nearest, GL
     glUseProgram(capture_.id());
     glUniform2i(capture_.uniform("u_size"), width, height);
     glUniform4fv(capture_.uniform("u_sourceScale"), 1, glm::value_ptr(makeCorrectionMatrices(viewProj, viewProj).sourceScale));
-    glUniform3fv(capture_.uniform("u_background"), 1, glm::value_ptr(background));
+    background.bindBackground(capture_);
     // reprojection_behind.frag.glsl's units: 0 composite, 1 depth, 3 nearest, 4 and 5 the sums.
     const GLuint inputs[] = {composite, depth, 0, nearest, sumAlphaColor, transmittance};
     for (GLuint unit = 0; unit < 6; ++unit) gl::bindTexture(unit, inputs[unit]);
@@ -69,7 +69,7 @@ void CorrectedFrames::endFusedCapture() {
 }
 
 void CorrectedFrames::composite(const glm::mat4& newViewProj, GLuint nearest, GLuint depth, GLuint sumAlphaColor,
-                                GLuint transmittance, const glm::vec3& background, GLuint output) {
+                                GLuint transmittance, const OpaqueScene& background, GLuint output) {
     if (!hasFrame_) throw Error("internal: a corrected frame before any real frame was captured");
     const bool halfOutput = gl::textureInternalFormat(output) == GL_RGBA16F;  // before any binding (ES)
     if (gl::textureInternalFormat(depth) != GL_DEPTH_COMPONENT32F) {
@@ -85,7 +85,7 @@ void CorrectedFrames::composite(const glm::mat4& newViewProj, GLuint nearest, GL
     glUniform2i(composite_.uniform("u_size"), width_, height_);
     glUniformMatrix4fv(composite_.uniform("u_newToOld"), 1, GL_FALSE, glm::value_ptr(m.newToOld));
     glUniform4fv(composite_.uniform("u_sourceScale"), 1, glm::value_ptr(m.sourceScale));
-    glUniform3fv(composite_.uniform("u_background"), 1, glm::value_ptr(background));
+    background.bindBackground(composite_);
     glUniform1i(composite_.uniform("u_halfOutput"), halfOutput);
     glUniform1i(composite_.uniform("u_useCorrection"), hasCorrection_);
     const GLuint inputs[] = {nearest, depth, sumAlphaColor, transmittance, correction_.id()};

@@ -22,7 +22,7 @@ public:
     // Without sums (0: pass 3 ran reduced) the frame is kept without a correction: the interpolated
     // frames that follow composite the closed form alone.
     void capture(GLuint composite, GLuint depth, GLuint nearest, GLuint sumAlphaColor, GLuint transmittance, int width,
-                 int height, const glm::mat4& viewProj, const glm::vec3& background);
+                 int height, const glm::mat4& viewProj, const OpaqueScene& background);
     // The same capture written by the real frame's own composite (infer_full.frag.glsl with
     // STARNT_CAPTURE_CORRECTION) instead of a pass of its own: beginFusedCapture copies pass 1's
     // `depth` for the composite's early empty-pixel test (the composite samples the original, see
@@ -47,7 +47,7 @@ public:
     // pass 1's depth, the early test runs against a copy of it (a texture both sampled and attached
     // would be a rendering feedback loop, GL 4.5 section 9.3.1).
     void composite(const glm::mat4& newViewProj, GLuint nearest, GLuint depth, GLuint sumAlphaColor, GLuint transmittance,
-                   const glm::vec3& background, GLuint output);
+                   const OpaqueScene& background, GLuint output);
 
     void reset() { hasFrame_ = false; }
     size_t gpuMemoryBytes() const { return correction_.bytes() + coverDepth_.bytes(); }

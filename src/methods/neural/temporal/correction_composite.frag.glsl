@@ -17,7 +17,7 @@ layout(binding = 4) uniform highp sampler2D u_correction;     // reprojection_be
 uniform ivec2 u_size;
 uniform mat4 u_newToOld;        // oldViewProj * inverse(newViewProj)
 uniform vec4 u_sourceScale;     // row 3 of inverse(oldViewProj)
-uniform vec3 u_background;
+#include "methods/common/background.glsl"
 uniform bool u_halfOutput;
 uniform bool u_useCorrection;  // false: the last real frame kept no correction (pass 3 ran reduced)
 
@@ -26,13 +26,15 @@ out vec4 o_color;
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     vec4 fresh = texelFetch(u_nearest, p, 0);
-    vec3 color = u_background;
+    vec3 color = background();
+    float transmittance = 1.0;
     if (fresh.a > 0.0) {
         float open = 1.0 - fresh.a;
-        vec3 behind = u_background;
+        transmittance = texelFetch(u_transmittance, p, 0).r;
+        vec3 behind = background();
         if (open > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE)) {
             behind = closedFormBehind(fresh, texelFetch(u_sumAlphaColor, p, 0), texelFetch(u_transmittance, p, 0).r,
-                                      u_background);
+                                      background());
             vec2 c = (vec2(p) + 0.5) / vec2(u_size) * 2.0 - 1.0;
             vec4 old = u_newToOld * vec4(c, texelFetch(u_depth, p, 0).r * 2.0 - 1.0, 1.0);
             if (u_useCorrection && old.w > 0.0) {
@@ -59,5 +61,5 @@ void main() {
         }
         color = fresh.a * fresh.rgb + open * max(behind, vec3(0.0));
     }
-    o_color = outputValue(vec4(color, 1.0), u_halfOutput);
+    o_color = outputValue(vec4(color, outputAlpha(transmittance)), u_halfOutput);
 }

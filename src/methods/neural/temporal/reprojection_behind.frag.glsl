@@ -14,7 +14,7 @@ layout(binding = 3) uniform highp sampler2D u_keptNearest;  // its pass-1 colour
 #include "methods/neural/temporal/correction_capture.glsl"
 layout(binding = 4) uniform highp sampler2D u_sumAlphaColor;  // its pass 3 at full resolution: sum a C, sum a
 layout(binding = 5) uniform highp sampler2D u_transmittance;  // its pass 3: prod (1 - a)
-uniform vec3 u_background;
+#include "methods/common/background.glsl"
 #endif
 uniform ivec2 u_size;
 uniform vec4 u_sourceScale;
@@ -26,7 +26,7 @@ void main() {
     vec4 n = texelFetch(u_keptNearest, t, 0);
 #ifdef STARNT_BEHIND_CORRECTION
     o_behind = keptCorrection(t, u_size, u_sourceScale, texelFetch(u_color, t, 0).rgb, n, texelFetch(u_sumAlphaColor, t, 0),
-                              texelFetch(u_transmittance, t, 0).r, texelFetch(u_depth, t, 0).r, u_background);
+                              texelFetch(u_transmittance, t, 0).r, texelFetch(u_depth, t, 0).r, background());
 #else
     float open = 1.0 - n.a;
     if (!(open > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE))) {

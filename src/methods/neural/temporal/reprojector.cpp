@@ -109,7 +109,7 @@ void Reprojector::reproject(const glm::mat4& newViewProj, GLuint outputTexture) 
 }
 
 void Reprojector::reprojectRefresh(const glm::mat4& newViewProj, GLuint nearestTexture, GLuint nearestDepth,
-                                   const glm::vec3& background, GLuint outputTexture) {
+                                   const OpaqueScene& background, GLuint outputTexture) {
     if (!hasFrame_) throw Error("internal: temporal reprojection before any real frame was captured");
     if (!hasNearest_) throw Error("internal: a refresh frame needs the kept frame's nearest layer");
     const bool halfOutput = gl::textureInternalFormat(outputTexture) == GL_RGBA16F;  // before any binding (ES)
@@ -119,7 +119,7 @@ void Reprojector::reprojectRefresh(const glm::mat4& newViewProj, GLuint nearestT
     gl::bindTexture(3, keptNearest_.id());
     gl::bindTexture(4, nearestTexture);
     gl::bindTexture(5, behind_.id());
-    glUniform3fv(searchRefresh_.uniform("u_background"), 1, glm::value_ptr(background));
+    background.bindBackground(searchRefresh_);
     glUniform1i(searchRefresh_.uniform("u_halfOutput"), halfOutput);
     gl::drawFullscreenTriangle(emptyVao_);
     if (nearestDepth) emptyPixels_.fillEmpty(background, halfOutput, emptyVao_);

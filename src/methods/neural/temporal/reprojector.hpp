@@ -35,7 +35,7 @@ public:
     // (empty_pixels.hpp); 0 searches every pixel (the same image). Throws when the capture kept no
     // nearest layer.
     void reprojectRefresh(const glm::mat4& newViewProj, GLuint nearestTexture, GLuint nearestDepth,
-                          const glm::vec3& background, GLuint outputTexture);
+                          const OpaqueScene& background, GLuint outputTexture);
 
     void reset() { hasFrame_ = false; }  // forgets the frame, keeps the allocations
     void addMemoryTargets(starnt::OitMethod::MemoryTargets& out) const {

@@ -36,7 +36,7 @@ bool TemporalFrames::beginFrame(int width, int height) {
 }
 
 void TemporalFrames::endRealFrame(GLuint compositeTexture, const TemporalPassTargets& passes, const glm::mat4& viewProj,
-                                  int width, int height, const glm::vec3& background) {
+                                  int width, int height, const OpaqueScene& background) {
     if (lastInterpolated_) throw Error("internal: TemporalFrames::endRealFrame on an interpolated frame");
     if (!interpolates()) return;  // every frame is real: nothing to keep
     if ((refreshes() || corrects()) && !passes.nearest) {
@@ -55,7 +55,7 @@ TemporalFrames::Passes TemporalFrames::interpolatedPasses() const {
     return corrects() ? Passes::NearestAndSums : refreshes() ? Passes::Nearest : Passes::None;
 }
 
-void TemporalFrames::interpolate(const glm::mat4& viewProj, const TemporalPassTargets& passes, const glm::vec3& background,
+void TemporalFrames::interpolate(const glm::mat4& viewProj, const TemporalPassTargets& passes, const OpaqueScene& background,
                                  GLuint outputTexture, PassTimingHook* timer) {
     if (!lastInterpolated_) throw Error("internal: TemporalFrames::interpolate on a real frame");
     {

@@ -48,7 +48,7 @@ public:
     // pass 1's colour; correct mode pass 3's sums (without them the frame is kept without a
     // correction) and the frame's `background`.
     void endRealFrame(GLuint compositeTexture, const TemporalPassTargets& passes, const glm::mat4& viewProj, int width,
-                      int height, const glm::vec3& background = glm::vec3(0.0f));
+                      int height, const OpaqueScene& background = OpaqueScene());
     // The passes an interpolated frame renders at its own camera before interpolate(): none (warp),
     // pass 1 (refresh), passes 1 and 3 (correct; pass 3 with its sums only).
     enum class Passes { None, Nearest, NearestAndSums };
@@ -57,7 +57,7 @@ public:
     // interpolatedPasses() named (`passes`, rendered at `viewProj` by the caller), into
     // `outputTexture` (a colour-renderable RGBA texture of the frame size; the framebuffer binding is
     // 0 afterwards). Timed as pass "reproject" when a timer is given.
-    void interpolate(const glm::mat4& viewProj, const TemporalPassTargets& passes, const glm::vec3& background,
+    void interpolate(const glm::mat4& viewProj, const TemporalPassTargets& passes, const OpaqueScene& background,
                      GLuint outputTexture, PassTimingHook* timer = nullptr);
     // Corrected frames only: the real frame's composite captures the correction itself
     // (CorrectedFrames::beginFusedCapture); endRealFrameFused then keeps the frame instead of

@@ -1,0 +1,129 @@
+#include "methods/common/opaque_scene.hpp"
+
+#include "methods/common/method_base.hpp"
+#include "starnt/bindings.h"
+#include "starnt/error.hpp"
+
+namespace starnt {
+namespace {
+
+std::string sizeText(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+// Throws unless `name` is a 2D texture of the frame size with a format of the wanted kind.
+void checkTexture(const char* field, GLuint name, const FrameDesc& frame, bool depth) {
+    const gl::TextureDescription d = gl::describeTexture(name, STARNT_UNIT_OPAQUE);
+    const std::string what = std::string("FrameDesc::") + field + " (GL name " + std::to_string(name) + ")";
+    if (!d.is2D) throw Error(what + " is not a GL_TEXTURE_2D texture of this context");
+    if (d.width != frame.width || d.height != frame.height) {
+        throw Error(what + " is " + sizeText(d.width, d.height) + ", not the frame size " +
+                    sizeText(frame.width, frame.height));
+    }
+    if (depth && !gl::isDepthFormat(d.internalFormat)) {
+        throw Error(what + " has no depth format (DEPTH_COMPONENT16/24/32F, DEPTH24_STENCIL8 or DEPTH32F_STENCIL8)");
+    }
+    if (!depth && (gl::isDepthFormat(d.internalFormat) || d.integer)) {
+        throw Error(what + " must have a floating-point or normalised colour format (it is sampled as linear RGB)");
+    }
+}
+
+}  // namespace
+
+void OpaqueScene::begin(const FrameDesc& frame) {
+    premultiplied_ = frame.premultipliedOutput;
+    color_ = frame.background;
+    depth_ = background_ = 0;
+    clipWidth_ = clipHeight_ = 0;
+    if (frame.opaqueDepth) checkTexture("opaqueDepth", frame.opaqueDepth, frame, true);
+    if (frame.backgroundTexture && !frame.premultipliedOutput) {
+        checkTexture("backgroundTexture", frame.backgroundTexture, frame, false);
+    }
+    depth_ = frame.opaqueDepth;
+    background_ = frame.premultipliedOutput ? 0 : frame.backgroundTexture;
+    if (depth_ || background_) prepare();
+    if (depth_ && !(clipDepth_.width() == frame.width && clipDepth_.height() == frame.height)) {
+        clipDepth_ = gl::Texture2D(GL_DEPTH_COMPONENT32F, frame.width, frame.height);
+    }
+}
+
+void OpaqueScene::prepare() {
+    if (fill_) return;
+    fill_ = gl::buildProgram("opaque_depth", "#include \"methods/common/fullscreen.vert.glsl\"\n",
+                             "#include \"methods/common/opaque_depth.frag.glsl\"\n");
+    vao_ = gl::makeEmptyVertexArray();
+    GLuint s = 0;
+    glGenSamplers(1, &s);
+    sampler_ = gl::SamplerHandle(s);
+    glSamplerParameteri(s, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glSamplerParameteri(s, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glSamplerParameteri(s, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(s, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(s, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+}
+
+void OpaqueScene::bindOpaqueDepth() const {
+    gl::bindTexture(STARNT_UNIT_OPAQUE, depth_);
+    glBindSampler(STARNT_UNIT_OPAQUE, sampler_.id());
+}
+
+void OpaqueScene::end() const {
+    if (sampler_) glBindSampler(STARNT_UNIT_OPAQUE, 0);
+}
+
+void OpaqueScene::writeDepth(int width, int height, int fullWidth, int fullHeight) {
+    glUseProgram(fill_.id());
+    glUniform2i(fill_.uniform("u_size"), width, height);
+    glUniform2i(fill_.uniform("u_fullSize"), fullWidth, fullHeight);
+    bindOpaqueDepth();
+    GLboolean colorMask[4] = {GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE};
+    glGetBooleanv(GL_COLOR_WRITEMASK, colorMask);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_ALWAYS);
+    glDepthMask(GL_TRUE);
+    gl::drawFullscreenTriangle(vao_);
+    glColorMask(colorMask[0], colorMask[1], colorMask[2], colorMask[3]);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_DEPTH_TEST);
+    glBindSampler(STARNT_UNIT_OPAQUE, 0);
+}
+
+void OpaqueScene::clearDepth(int width, int height, int fullWidth, int fullHeight) {
+    if (!depth_) {
+        const float farDepth = 1.0f;
+        glClearBufferfv(GL_DEPTH, 0, &farDepth);
+        return;
+    }
+    writeDepth(width, height, fullWidth, fullHeight);
+}
+
+void OpaqueScene::beginDepthTest(GLuint framebuffer, int width, int height, int fullWidth, int fullHeight) {
+    if (!depth_) return;
+    gl::attachTexture(framebuffer, GL_DEPTH_ATTACHMENT, clipDepth_.id());
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    if (clipWidth_ != width || clipHeight_ != height) {
+        writeDepth(width, height, fullWidth, fullHeight);
+        clipWidth_ = width;
+        clipHeight_ = height;
+    }
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_FALSE);
+}
+
+void OpaqueScene::endDepthTest(GLuint framebuffer) {
+    if (!depth_) return;
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+    gl::attachTexture(framebuffer, GL_DEPTH_ATTACHMENT, 0);
+}
+
+void OpaqueScene::bindBackground(const gl::Program& program) const {
+    glUniform3fv(program.uniform("u_background"), 1, &color_[0]);
+    glUniform1i(program.uniform("u_backgroundSource"), premultiplied_ ? 2 : background_ ? 1 : 0);
+    if (background_) {
+        gl::bindTexture(STARNT_UNIT_OPAQUE, background_);
+        glBindSampler(STARNT_UNIT_OPAQUE, sampler_.id());
+    }
+}
+
+}  // namespace starnt

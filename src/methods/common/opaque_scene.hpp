@@ -1,0 +1,73 @@
+// The engine's opaque scene as every method uses it (FrameDesc::opaqueDepth, backgroundTexture,
+// premultipliedOutput; docs/DESIGN.md, "Opaque geometry"):
+//   - clipping: each geometry pass drops fragments at or behind the opaque depth by the depth test,
+//     before its fragment shader runs. Passes with a depth target of their own (nearest layer,
+//     peel layers) start it from the opaque depth instead of the far plane; passes without one
+//     (sums, accumulation, lists) test against a depth target of the method's holding the opaque
+//     depth, with depth writes off. Either way the engine's texture is only sampled, by one
+//     full-screen pass that writes it into the method's target (any depth format the engine uses,
+//     and the reduced passes' rectangles).
+//   - the background: every composite reads background.glsl, whose uniforms bindBackground sets.
+#pragma once
+#include <string>
+
+#include "gl/gl_util.hpp"
+#include "gl/shader.hpp"
+#include "starnt/oit_method.hpp"
+
+namespace starnt {
+
+class OpaqueScene {
+public:
+    OpaqueScene() = default;
+    // No opaque scene: the constant `background` (until begin()).
+    OpaqueScene(const glm::vec3& background) : color_(background) {}  // NOLINT: implicit on purpose
+
+    // Checks the frame's opaque textures against the frame size, before anything is drawn: a name
+    // that is not a 2D texture, a texture of another size, a depth texture of a colour format or
+    // the reverse is a starnt::Error naming the FrameDesc field. Forgets the last frame's copies.
+    void begin(const FrameDesc& frame);
+    // Whether the frame's geometry passes are clipped by an opaque depth.
+    bool clips() const { return depth_ != 0; }
+
+    // For a pass with a depth target of its own, bound now with its rectangle `size` of a frame of
+    // `full` (the same for full-resolution passes) set as viewport and scissor: sets that target's
+    // depth to the far plane, or to the opaque depth when the frame has one (the reduced rectangle
+    // takes the opaque depth at the full pixel holding each reduced sample, reduced_grid.hpp, so a
+    // reduced pass is clipped where pass 1 is at that pixel).
+    void clearDepth(int width, int height, int fullWidth, int fullHeight);
+    // For a pass without a depth target of its own, rendering into `framebuffer` (bound, viewport
+    // and scissor set, rectangle as above): when the frame clips, attaches the method's copy of
+    // the opaque depth and enables the depth test (LESS, no depth writes). endDepthTest detaches
+    // it. Without opaque depth both do nothing.
+    void beginDepthTest(GLuint framebuffer, int width, int height, int fullWidth, int fullHeight);
+    void endDepthTest(GLuint framebuffer);
+
+    // Sets background.glsl's uniforms on `program` (bound) and binds the engine's colour texture,
+    // if any, to STARNT_UNIT_OPAQUE.
+    void bindBackground(const gl::Program& program) const;
+    // Binds the engine's depth texture (with the method's sampler) to STARNT_UNIT_OPAQUE.
+    void bindOpaqueDepth() const;
+    // Unbinds the method's sampler from STARNT_UNIT_OPAQUE (the engine's own use of that unit
+    // outside render() must see its texture's parameters): the end of every render().
+    void end() const;
+    // The output alpha the composites write is the transmittance (premultiplied output).
+    bool premultiplied() const { return premultiplied_; }
+
+    size_t gpuMemoryBytes() const { return clipDepth_.bytes(); }
+
+private:
+    void writeDepth(int width, int height, int fullWidth, int fullHeight);
+    void prepare();
+
+    GLuint depth_ = 0, background_ = 0;
+    bool premultiplied_ = false;
+    glm::vec3 color_{1.0f};
+    gl::Program fill_;
+    gl::VertexArrayHandle vao_;
+    gl::SamplerHandle sampler_;
+    gl::Texture2D clipDepth_;        // frame size; holds the rectangle last written
+    int clipWidth_ = 0, clipHeight_ = 0;  // that rectangle this frame (0: not written yet)
+};
+
+}  // namespace starnt
