@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "gl/gl_util.hpp"
+#include "gl/gpu_timer.hpp"
 #include "gl/shader.hpp"
 #include "methods/mboit/mboit_settings.hpp"
 #include "methods/neural/neural_method.hpp"
@@ -317,5 +318,53 @@ TEST(Opaque, WarpAndRefreshFramesRefuseAnOpaqueScene) {
         const std::string message =
             test::errorOf([&] { m->render(frame, s.gpu->callback(frame.view, frame.projection, {})); });
         EXPECT_NE(message.find("corrected mode"), std::string::npos) << message;
+    }
+}
+
+// Work: with the opaque depth given, the fragments behind it are rejected by the depth test before
+// the fragment shader in every geometry pass. GPUs count fragment-shader invocations after that
+// early test, so there every pass counts fewer; llvmpipe counts each 2x2 quad as it enters its
+// generated fragment function, which runs the early depth test itself, so its counters stay equal
+// (the saving shows in time there: docs/DESIGN.md, "Opaque geometry"), and only peeling, which
+// peels fewer layers, counts fewer. Never more on either.
+TEST(Opaque, GeometryPassesShadeOnlyTheFragmentsInFrontOfTheOpaqueDepth) {
+    test::TestScene s(makeBuiltinScene("tubes", 3), kW, kH, 30.0f, 20.0f, kBackground);
+    gl::GpuPassTimer timer(true);
+    if (!timer.countersAvailable()) GTEST_SKIP() << "no pipeline statistics queries";
+    const bool countsBeforeEarlyTests = std::string(reinterpret_cast<const char*>(glGetString(GL_RENDERER))).find("llvmpipe") != std::string::npos;
+    const CapturedFrame frags = s.capture();
+    OpaqueImage o = makeOpaque(frags);
+    const EngineTextures engine = upload(o, false);
+    size_t all = 0, inFront = 0;
+    for (int y = 0; y < kH; ++y) {
+        for (int x = 0; x < kW; ++x) {
+            for (const Fragment& f : frags.at(x, kH - 1 - y)) {
+                ++all;
+                inFront += f.depth < o.at(x, y);
+            }
+        }
+    }
+    ASSERT_LT(inFront, all * 4 / 5) << "the wall must hide a good share of the fragments";
+    for (const char* method : {"wboit", "abuffer", "starnt-d", "peel"}) {
+        auto countersOf = [&](bool clip) {
+            auto m = createMethod(method, SceneGpu::surfaceShader());
+            FrameDesc f = s.frame();
+            f.timing = &timer;
+            if (clip) f.opaqueDepth = engine.depth.id();
+            m->render(f, s.gpu->callback(f.view, f.projection, {}));
+            glFinish();
+            timer.collect();
+            return timer.collectCounters();
+        };
+        const auto open = countersOf(false), clipped = countersOf(true);
+        for (const auto& [pass, c] : open) {
+            ASSERT_TRUE(clipped.count(pass)) << method << " " << pass;
+            const double ratio = double(clipped.at(pass).fragmentInvocations) / double(c.fragmentInvocations);
+            std::printf("[ %s %s ] fragments shaded %llu -> %llu (%.2f; fragments in front: %.2f of all)\n", method,
+                        pass.c_str(), (unsigned long long)c.fragmentInvocations,
+                        (unsigned long long)clipped.at(pass).fragmentInvocations, ratio, double(inFront) / double(all));
+            EXPECT_LE(ratio, 1.0) << method << " " << pass;
+            if (std::string(method) == "peel" || !countsBeforeEarlyTests) EXPECT_LT(ratio, 0.9) << method << " " << pass;
+        }
     }
 }

@@ -112,6 +112,7 @@ private:
             FrameDesc warm = frame_;
             aimAt(warm, cameraOf(0));
             warm.timing = nullptr;
+            scene_.drawOpaque(warm, job_.surface);
             method_->render(warm, scene_.callback(warm.view, warm.projection, job_.surface));
             glFinish();
         }
@@ -121,6 +122,8 @@ private:
         const Camera camera = cameraOf(i);
         aimAt(frame_, camera);
         frame_.timing = &timer_;
+        // The engine's opaque pass (none without OPAQUE or MASK materials): not the method's time.
+        scene_.drawOpaque(frame_, job_.surface);
         draw_ = scene_.callback(frame_.view, frame_.projection, job_.surface);
 
         glFinish();

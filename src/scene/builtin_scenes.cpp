@@ -20,6 +20,12 @@
 //            oblique views cross one curtain several times); 1.1-1.5 wide, 1.3-1.6 tall, centres at
 //            z in [-0.6, 0.6], turned by up to 25 degrees about Y; lit, with normals. Max depth
 //            complexity from +Z 6-12.
+//   courtyard - opaque and transparent parts together (docs/DESIGN.md, "Opaque geometry"): an OPAQUE
+//            floor, back wall and four square pillars (lit, per-face colours in COLOR_0); 8 BLEND
+//            glass panes (alpha 0.2-0.5, tinted, lit) at depths in front of, between and behind the
+//            pillars; 60 MASK foliage quads (cut-off 0.5, COLOR_0 alpha 0.2 or 0.9 per quad, so about
+//            half are cut away) and 240 faint BLEND smoke quads (alpha 0.05-0.25, unlit) around them.
+//            Under an alpha override (--alpha) every part is transparent.
 //   Depth complexities: maximum triangles over one pixel centre, orthographic along -Z over [-1,1]^2.
 #include <algorithm>
 #include <array>
@@ -251,6 +257,83 @@ Scene makeCurtains(uint32_t seed) {
     return s;
 }
 
+// An axis-aligned box's six faces, outward normals, one colour.
+void appendBox(Mesh& mesh, const glm::vec3& lo, const glm::vec3& hi, const glm::vec4& color) {
+    const glm::vec3 c[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
+                            {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
+    appendQuad(mesh, {c[4], c[5], c[6], c[7]}, {0, 0, 1}, color);   // +z
+    appendQuad(mesh, {c[1], c[0], c[3], c[2]}, {0, 0, -1}, color);  // -z
+    appendQuad(mesh, {c[5], c[1], c[2], c[6]}, {1, 0, 0}, color);   // +x
+    appendQuad(mesh, {c[0], c[4], c[7], c[3]}, {-1, 0, 0}, color);  // -x
+    appendQuad(mesh, {c[7], c[6], c[2], c[3]}, {0, 1, 0}, color);   // +y
+    appendQuad(mesh, {c[0], c[1], c[5], c[4]}, {0, -1, 0}, color);  // -y
+}
+
+Scene makeCourtyard(uint32_t seed) {
+    SceneRng rng(seed);
+    Scene s;
+    Material opaque = blendMaterial(false);
+    opaque.alphaMode = AlphaMode::Opaque;
+    Material glass = blendMaterial(false);
+    Material foliage = blendMaterial(false);
+    foliage.alphaMode = AlphaMode::Mask;
+    foliage.alphaCutoff = 0.5f;
+    Material smoke = blendMaterial(true);
+    s.materials = {opaque, glass, foliage, smoke};
+
+    Mesh solid;  // material 0
+    const float floorY = -0.75f;
+    appendQuad(solid, {glm::vec3(-1.0f, floorY, 1.0f), glm::vec3(1.0f, floorY, 1.0f), glm::vec3(1.0f, floorY, -1.0f),
+                       glm::vec3(-1.0f, floorY, -1.0f)},
+               {0, 1, 0}, glm::vec4(0.55f, 0.5f, 0.42f, 1.0f));
+    appendQuad(solid, {glm::vec3(-1.0f, floorY, -0.9f), glm::vec3(1.0f, floorY, -0.9f), glm::vec3(1.0f, 0.8f, -0.9f),
+                       glm::vec3(-1.0f, 0.8f, -0.9f)},
+               {0, 0, 1}, glm::vec4(0.7f, 0.68f, 0.62f, 1.0f));
+    for (int p = 0; p < 4; ++p) {
+        const float x = (p % 2 == 0 ? -0.5f : 0.5f) + rng.range(-0.05f, 0.05f);
+        const float z = (p < 2 ? -0.3f : 0.3f) + rng.range(-0.05f, 0.05f);
+        const glm::vec3 rgb = randomColor(rng, 0.6f);
+        appendBox(solid, {x - 0.08f, floorY, z - 0.08f}, {x + 0.08f, 0.7f, z + 0.08f}, glm::vec4(rgb, 1.0f));
+    }
+    solid.material = 0;
+
+    Mesh panes;  // material 1: in front of, between and behind the pillars
+    for (int i = 0; i < 8; ++i) {
+        const float z = -0.8f + 1.7f * (float(i) + rng.uniform()) / 8.0f;
+        const float x = rng.range(-0.5f, 0.5f);
+        const float y = rng.range(-0.3f, 0.2f);
+        const float w = rng.range(0.3f, 0.55f), h = rng.range(0.3f, 0.5f);
+        const glm::vec4 color(randomColor(rng, 0.3f), rng.range(0.2f, 0.5f));
+        appendQuad(panes, {glm::vec3(x - w, y - h, z), glm::vec3(x + w, y - h, z), glm::vec3(x + w, y + h, z),
+                           glm::vec3(x - w, y + h, z)},
+                   {0, 0, 1}, color);
+    }
+    panes.material = 1;
+
+    Mesh leaves;  // material 2: alpha-tested
+    for (int i = 0; i < 60; ++i) {
+        const glm::vec3 c(rng.range(-0.9f, 0.9f), rng.range(floorY, 0.1f), rng.range(-0.8f, 0.9f));
+        const float h = rng.range(0.04f, 0.09f);
+        const glm::vec4 color(0.15f + 0.2f * rng.uniform(), 0.45f + 0.3f * rng.uniform(), 0.12f, rng.uniform() < 0.5f ? 0.2f : 0.9f);
+        appendQuad(leaves, {c + glm::vec3(-h, -h, 0), c + glm::vec3(h, -h, 0), c + glm::vec3(h, h, 0), c + glm::vec3(-h, h, 0)},
+                   {0, 0, 1}, color);
+    }
+    leaves.material = 2;
+
+    Mesh haze;  // material 3: faint, many layers
+    for (int i = 0; i < 240; ++i) {
+        const glm::vec3 c(rng.range(-0.8f, 0.8f), rng.range(-0.6f, 0.5f), rng.range(-0.8f, 0.9f));
+        const float h = rng.range(0.06f, 0.16f);
+        const float grey = rng.range(0.6f, 0.95f);
+        const glm::vec4 color(glm::vec3(grey), rng.range(0.05f, 0.25f));
+        appendQuad(haze, {c + glm::vec3(-h, -h, 0), c + glm::vec3(h, -h, 0), c + glm::vec3(h, h, 0), c + glm::vec3(-h, h, 0)},
+                   {0, 0, 1}, color);
+    }
+    haze.material = 3;
+    s.meshes = {std::move(solid), std::move(panes), std::move(leaves), std::move(haze)};
+    return s;
+}
+
 }  // namespace
 
 std::vector<BuiltinPane> builtinPanes() {
@@ -264,7 +347,7 @@ std::vector<BuiltinPane> builtinPanes() {
     };
 }
 
-std::vector<std::string> builtinSceneNames() { return {"tubes", "smoke", "panes", "random", "curtains"}; }
+std::vector<std::string> builtinSceneNames() { return {"tubes", "smoke", "panes", "random", "curtains", "courtyard"}; }
 
 Scene makeBuiltinScene(const std::string& name, uint32_t seed) {
     Scene s;
@@ -278,6 +361,8 @@ Scene makeBuiltinScene(const std::string& name, uint32_t seed) {
         s = makeRandom(seed);
     } else if (name == "curtains") {
         s = makeCurtains(seed);
+    } else if (name == "courtyard") {
+        s = makeCourtyard(seed);
     } else {
         std::string list;
         for (const std::string& n : builtinSceneNames()) list += (list.empty() ? "" : ", ") + n;

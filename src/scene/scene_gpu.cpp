@@ -98,22 +98,70 @@ SceneGpu::~SceneGpu() {
     if (!textures_.empty()) glDeleteTextures(GLsizei(textures_.size()), textures_.data());
 }
 
+bool SceneGpu::isOpaque(const MeshGpu& m, const SurfaceOptions& options) const {
+    return !options.alphaOverride && materials_[size_t(m.material)].alphaMode != AlphaMode::Blend;
+}
+
+bool SceneGpu::hasOpaque(const SurfaceOptions& options) const {
+    for (const MeshGpu& m : meshes_) {
+        if (isOpaque(m, options)) return true;
+    }
+    return false;
+}
+
 void SceneGpu::draw(const GeometryPass& pass, const glm::mat4& view, const glm::mat4& projection,
                     const SurfaceOptions& options) const {
-    const GLuint p = pass.program;
+    drawMeshes(pass.program, view, projection, options, false);
+}
+
+void SceneGpu::drawOpaque(FrameDesc& frame, const SurfaceOptions& options) const {
+    frame.opaqueDepth = frame.backgroundTexture = 0;
+    if (!hasOpaque(options)) return;
+    if (!opaqueProgram_) {
+        opaqueProgram_ = gl::buildProgram("scene_opaque", surfaceShader().vertex,
+                                          surfaceShader().fragment + "\n" + tools::toolSource("scene/scene_opaque.frag.glsl"));
+    }
+    if (opaqueColor_.width() != frame.width || opaqueColor_.height() != frame.height) {
+        opaqueColor_ = gl::Texture2D(GL_RGBA16F, frame.width, frame.height);
+        opaqueDepth_ = gl::Texture2D(GL_DEPTH_COMPONENT32F, frame.width, frame.height);
+        opaqueFb_ = gl::makeFramebuffer({&opaqueColor_}, &opaqueDepth_);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, opaqueFb_.id());
+    glViewport(0, 0, frame.width, frame.height);
+    glDisable(GL_BLEND);
+    glDisable(GL_SCISSOR_TEST);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_TRUE);
+    const float background[4] = {frame.background.r, frame.background.g, frame.background.b, 1.0f}, farDepth = 1.0f;
+    glClearBufferfv(GL_COLOR, 0, background);
+    glClearBufferfv(GL_DEPTH, 0, &farDepth);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glUseProgram(opaqueProgram_.id());
+    drawMeshes(opaqueProgram_.id(), frame.view, frame.projection, options, true);
+    glDisable(GL_DEPTH_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    frame.opaqueDepth = opaqueDepth_.id();
+    frame.backgroundTexture = opaqueColor_.id();
+}
+
+void SceneGpu::drawMeshes(GLuint p, const glm::mat4& view, const glm::mat4& projection, const SurfaceOptions& options,
+                          bool opaque) const {
     auto loc = [p](const char* name) { return glGetUniformLocation(p, name); };
     glUniformMatrix4fv(loc("u_view"), 1, GL_FALSE, glm::value_ptr(view));
     glUniformMatrix4fv(loc("u_projection"), 1, GL_FALSE, glm::value_ptr(projection));
     glUniform1f(loc("u_alphaOverride"), options.alphaOverride ? *options.alphaOverride : -1.0f);
     const GLint baseColor = loc("u_baseColorFactor"), hasTexture = loc("u_hasTexture"), unlit = loc("u_unlit"),
-                hasNormals = loc("u_hasNormals"), drawIndex = loc("u_drawIndex");
+                hasNormals = loc("u_hasNormals"), drawIndex = loc("u_drawIndex"), maskCutoff = loc("u_maskCutoff");
     // Absent attributes read these constants.
     glVertexAttrib3f(STARNT_ATTRIB_NORMAL, 0.0f, 0.0f, 0.0f);
     glVertexAttrib2f(STARNT_ATTRIB_UV, 0.0f, 0.0f);
     glVertexAttrib4f(STARNT_ATTRIB_COLOR, 1.0f, 1.0f, 1.0f, 1.0f);
     for (size_t i = 0; i < meshes_.size(); ++i) {
         const MeshGpu& m = meshes_[i];
+        if (isOpaque(m, options) != opaque) continue;
         const Material& mat = materials_[size_t(m.material)];
+        if (opaque) glUniform1f(maskCutoff, mat.alphaMode == AlphaMode::Mask ? mat.alphaCutoff : -1.0f);
         glUniform4fv(baseColor, 1, glm::value_ptr(mat.baseColorFactor));
         glUniform1i(unlit, (mat.unlit || options.forceUnlit) ? 1 : 0);
         glUniform1i(hasNormals, m.hasNormals ? 1 : 0);

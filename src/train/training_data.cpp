@@ -29,6 +29,7 @@ std::vector<FragmentList> captureTrainingLists(const CaptureSetOptions& o) {
                     for (float alpha : o.alphaOverrides) {
                         SurfaceOptions surface;
                         if (alpha >= 0.0f) surface.alphaOverride = alpha;
+                        gpu.drawOpaque(frame, surface);  // the fragments the methods see: clipped by it
                         CapturedFrame captured =
                             capture.capture(frame, gpu.callback(frame.view, frame.projection, surface));
                         for (auto& list : captured.pixels) {

@@ -28,7 +28,8 @@ std::string ErrorView::keyOf(int sceneGeneration, const Camera& camera, glm::ive
 void ErrorView::compute(const SceneGpu& scene, int sceneGeneration, const Camera& camera, glm::ivec2 size,
                         const ViewerSettings& settings, GLuint methodOutput) {
     if (!reference_) reference_ = createMethod("abuffer", SceneGpu::surfaceShader());
-    const FrameDesc frame = frameDesc(camera, size, settings);
+    FrameDesc frame = frameDesc(camera, size, settings);
+    scene.drawOpaque(frame, surfaceOptions(settings));
     reference_->render(frame, scene.callback(frame.view, frame.projection, surfaceOptions(settings)));
     const Image reference = gl::readTexture(reference_->outputTexture(), size.x, size.y);
     const Image test = gl::readTexture(methodOutput, size.x, size.y);

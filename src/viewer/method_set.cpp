@@ -46,6 +46,7 @@ void MethodSet::configure(const ViewerSettings& settings) {
 RenderedFrame MethodSet::render(const SceneGpu& scene, const Camera& camera, glm::ivec2 size,
                                 const ViewerSettings& settings) {
     FrameDesc frame = frameDesc(camera, size, settings);
+    scene.drawOpaque(frame, surfaceOptions(settings));
     const DrawCallback draw = scene.callback(frame.view, frame.projection, surfaceOptions(settings));
     RenderedFrame out;
     frame.timing = &timer_;
