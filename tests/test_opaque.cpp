@@ -18,6 +18,8 @@
 #include "methods/registry.hpp"
 #include "reference/fragment_capture.hpp"
 #include "reference/mboit_cpu.hpp"
+#include "render/offscreen_renderer.hpp"
+#include "starnt/tools/camera_path.hpp"
 #include "scene/scene_gpu.hpp"
 #include "starnt/error.hpp"
 #include "starnt/tools/families.hpp"
@@ -367,4 +369,51 @@ TEST(Opaque, GeometryPassesShadeOnlyTheFragmentsInFrontOfTheOpaqueDepth) {
             if (std::string(method) == "peel" || !countsBeforeEarlyTests) EXPECT_LT(ratio, 0.9) << method << " " << pass;
         }
     }
+}
+
+// The mixed built-in scene through the tools (renderScene: the scene renderer draws its OPAQUE and
+// MASK parts first, as an engine would), along a camera path with corrected frames: real and
+// interpolated frames' errors against the A-buffer reported apart, every frame below WBOIT's error
+// over the same path, and the opaque parts visible and unchanged by any method.
+TEST(Opaque, CourtyardWithCorrectedFramesAlongAPath) {
+    const Scene scene = makeBuiltinScene("courtyard", 1);
+    const SceneGpu gpu(scene);
+    ASSERT_TRUE(gpu.hasOpaque({}));
+    SurfaceOptions allTransparent;
+    allTransparent.alphaOverride = 0.3f;
+    EXPECT_FALSE(gpu.hasOpaque(allTransparent)) << "--alpha turns every material into BLEND";
+    auto run = [&](const std::string& method) {
+        RenderJob job;
+        job.method = method;
+        job.width = 160;
+        job.height = 120;
+        job.frames = 8;
+        job.background = kBackground;
+        job.path = parseCameraPathSpec("orbit:0,16", scene.bounds(), 160.0f / 120.0f);
+        job.referenceMethod = "abuffer";
+        return renderScene(gpu, job).stats;
+    };
+    const auto wboit = run("wboit"), recommended = run("recommended");
+    const double wboitMse = wboit["error"]["real"]["mse_mean"].get<double>();
+    const auto& real = recommended["error"]["real"];
+    const auto& interpolated = recommended["error"]["interpolated"];
+    ASSERT_EQ(interpolated["frames"].get<int>(), 4);
+    std::printf("courtyard 160x120, 8 frames orbit 0-16 deg: wboit MSE %.3g; recommended real %.3g, interpolated %.3g, "
+                "worst flash %.2f\n",
+                wboitMse, real["mse_mean"].get<double>(), interpolated["mse_mean"].get<double>(),
+                recommended["error"]["interpolated_flash"]["worst_ratio"].get<double>());
+    EXPECT_LT(real["mse_mean"].get<double>(), 0.5 * wboitMse);
+    EXPECT_LT(interpolated["mse_mean"].get<double>(), wboitMse);
+}
+
+// The command line: the courtyard renders with its opaque parts, and a temporal mode that cannot take
+// them is one clear error.
+TEST(Opaque, CommandLineOnTheCourtyard) {
+    const auto dir = test::makeTempDir("opaque_cli");
+    const auto ok = test::run("render --scene builtin:courtyard --method starnt-d --width 96 --height 64 --out " +
+                              (dir / "c.png").string());
+    EXPECT_EQ(ok.exitCode, 0) << ok.err;
+    test::expectCleanFailure("render --scene builtin:courtyard --method starnt --temporal 2 --temporal-mode warp --width 96 "
+                             "--height 64 --frames 3 --out " + (dir / "w.png").string(),
+                             dir / "w.png", "corrected mode");
 }

@@ -453,9 +453,9 @@ void settingsSection(std::ostringstream& md, const Results& r) {
            << (v.options.neural.inference == NeuralOptions::Inference::Corners ? "corners" : "full") << " | " << temporalText(v.options)
            << " | " << v.description << " |\n";
     }
-    md << "\n| scene | source | triangles | alpha | alpha cut-off | note |\n|---|---|---|---|---|---|\n";
+    md << "\n| scene | source | triangles | opaque triangles | alpha | alpha cut-off | note |\n|---|---|---|---|---|---|---|\n";
     for (const auto& s : r.scenes) {
-        md << "| " << s.spec.name << " | " << s.spec.source << " | " << s.triangles << " | "
+        md << "| " << s.spec.name << " | " << s.spec.source << " | " << s.triangles << " | " << s.opaqueTriangles << " | "
            << (s.spec.alphaOverride ? fixed(*s.spec.alphaOverride, 2) : std::string("file")) << " | " << s.spec.alphaCutoff << " | "
            << (s.spec.note.empty() ? kMissing : s.spec.note) << " |\n";
     }

@@ -153,6 +153,7 @@ json toJson(const Results& r) {
                           {"status", !s.loaded ? "failed" : "ok"},
                           {"error", s.loaded ? json(nullptr) : json(s.loadError)},
                           {"triangles", s.triangles},
+                          {"opaque_triangles", s.opaqueTriangles},
                           {"max_fragments", s.maxFragments},
                           {"ground_truth",
                            {{"method", "abuffer"},

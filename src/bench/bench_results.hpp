@@ -47,6 +47,9 @@ struct SceneResult {
     bool loaded = false;
     std::string loadError;
     size_t triangles = 0;
+    // Triangles drawn first into the opaque colour and depth the methods clip against (OPAQUE and MASK
+    // materials; 0 under an alpha override, which makes every material BLEND).
+    size_t opaqueTriangles = 0;
     unsigned maxFragments = 0;  // D at the last camera, from the ground-truth render
     bool groundTruthOk = false;
     std::string groundTruthError;

@@ -63,6 +63,11 @@ public:
         }
         result.loaded = true;
         result.triangles = scene->triangleCount();
+        if (!spec_.alphaOverride) {
+            for (const Mesh& m : scene->meshes) {
+                if (scene->materials[size_t(m.material)].alphaMode != AlphaMode::Blend) result.opaqueTriangles += m.indices.size() / 3;
+            }
+        }
         fs::create_directories(outDir_ / imageDir_);
         SceneGpu gpu(*scene);
         renderGroundTruth(*scene, gpu, result);

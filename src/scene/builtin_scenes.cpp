@@ -283,23 +283,23 @@ Scene makeCourtyard(uint32_t seed) {
 
     Mesh solid;  // material 0
     const float floorY = -0.75f;
-    appendQuad(solid, {glm::vec3(-1.0f, floorY, 1.0f), glm::vec3(1.0f, floorY, 1.0f), glm::vec3(1.0f, floorY, -1.0f),
-                       glm::vec3(-1.0f, floorY, -1.0f)},
+    appendQuad(solid, {glm::vec3(-0.9f, floorY, 0.9f), glm::vec3(0.9f, floorY, 0.9f), glm::vec3(0.9f, floorY, -0.9f),
+                       glm::vec3(-0.9f, floorY, -0.9f)},
                {0, 1, 0}, glm::vec4(0.55f, 0.5f, 0.42f, 1.0f));
-    appendQuad(solid, {glm::vec3(-1.0f, floorY, -0.9f), glm::vec3(1.0f, floorY, -0.9f), glm::vec3(1.0f, 0.8f, -0.9f),
-                       glm::vec3(-1.0f, 0.8f, -0.9f)},
+    appendQuad(solid, {glm::vec3(-0.9f, floorY, -0.9f), glm::vec3(0.9f, floorY, -0.9f), glm::vec3(0.9f, 0.7f, -0.9f),
+                       glm::vec3(-0.9f, 0.7f, -0.9f)},
                {0, 0, 1}, glm::vec4(0.7f, 0.68f, 0.62f, 1.0f));
     for (int p = 0; p < 4; ++p) {
         const float x = (p % 2 == 0 ? -0.5f : 0.5f) + rng.range(-0.05f, 0.05f);
         const float z = (p < 2 ? -0.3f : 0.3f) + rng.range(-0.05f, 0.05f);
         const glm::vec3 rgb = randomColor(rng, 0.6f);
-        appendBox(solid, {x - 0.08f, floorY, z - 0.08f}, {x + 0.08f, 0.7f, z + 0.08f}, glm::vec4(rgb, 1.0f));
+        appendBox(solid, {x - 0.08f, floorY, z - 0.08f}, {x + 0.08f, 0.65f, z + 0.08f}, glm::vec4(rgb, 1.0f));
     }
     solid.material = 0;
 
     Mesh panes;  // material 1: in front of, between and behind the pillars
     for (int i = 0; i < 8; ++i) {
-        const float z = -0.8f + 1.7f * (float(i) + rng.uniform()) / 8.0f;
+        const float z = -0.8f + 1.6f * (float(i) + rng.uniform()) / 8.0f;
         const float x = rng.range(-0.5f, 0.5f);
         const float y = rng.range(-0.3f, 0.2f);
         const float w = rng.range(0.3f, 0.55f), h = rng.range(0.3f, 0.5f);
@@ -312,7 +312,7 @@ Scene makeCourtyard(uint32_t seed) {
 
     Mesh leaves;  // material 2: alpha-tested
     for (int i = 0; i < 60; ++i) {
-        const glm::vec3 c(rng.range(-0.9f, 0.9f), rng.range(floorY, 0.1f), rng.range(-0.8f, 0.9f));
+        const glm::vec3 c(rng.range(-0.8f, 0.8f), rng.range(floorY, 0.1f), rng.range(-0.8f, 0.8f));
         const float h = rng.range(0.04f, 0.09f);
         const glm::vec4 color(0.15f + 0.2f * rng.uniform(), 0.45f + 0.3f * rng.uniform(), 0.12f, rng.uniform() < 0.5f ? 0.2f : 0.9f);
         appendQuad(leaves, {c + glm::vec3(-h, -h, 0), c + glm::vec3(h, -h, 0), c + glm::vec3(h, h, 0), c + glm::vec3(-h, h, 0)},
@@ -322,7 +322,7 @@ Scene makeCourtyard(uint32_t seed) {
 
     Mesh haze;  // material 3: faint, many layers
     for (int i = 0; i < 240; ++i) {
-        const glm::vec3 c(rng.range(-0.8f, 0.8f), rng.range(-0.6f, 0.5f), rng.range(-0.8f, 0.9f));
+        const glm::vec3 c(rng.range(-0.7f, 0.7f), rng.range(-0.6f, 0.5f), rng.range(-0.8f, 0.8f));
         const float h = rng.range(0.06f, 0.16f);
         const float grey = rng.range(0.6f, 0.95f);
         const glm::vec4 color(glm::vec3(grey), rng.range(0.05f, 0.25f));
