@@ -5,6 +5,10 @@
 //
 // Renders six overlapping semi-transparent quads with abuffer, peel, wboit, mboit and starnt,
 // writes <outdir>/<method>.png and compares every method with the A-buffer (the exact reference).
+// Then the engine's own opaque scene: it draws one slanted opaque quad through the stack into its own
+// depth (DEPTH24_STENCIL8) and colour textures, hands them to the methods (FrameDesc::opaqueDepth,
+// backgroundTexture), checks abuffer and peel against the exact composite it computes by ray casting,
+// and blends starnt's premultiplied output (FrameDesc::premultipliedOutput) onto its colour itself.
 // Exit code 0 when every check passes, 1 otherwise. `gles` makes the engine's context OpenGL ES 3.2
 // instead of OpenGL 4.5 core: the methods read the API from the current context, nothing else
 // changes (the engine's own GL calls below are the subset both APIs have).
@@ -31,6 +35,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <memory>
+#include <stdexcept>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -244,6 +251,26 @@ void main() {
 }
 )GLSL";
 
+// The engine's own opaque pass (not a STAR-NT pass): the same vertex shader, opaque colour out.
+const char* kOpaqueFragment = R"GLSL(
+in vec4 v_colour;
+layout(location = 0) out vec4 o_colour;
+void main() { o_colour = vec4(v_colour.rgb, 1.0); }
+)GLSL";
+
+// Blends a premultiplied output onto the bound target: the blend state does the compositing.
+const char* kFullscreenVertex = R"GLSL(
+void main() {
+    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
+)GLSL";
+const char* kCopyFragment = R"GLSL(
+uniform highp sampler2D u_source;
+layout(location = 0) out vec4 o_colour;
+void main() { o_colour = texelFetch(u_source, ivec2(gl_FragCoord.xy), 0); }
+)GLSL";
+
 const char* kSurfaceFunction = R"GLSL(
 in vec4 v_colour;
 vec4 starntSurface() {
@@ -252,6 +279,157 @@ vec4 starntSurface() {
 )GLSL";
 
 // ---------------------------------------------------------------------------------------------
+// The engine's opaque object: a quad slanted through the stack, z = -0.2 + 0.5 x over
+// x in [-0.9, 0.9], y in [-0.8, 0.8].
+
+const glm::vec3 kOpaqueColour(0.25f, 0.30f, 0.38f);
+float opaqueZ(float x) { return -0.2f + 0.5f * x; }
+
+GLuint compileProgram(bool es, const char* vertex, const char* fragment) {
+    const std::string header = es ? "#version 320 es\nprecision highp float;\n" : "#version 450 core\n";
+    GLuint program = glCreateProgram();
+    for (auto [stage, body] : {std::pair{GL_VERTEX_SHADER, vertex}, std::pair{GL_FRAGMENT_SHADER, fragment}}) {
+        GLuint shader = glCreateShader(stage);
+        const std::string text = header + body;
+        const char* source = text.c_str();
+        glShaderSource(shader, 1, &source, nullptr);
+        glCompileShader(shader);
+        GLint ok = 0;
+        glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+        if (!ok) throw std::runtime_error("engine shader does not compile");
+        glAttachShader(program, shader);
+        glDeleteShader(shader);
+    }
+    glLinkProgram(program);
+    GLint ok = 0;
+    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (!ok) throw std::runtime_error("engine program does not link");
+    return program;
+}
+
+struct OpaqueTarget {
+    GLuint colour = 0, depth = 0, framebuffer = 0;
+    ~OpaqueTarget() {
+        glDeleteFramebuffers(1, &framebuffer);
+        GLuint textures[2] = {colour, depth};
+        glDeleteTextures(2, textures);
+    }
+};
+
+// Draws the opaque quad into the engine's own colour (RGBA16F, cleared to `background`) and depth
+// (DEPTH24_STENCIL8) textures, as an engine does before its transparent objects.
+void drawOpaque(OpaqueTarget& t, bool es, const glm::mat4& viewProjection, const glm::vec3& background) {
+    auto texture = [](GLenum format) {
+        GLuint id = 0;
+        glGenTextures(1, &id);
+        glBindTexture(GL_TEXTURE_2D, id);
+        glTexStorage2D(GL_TEXTURE_2D, 1, format, kSize, kSize);
+        return id;
+    };
+    t.colour = texture(GL_RGBA16F);
+    t.depth = texture(GL_DEPTH24_STENCIL8);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glGenFramebuffers(1, &t.framebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, t.framebuffer);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.colour, 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, t.depth, 0);
+    glViewport(0, 0, kSize, kSize);
+    const float clear[4] = {background.r, background.g, background.b, 1.0f};
+    glClearBufferfv(GL_COLOR, 0, clear);
+    glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    const GLuint program = compileProgram(es, kVertexShader, kOpaqueFragment);
+    glUseProgram(program);
+    glUniformMatrix4fv(glGetUniformLocation(program, "u_viewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
+    const Vertex vertices[4] = {{{-0.9f, -0.8f, opaqueZ(-0.9f)}, {kOpaqueColour.r, kOpaqueColour.g, kOpaqueColour.b, 1.0f}},
+                                {{0.9f, -0.8f, opaqueZ(0.9f)}, {kOpaqueColour.r, kOpaqueColour.g, kOpaqueColour.b, 1.0f}},
+                                {{0.9f, 0.8f, opaqueZ(0.9f)}, {kOpaqueColour.r, kOpaqueColour.g, kOpaqueColour.b, 1.0f}},
+                                {{-0.9f, 0.8f, opaqueZ(-0.9f)}, {kOpaqueColour.r, kOpaqueColour.g, kOpaqueColour.b, 1.0f}}};
+    const GLuint indices[6] = {0, 1, 2, 0, 2, 3};
+    GLuint vao = 0, buffers[2] = {0, 0};
+    glGenVertexArrays(1, &vao);
+    glBindVertexArray(vao);
+    glGenBuffers(2, buffers);
+    glBindBuffer(GL_ARRAY_BUFFER, buffers[0]);
+    glBufferData(GL_ARRAY_BUFFER, sizeof vertices, vertices, GL_STATIC_DRAW);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffers[1]);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, sizeof indices, indices, GL_STATIC_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, position)));
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, colour)));
+    glDrawElements(GL_TRIANGLES, 6, GL_UNSIGNED_INT, nullptr);
+    glBindVertexArray(0);
+    glDeleteVertexArrays(1, &vao);
+    glDeleteBuffers(2, buffers);
+    glDeleteProgram(program);
+    glDisable(GL_DEPTH_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+// The exact composite at pixel (x, y) (Image rows: 0 at the top) by casting its ray through the
+// quads and the opaque quad; false where the pixel centre lies within `margin` of an edge or the
+// opaque quad crosses a layer there (rasterisation decides those).
+bool exactPixel(int x, int y, const glm::mat4& viewProjection, const glm::vec3& background, glm::vec3& out) {
+    const glm::mat4 inverse = glm::inverse(viewProjection);
+    const float nx = (float(x) + 0.5f) / float(kSize) * 2.0f - 1.0f, ny = 1.0f - (float(y) + 0.5f) / float(kSize) * 2.0f;
+    const glm::vec4 a = inverse * glm::vec4(nx, ny, -1.0f, 1.0f), b = inverse * glm::vec4(nx, ny, 1.0f, 1.0f);
+    const glm::vec3 origin = glm::vec3(a) / a.w, direction = glm::vec3(b) / b.w - origin;
+    const float margin = 0.03f;
+    // The opaque quad: z - 0.5 x = -0.2.
+    const glm::vec3 normal(-0.5f, 0.0f, 1.0f);
+    float opaqueT = 1e30f;
+    glm::vec3 behind = background;
+    const float tOpaque = (-0.2f - glm::dot(normal, origin)) / glm::dot(normal, direction);
+    const glm::vec3 po = origin + tOpaque * direction;
+    if (std::abs(std::abs(po.x) - 0.9f) < margin || std::abs(std::abs(po.y) - 0.8f) < margin) return false;
+    if (std::abs(po.x) < 0.9f && std::abs(po.y) < 0.8f) {
+        opaqueT = tOpaque;
+        behind = kOpaqueColour;
+    }
+    std::vector<std::pair<float, glm::vec4>> hits;
+    for (const Quad& q : kQuads) {
+        const float t = (q.z - origin.z) / direction.z;
+        const glm::vec3 p = origin + t * direction;
+        const glm::vec2 d = glm::abs(glm::vec2(p) - q.centre) - q.halfSize;
+        if (std::abs(d.x) < margin || std::abs(d.y) < margin) return false;
+        if (d.x >= 0.0f || d.y >= 0.0f) continue;
+        if (std::abs(t - opaqueT) < 0.01f) return false;
+        if (t < opaqueT) hits.emplace_back(t, q.colour);
+    }
+    std::sort(hits.begin(), hits.end(), [](const auto& l, const auto& r) { return l.first < r.first; });
+    glm::vec3 colour(0.0f);
+    float transmittance = 1.0f;
+    for (const auto& [t, c] : hits) {
+        colour += transmittance * c.a * glm::vec3(c);
+        transmittance *= 1.0f - c.a;
+    }
+    out = colour + transmittance * behind;
+    return true;
+}
+
+// What an engine does with FrameDesc::premultipliedOutput: blends it onto its own colour with
+// glBlendFunc(GL_ONE, GL_SRC_ALPHA), dst = src.rgb + src.a * dst.
+void blendPremultiplied(GLuint premultiplied, GLuint framebuffer, bool es) {
+    const GLuint program = compileProgram(es, kFullscreenVertex, kCopyFragment);
+    GLuint vao = 0;
+    glGenVertexArrays(1, &vao);
+    glBindVertexArray(vao);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    glViewport(0, 0, kSize, kSize);
+    glUseProgram(program);
+    glActiveTexture(GL_TEXTURE0 + STARNT_ENGINE_FIRST_TEXTURE_UNIT);
+    glBindTexture(GL_TEXTURE_2D, premultiplied);
+    glUniform1i(glGetUniformLocation(program, "u_source"), STARNT_ENGINE_FIRST_TEXTURE_UNIT);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_SRC_ALPHA);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_BLEND);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteVertexArrays(1, &vao);
+    glDeleteProgram(program);
+}
 
 starnt::Image readOutput(GLuint texture, int width, int height) {
     std::vector<float> pixels(size_t(width) * size_t(height) * 4);
@@ -384,6 +562,69 @@ int run(const std::filesystem::path& outdir, bool es) {
                            std::to_string(diffs["wboit"].mse));
     if (!(diffs["starnt"].mse < 1e-3))
         failures.push_back("starnt: MSE " + std::to_string(diffs["starnt"].mse) + " is not below 1e-3");
+
+    // ---- The engine's opaque scene ----
+    OpaqueTarget opaque;
+    drawOpaque(opaque, es, viewProjection, frame.background);
+    frame.opaqueDepth = opaque.depth;
+    frame.backgroundTexture = opaque.colour;
+    std::map<std::string, starnt::Image> withOpaque;
+    std::unique_ptr<starnt::OitMethod> starntMethod;
+    for (const std::string& name : wanted) {
+        auto method = starnt::createMethod(name, surface, options);
+        method->render(frame, [&](const starnt::GeometryPass& pass) {
+            glUniformMatrix4fv(glGetUniformLocation(pass.program, "u_viewProjection"), 1, GL_FALSE,
+                               glm::value_ptr(viewProjection));
+            mesh.draw();
+        });
+        withOpaque[name] = readOutput(method->outputTexture(), kSize, kSize);
+        starnt::savePng(withOpaque[name], (outdir / (name + "_opaque.png")).string());
+        if (name == "starnt") starntMethod = std::move(method);
+    }
+    double worstExact[2] = {0.0, 0.0};  // abuffer, peel against the ray-cast composite
+    double exactMse[5] = {};
+    size_t exactPixels = 0, showOpaque = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            glm::vec3 want;
+            if (!exactPixel(x, y, viewProjection, frame.background, want)) continue;
+            ++exactPixels;
+            showOpaque += glm::length(want - frame.background) > 0.3f;
+            for (size_t m = 0; m < wanted.size(); ++m) {
+                const float* got = &withOpaque.at(wanted[m]).rgba[(size_t(y) * kSize + size_t(x)) * 4];
+                for (int c = 0; c < 3; ++c) {
+                    const double e = std::abs(double(got[c]) - double(want[c]));
+                    if (m < 2) worstExact[m] = std::max(worstExact[m], e);
+                    exactMse[m] += e * e / 3.0;
+                }
+            }
+        }
+    std::printf("with the opaque quad: %zu pixels against the exact composite\n", exactPixels);
+    for (size_t m = 0; m < wanted.size(); ++m) {
+        exactMse[m] /= double(std::max<size_t>(exactPixels, 1));
+        std::printf("%s MSE %.6g vs exact\n", wanted[m].c_str(), exactMse[m]);
+    }
+    if (exactPixels < size_t(kSize * kSize / 4) || showOpaque < 1000)
+        failures.push_back("opaque: too few pixels to compare (" + std::to_string(exactPixels) + ")");
+    for (int m = 0; m < 2; ++m)
+        if (worstExact[m] > 2.0 / 255.0)
+            failures.push_back(wanted[size_t(m)] + " with the opaque quad: max difference " + std::to_string(worstExact[m]) +
+                               " from the exact composite (> 2/255)");
+    if (!(exactMse[4] < exactMse[2]))  // starnt below wboit
+        failures.push_back("starnt with the opaque quad: MSE not below wboit's");
+    // The premultiplied output, blended by the engine onto its own colour, equals the composite.
+    frame.premultipliedOutput = true;
+    starntMethod->render(frame, [&](const starnt::GeometryPass& pass) {
+        glUniformMatrix4fv(glGetUniformLocation(pass.program, "u_viewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
+        mesh.draw();
+    });
+    blendPremultiplied(starntMethod->outputTexture(), opaque.framebuffer, es);
+    const Difference premultiplied = compare(withOpaque.at("starnt"), readOutput(opaque.colour, kSize, kSize));
+    std::printf("starnt premultiplied, blended by the engine: max difference %.6g from the composite\n", premultiplied.maxDiff);
+    if (premultiplied.maxDiff > 4e-3)
+        failures.push_back("starnt premultiplied output blended by the engine differs by " + std::to_string(premultiplied.maxDiff));
+    if (GLenum error = glGetError(); error != GL_NO_ERROR) failures.push_back("GL error after the opaque scene");
+
     for (const std::string& failure : failures) std::fprintf(stderr, "minimal_engine: FAILED: %s\n", failure.c_str());
     return failures.empty() ? 0 : 1;
 }
