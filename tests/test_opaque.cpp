@@ -376,6 +376,7 @@ TEST(Opaque, GeometryPassesShadeOnlyTheFragmentsInFrontOfTheOpaqueDepth) {
 // interpolated frames' errors against the A-buffer reported apart, every frame below WBOIT's error
 // over the same path, and the opaque parts visible and unchanged by any method.
 TEST(Opaque, CourtyardWithCorrectedFramesAlongAPath) {
+    test::glContext();
     const Scene scene = makeBuiltinScene("courtyard", 1);
     const SceneGpu gpu(scene);
     ASSERT_TRUE(gpu.hasOpaque({}));
