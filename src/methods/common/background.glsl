@@ -8,6 +8,9 @@
 #include "starnt/bindings.h"
 uniform vec3 u_background;
 uniform int u_backgroundSource;  // 0: u_background, 1: the texture, 2: none (premultiplied output)
+// The composite over the background with the transmittance in alpha: the real frames that warp and
+// refresh frames keep premultiplied (OpaqueScene::setTransmittanceInAlpha).
+uniform bool u_transmittanceInAlpha;
 layout(binding = STARNT_UNIT_OPAQUE) uniform highp sampler2D u_backgroundTexture;
 
 vec3 backgroundAt(ivec2 pixel) {
@@ -18,5 +21,5 @@ vec3 backgroundAt(ivec2 pixel) {
 vec3 background() { return backgroundAt(ivec2(gl_FragCoord.xy)); }
 #endif
 // The output's alpha for a pixel whose layers let `transmittance` of the background through.
-float outputAlpha(float transmittance) { return u_backgroundSource == 2 ? transmittance : 1.0; }
+float outputAlpha(float transmittance) { return u_backgroundSource == 2 || u_transmittanceInAlpha ? transmittance : 1.0; }
 #endif

@@ -33,6 +33,7 @@ void OpaqueScene::begin(const FrameDesc& frame) {
     color_ = frame.background;
     depth_ = background_ = 0;
     clipWidth_ = clipHeight_ = 0;
+    transmittanceInAlpha_ = false;
     if (frame.opaqueDepth) checkTexture("opaqueDepth", frame.opaqueDepth, frame, true);
     if (frame.backgroundTexture && !frame.premultipliedOutput) {
         checkTexture("backgroundTexture", frame.backgroundTexture, frame, false);
@@ -60,13 +61,16 @@ void OpaqueScene::prepare() {
     glSamplerParameteri(s, GL_TEXTURE_COMPARE_MODE, GL_NONE);
 }
 
-void OpaqueScene::bindOpaqueDepth() const {
-    gl::bindTexture(STARNT_UNIT_OPAQUE, depth_);
-    glBindSampler(STARNT_UNIT_OPAQUE, sampler_.id());
+void OpaqueScene::bindOpaqueDepth(GLuint unit) const {
+    gl::bindTexture(unit, depth_);
+    glBindSampler(unit, sampler_.id());
+    depthUnit_ = unit;
 }
 
 void OpaqueScene::end() const {
-    if (sampler_) glBindSampler(STARNT_UNIT_OPAQUE, 0);
+    if (!sampler_) return;
+    glBindSampler(STARNT_UNIT_OPAQUE, 0);
+    glBindSampler(depthUnit_, 0);
 }
 
 void OpaqueScene::writeDepth(int width, int height, int fullWidth, int fullHeight) {
@@ -120,6 +124,7 @@ void OpaqueScene::endDepthTest(GLuint framebuffer) {
 void OpaqueScene::bindBackground(const gl::Program& program) const {
     glUniform3fv(program.uniform("u_background"), 1, &color_[0]);
     glUniform1i(program.uniform("u_backgroundSource"), premultiplied_ ? 2 : background_ ? 1 : 0);
+    glUniform1i(program.uniform("u_transmittanceInAlpha"), transmittanceInAlpha_ ? 1 : 0);
     if (background_) {
         gl::bindTexture(STARNT_UNIT_OPAQUE, background_);
         glBindSampler(STARNT_UNIT_OPAQUE, sampler_.id());

@@ -13,6 +13,7 @@
 
 #include "gl/gl_util.hpp"
 #include "gl/shader.hpp"
+#include "starnt/bindings.h"
 #include "starnt/oit_method.hpp"
 
 namespace starnt {
@@ -46,13 +47,20 @@ public:
     // Sets background.glsl's uniforms on `program` (bound) and binds the engine's colour texture,
     // if any, to STARNT_UNIT_OPAQUE.
     void bindBackground(const gl::Program& program) const;
-    // Binds the engine's depth texture (with the method's sampler) to STARNT_UNIT_OPAQUE.
-    void bindOpaqueDepth() const;
+    // Binds the engine's depth texture (with the method's sampler) to `unit` (STARNT_UNIT_OPAQUE
+    // unless a pass samples the background there too).
+    void bindOpaqueDepth(GLuint unit = STARNT_UNIT_OPAQUE) const;
     // Unbinds the method's sampler from STARNT_UNIT_OPAQUE (the engine's own use of that unit
     // outside render() must see its texture's parameters): the end of every render().
     void end() const;
     // The output alpha the composites write is the transmittance (premultiplied output).
     bool premultiplied() const { return premultiplied_; }
+    // Whether the frame has an opaque scene or a premultiplied output: what the last real frame's
+    // composite held for the background then changes from frame to frame.
+    bool active() const { return depth_ || background_ || premultiplied_; }
+    // While on, the composites (bindBackground) write the transmittance in alpha beside the colour
+    // over the background: what a real frame's capture turns into a premultiplied history.
+    void setTransmittanceInAlpha(bool on) { transmittanceInAlpha_ = on; }
 
     size_t gpuMemoryBytes() const { return clipDepth_.bytes(); }
 
@@ -61,7 +69,8 @@ private:
     void prepare();
 
     GLuint depth_ = 0, background_ = 0;
-    bool premultiplied_ = false;
+    bool premultiplied_ = false, transmittanceInAlpha_ = false;
+    mutable GLuint depthUnit_ = STARNT_UNIT_OPAQUE;  // where bindOpaqueDepth put the sampler last
     glm::vec3 color_{1.0f};
     gl::Program fill_;
     gl::VertexArrayHandle vao_;

@@ -146,7 +146,10 @@ public:
             if (tiles_) tiles_->resize(frame.width, frame.height);
         }
         const glm::mat4 viewProjection = frame.projection * frame.view;
-        checkTemporalModeTakesTheFrame(frame);
+        // Warp and refresh frames reuse the last real frame's composite: with an opaque scene it is
+        // kept premultiplied, so that they composite over their own frame's background (docs/DESIGN.md,
+        // "Opaque geometry").
+        const bool premultipliedHistory = temporal_.interpolates() && !temporal_.corrects() && opaque_.active();
         if (!temporal_.beginFrame(frame.width, frame.height)) {
             // Interpolated: the passes the temporal mode asks for, fresh at this camera, then the
             // temporal frames' composite (no inference, no tiles).
@@ -158,31 +161,30 @@ public:
             temporal_.interpolate(viewProjection, temporalTargets(true), opaque_, out_.texture, frame.timing);
             return;
         }
+        const bool transmittanceInAlpha = premultipliedHistory && !frame.premultipliedOutput;
+        opaque_.setTransmittanceInAlpha(transmittanceInAlpha);
         renderReal(frame, draw);
+        opaque_.setTransmittanceInAlpha(false);
         if (fusedCaptured_) {
             temporal_.endRealFrameFused();
         } else if (temporal_.interpolates()) {
             gl::ScopedPass timing(frame.timing, "temporal_capture");
             // Corrected frames need this frame's pass-3 sums at full resolution (none when it ran reduced).
             const bool sums = passes_.pass3Size() == Size2{frame.width, frame.height};
-            temporal_.endRealFrame(out_.texture, temporalTargets(sums), viewProjection, frame.width, frame.height, opaque_);
+            temporal_.endRealFrame(out_.texture, temporalTargets(sums), viewProjection, frame.width, frame.height, opaque_,
+                                   premultipliedHistory);
+        }
+        if (transmittanceInAlpha) {
+            // The history has the transmittance; the output's alpha is 1 (OitMethod::outputTexture).
+            glBindFramebuffer(GL_FRAMEBUFFER, out_.framebuffer);
+            glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
+            const float opaqueAlpha[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+            glClearBufferfv(GL_COLOR, 0, opaqueAlpha);
+            glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         }
     }
 
 private:
-    // Warp and refresh frames reuse the last real frame's composite, background included, and
-    // write alpha 1: they cannot follow an engine's opaque image, depth or premultiplied output from
-    // frame to frame (docs/DESIGN.md, "Opaque geometry"). Corrected frames composite every frame
-    // over the frame's own background.
-    void checkTemporalModeTakesTheFrame(const FrameDesc& frame) const {
-        if (!temporal_.interpolates() || temporal_.corrects()) return;
-        if (frame.opaqueDepth || frame.backgroundTexture || frame.premultipliedOutput) {
-            throw Error(config_.name + ": warp and refresh temporal frames (MethodOptions::neural.temporalMode) cannot take "
-                        "FrameDesc::opaqueDepth, backgroundTexture or premultipliedOutput: they reuse the last real "
-                        "frame's composite; use the corrected mode (TemporalMode::Correct, the default)");
-        }
-    }
-
     // This frame's pass targets for the temporal frames; pass 3's only with `sums`.
     TemporalPassTargets temporalTargets(bool sums) const {
         return {passes_.nearest().id(), passes_.nearestDepth().id(), sums ? passes_.alphaColor().id() : 0u,

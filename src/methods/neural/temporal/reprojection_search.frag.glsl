@@ -7,6 +7,10 @@
 // Here every output pixel solves for its own source with a few depth fetches (~31-40 ms there).
 #include "methods/neural/temporal/reprojection_constants.h"
 #include "methods/neural/half_targets.glsl"
+#include "methods/common/background.glsl"
+// The history holds the layers over black and their transmittance (history_premultiplied.frag.glsl:
+// the frame has an opaque scene), composited here over this frame's background.
+uniform bool u_premultipliedHistory;
 // A 16-bit float output (compact targets): values rounded to the nearest one here, as the real
 // frames' inference does (half_targets.glsl), so a refresh frame equals a real one bit for bit
 // where it should.
@@ -19,12 +23,12 @@ layout(binding = 2) uniform highp sampler2D u_seeds;  // (min, max) depth around
 uniform ivec2 u_size;
 // Rows 0, 1 and 3 of R = newViewProj * inverse(oldViewProj), and row 3 of inverse(oldViewProj).
 uniform vec4 u_row0, u_row1, u_row3, u_sourceScale;
+uniform vec4 u_row2;  // row 2 of R: the source point's new window depth, against the opaque depth
 
 #ifdef STARNT_REFRESH
 // Refresh frames: the kept frame's pass-1 colour, and pass 1 rendered at the new camera.
 layout(binding = 3) uniform highp sampler2D u_keptNearest;
 layout(binding = 4) uniform highp sampler2D u_nearest;
-uniform vec3 u_background;
 layout(binding = 5) uniform highp sampler2D u_behind;  // reprojection_behind.frag.glsl: (B, 1 / view depth)
 
 // temporal::refreshComposite (reprojection_cpu.hpp states it): the fresh nearest layer over
@@ -37,6 +41,21 @@ vec3 refreshComposite(vec3 keptComposite, vec4 keptNearest, vec4 nearest, vec3 b
     float r = (1.0 - nearest.a) / keptOpen;
     return max(r * keptComposite + (front - r * (keptNearest.a * keptNearest.rgb)), vec3(0.0));
 }
+
+// The same from a premultiplied history (kept = layers over black, transmittance): the layers over
+// black and the transmittance of the refreshed pixel. What lay behind the kept nearest layer lets
+// T_kept / (1 - a_kept) of the background through; the fresh layer then (1 - a) of that.
+vec4 refreshPremultiplied(vec4 kept, vec4 keptNearest, vec4 nearest) {
+    if (!(nearest.a > 0.0)) return vec4(0.0, 0.0, 0.0, 1.0);
+    vec3 front = nearest.a * nearest.rgb;
+    float keptOpen = 1.0 - keptNearest.a;
+    if (!(keptOpen > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE))) return vec4(front, 1.0 - nearest.a);
+    float r = (1.0 - nearest.a) / keptOpen;
+    return vec4(max(r * kept.rgb + (front - r * (keptNearest.a * keptNearest.rgb)), vec3(0.0)), r * kept.a);
+}
+#else
+layout(binding = 6) uniform highp sampler2D u_opaqueDepth;  // this frame's (FrameDesc::opaqueDepth)
+uniform bool u_opaqueClip;
 #endif
 
 
@@ -134,13 +153,38 @@ void main() {
             if (t == bestTexel) own += wk;
         }
         if (weight > 0.0 && own < 0.999 * weight) {
-            o_color = outputValue(vec4(fresh.a * fresh.rgb + (1.0 - fresh.a) * max(sum / weight, vec3(0.0)), 1.0), u_halfOutput);
+            vec3 color = fresh.a * fresh.rgb + (1.0 - fresh.a) * max(sum / weight, vec3(0.0));
+            float transmittance = 1.0;
+            if (u_premultipliedHistory) {
+                // The behind shares are over black: the background through what lay behind the kept
+                // nearest layer at the source texel, then through the fresh layer.
+                float keptOpen = max(1.0 - texelFetch(u_keptNearest, bestTexel, 0).a, float(STARNT_TEMPORAL_MIN_TRANSMITTANCE));
+                transmittance = (1.0 - fresh.a) * clamp(texelFetch(u_color, bestTexel, 0).a / keptOpen, 0.0, 1.0);
+                color += transmittance * background();
+            }
+            o_color = outputValue(vec4(color, outputAlpha(transmittance)), u_halfOutput);
             return;
         }
     }
+    if (u_premultipliedHistory) {
+        vec4 q = refreshPremultiplied(texelFetch(u_color, source, 0), texelFetch(u_keptNearest, source, 0), texelFetch(u_nearest, p, 0));
+        o_color = outputValue(vec4(q.rgb + q.a * background(), outputAlpha(q.a)), u_halfOutput);
+        return;
+    }
     o_color = outputValue(vec4(refreshComposite(texelFetch(u_color, source, 0).rgb, texelFetch(u_keptNearest, source, 0),
-                                                texelFetch(u_nearest, p, 0), u_background), 1.0), u_halfOutput);
+                                                texelFetch(u_nearest, p, 0), background()), 1.0), u_halfOutput);
 #else
-    o_color = texelFetch(u_color, source, 0);
+    vec4 kept = texelFetch(u_color, source, 0);
+    if (!u_premultipliedHistory) {
+        o_color = kept;
+        return;
+    }
+    // A source point that lies at or behind this frame's opaque surface at p is hidden by it.
+    if (u_opaqueClip && bestTexel.x >= 0) {
+        vec4 v = vec4(bestPosition / vec2(u_size) * 2.0 - 1.0, texelFetch(u_depth, bestTexel, 0).r * 2.0 - 1.0, 1.0);
+        float newDepth = dot(u_row2, v) / dot(u_row3, v) * 0.5 + 0.5;
+        if (!(newDepth < texelFetch(u_opaqueDepth, p, 0).r)) kept = vec4(0.0, 0.0, 0.0, 1.0);
+    }
+    o_color = outputValue(vec4(kept.rgb + kept.a * background(), outputAlpha(kept.a)), u_halfOutput);
 #endif
 }

@@ -1,5 +1,6 @@
 #include "methods/neural/temporal/reprojector.hpp"
 
+#include <glm/gtc/matrix_access.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "methods/neural/temporal/reprojection_constants.h"
@@ -18,7 +19,7 @@ Reprojector::Reprojector()
       emptyVao_(gl::makeEmptyVertexArray()) {}
 
 void Reprojector::capture(GLuint colorTexture, GLuint depthTexture, int width, int height, const glm::mat4& viewProj,
-                          GLuint nearestTexture) {
+                          GLuint nearestTexture, const OpaqueScene* premultiply) {
     if (width < 1 || height < 1) throw Error("temporal capture: empty frame size");
     const GLenum colorFormat = gl::textureInternalFormat(colorTexture), depthFormat = gl::textureInternalFormat(depthTexture);
     // The history keeps the composite's own precision (RGBA16F with the compact targets).
@@ -51,7 +52,17 @@ void Reprojector::capture(GLuint colorTexture, GLuint depthTexture, int width, i
                            height, 1);
     }
     // Plain copies: the method overwrites its own targets on the next real frame.
-    glCopyImageSubData(colorTexture, GL_TEXTURE_2D, 0, 0, 0, 0, color_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width, height, 1);
+    premultiplied_ = premultiply != nullptr;
+    if (premultiplied_) {
+        if (!premultiply_) premultiply_ = buildTemporalPass("history_premultiplied", "history_premultiplied.frag.glsl");
+        drawIntoTexture(framebuffer_, color_.id(), width, height);
+        glUseProgram(premultiply_.id());
+        premultiply->bindBackground(premultiply_);
+        gl::bindTexture(0, colorTexture);
+        gl::drawFullscreenTriangle(emptyVao_);
+    } else {
+        glCopyImageSubData(colorTexture, GL_TEXTURE_2D, 0, 0, 0, 0, color_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width, height, 1);
+    }
     glCopyImageSubData(depthTexture, GL_TEXTURE_2D, 0, 0, 0, 0, depth_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width, height, 1);
     // The seeds: (min, max) depth per block, then over the 3x3 blocks around.
     const int blocksX = seeds_.width(), blocksY = seeds_.height();
@@ -91,19 +102,24 @@ void Reprojector::setSearchUniforms(const gl::Program& program, const glm::mat4&
     glUniform4fv(program.uniform("u_row0"), 1, glm::value_ptr(r.row0));
     glUniform4fv(program.uniform("u_row1"), 1, glm::value_ptr(r.row1));
     glUniform4fv(program.uniform("u_row3"), 1, glm::value_ptr(r.row3));
+    glUniform4fv(program.uniform("u_row2"), 1, glm::value_ptr(glm::row(newViewProj * glm::inverse(viewProj_), 2)));
+    glUniform1i(program.uniform("u_premultipliedHistory"), premultiplied_ ? 1 : 0);
     glUniform4fv(program.uniform("u_sourceScale"), 1, glm::value_ptr(r.sourceScale));
     gl::bindTexture(0, color_.id());
     gl::bindTexture(1, depth_.id());
     gl::bindTexture(2, seeds_.id());
 }
 
-void Reprojector::reproject(const glm::mat4& newViewProj, GLuint outputTexture) {
+void Reprojector::reproject(const glm::mat4& newViewProj, GLuint outputTexture, const OpaqueScene& background) {
     if (!hasFrame_) throw Error("internal: temporal reprojection before any real frame was captured");
     // Queried before any binding: on OpenGL ES the query binds the texture to the active unit.
     const bool halfOutput = gl::textureInternalFormat(outputTexture) == GL_RGBA16F;
     drawIntoTexture(framebuffer_, outputTexture, width_, height_);
     setSearchUniforms(search_, newViewProj);
     glUniform1i(search_.uniform("u_halfOutput"), halfOutput);
+    background.bindBackground(search_);
+    glUniform1i(search_.uniform("u_opaqueClip"), background.clips() ? 1 : 0);
+    if (background.clips()) background.bindOpaqueDepth(6);
     gl::drawFullscreenTriangle(emptyVao_);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }

@@ -20,15 +20,20 @@ public:
     // (DEPTH_COMPONENT32F or R32F texture, window depth, 1 = far plane where nothing was drawn),
     // both width x height, and the view-projection (GL clip conventions) it was rendered with.
     // With `nearestTexture` (RGBA32F pass-1 colour + alpha) it is kept too, for refresh frames.
+    // With `premultiply` (the frame's opaque scene) the composite holds the transmittance in alpha
+    // and the history keeps the layers over black with it (history_premultiplied.frag.glsl), so that
+    // interpolated frames composite over their own frame's background and opaque depth.
     void capture(GLuint colorTexture, GLuint depthTexture, int width, int height, const glm::mat4& viewProj,
-                 GLuint nearestTexture = 0);
+                 GLuint nearestTexture = 0, const OpaqueScene* premultiply = nullptr);
     bool hasFrame() const { return hasFrame_; }
     int width() const { return width_; }
     int height() const { return height_; }
 
     // Renders the captured frame as seen with `newViewProj` into `outputTexture`, a colour-renderable
     // RGBA texture of the captured size. Throws starnt::Error when nothing was captured.
-    void reproject(const glm::mat4& newViewProj, GLuint outputTexture);
+    // With a premultiplied history, over `background` (its colour, and its opaque depth, which hides
+    // a source point that now lies at or behind it).
+    void reproject(const glm::mat4& newViewProj, GLuint outputTexture, const OpaqueScene& background = OpaqueScene());
     // A refresh frame (temporal::refreshComposite): `nearestTexture` is pass 1 rendered at the new
     // camera (RGBA32F or RGBA16F, captured size) and `nearestDepth` its depth
     // (DEPTH_COMPONENT32F): the search runs only where pass 1 drew, the background goes elsewhere
@@ -54,6 +59,8 @@ private:
     void setSearchUniforms(const gl::Program& program, const glm::mat4& newViewProj) const;
 
     gl::Program blockSeeds_, dilateSeeds_, search_, searchRefresh_, behindProgram_;
+    gl::Program premultiply_;  // built on first need
+    bool premultiplied_ = false;  // the history holds (layers over black, transmittance)
     gl::VertexArrayHandle emptyVao_;
     gl::Texture2D color_, depth_, keptNearest_, behind_;
     bool hasNearest_ = false;

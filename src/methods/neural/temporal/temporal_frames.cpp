@@ -36,7 +36,7 @@ bool TemporalFrames::beginFrame(int width, int height) {
 }
 
 void TemporalFrames::endRealFrame(GLuint compositeTexture, const TemporalPassTargets& passes, const glm::mat4& viewProj,
-                                  int width, int height, const OpaqueScene& background) {
+                                  int width, int height, const OpaqueScene& background, bool premultipliedHistory) {
     if (lastInterpolated_) throw Error("internal: TemporalFrames::endRealFrame on an interpolated frame");
     if (!interpolates()) return;  // every frame is real: nothing to keep
     if ((refreshes() || corrects()) && !passes.nearest) {
@@ -46,7 +46,8 @@ void TemporalFrames::endRealFrame(GLuint compositeTexture, const TemporalPassTar
         corrected_->capture(compositeTexture, passes.nearestDepth, passes.nearest, passes.sumAlphaColor, passes.transmittance,
                            width, height, viewProj, background);
     } else {
-        reprojector_->capture(compositeTexture, passes.nearestDepth, width, height, viewProj, refreshes() ? passes.nearest : 0);
+        reprojector_->capture(compositeTexture, passes.nearestDepth, width, height, viewProj, refreshes() ? passes.nearest : 0,
+                              premultipliedHistory ? &background : nullptr);
     }
     clock_.stop();
 }
@@ -69,7 +70,7 @@ void TemporalFrames::interpolate(const glm::mat4& viewProj, const TemporalPassTa
             reprojector_->reprojectRefresh(viewProj, passes.nearest, skipEmptyPixels_ ? passes.nearestDepth : 0, background,
                                           outputTexture);
         } else {
-            reprojector_->reproject(viewProj, outputTexture);  // warp: the kept composite alone
+            reprojector_->reproject(viewProj, outputTexture, background);  // warp: the kept composite alone
         }
     }
     clock_.stop();

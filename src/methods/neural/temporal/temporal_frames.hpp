@@ -48,7 +48,7 @@ public:
     // pass 1's colour; correct mode pass 3's sums (without them the frame is kept without a
     // correction) and the frame's `background`.
     void endRealFrame(GLuint compositeTexture, const TemporalPassTargets& passes, const glm::mat4& viewProj, int width,
-                      int height, const OpaqueScene& background = OpaqueScene());
+                      int height, const OpaqueScene& background = OpaqueScene(), bool premultipliedHistory = false);
     // The passes an interpolated frame renders at its own camera before interpolate(): none (warp),
     // pass 1 (refresh), passes 1 and 3 (correct; pass 3 with its sums only).
     enum class Passes { None, Nearest, NearestAndSums };
