@@ -474,3 +474,79 @@ TEST(Opaque, CommandLineOnTheCourtyard) {
         EXPECT_TRUE(std::filesystem::exists(out)) << mode;
     }
 }
+
+// Depth conventions engines use (DepthConvention): reversed Z with clip control GL_ZERO_TO_ONE, with
+// a finite and an infinite far plane, and the engine's opaque depth in that convention, give every
+// method the image of OpenGL's default convention; a projection that cannot order depths is an
+// error naming it.
+TEST(DepthConventions, ReversedZAndZeroToOneGiveTheDefaultConventionsImage) {
+    test::TestScene s(makeBuiltinScene("tubes", 3), kW, kH, 30.0f, 20.0f, kBackground);
+    const bool clipControl = !gl::isEs() || epoxy_has_gl_extension("GL_EXT_clip_control");
+    if (!clipControl) GTEST_SKIP() << "no clip control on this ES context";
+    const FrameDesc standard = s.frame();
+    const float n = 0.1f, f = 20.0f;  // the test's own planes, both conventions
+    glm::mat4 projection = standard.projection;
+    projection[2][2] = -(f + n) / (f - n);
+    projection[3][2] = -2.0f * f * n / (f - n);
+    // Reversed, clip z in [0, w]: the near plane at 1, the far one at 0 (or at infinity).
+    glm::mat4 reversed = projection, reversedInfinite = projection, infinite = projection;
+    reversed[2][2] = n / (f - n);
+    reversed[3][2] = f * n / (f - n);
+    reversedInfinite[2][2] = 0.0f;
+    reversedInfinite[3][2] = n;
+    infinite[2][2] = -1.0f;
+    infinite[3][2] = -2.0f * n;
+    OpaqueImage o = makeOpaque(s.capture());
+    OpaqueImage flipped = o;  // the same opaque surface in the reversed convention: depth 1 - d
+    for (float& d : flipped.depth) d = 1.0f - d;
+    const EngineTextures engine = upload(o, false), engineReversed = upload(flipped, false);
+    auto setClipControl = [](bool zeroToOne) {
+        const GLenum mode = zeroToOne ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE;
+        if (gl::isEs()) glClipControlEXT(GL_LOWER_LEFT, mode);
+        else glClipControl(GL_LOWER_LEFT, mode);
+    };
+    for (const std::string& method : kMethods) {
+        auto m = createMethod(method, SceneGpu::surfaceShader());
+        auto renderWith = [&](const glm::mat4& p, bool zeroToOne, GLuint opaqueDepth) {
+            FrameDesc frame = standard;
+            frame.projection = p;
+            frame.opaqueDepth = opaqueDepth;
+            setClipControl(zeroToOne);
+            m->render(frame, s.gpu->callback(frame.view, p, {}));
+            setClipControl(false);
+            return gl::readTextureFloats(m->outputTexture(), kW, kH, 4);
+        };
+        struct Case {
+            const char* name;
+            glm::mat4 reference, engine;
+            GLuint referenceDepth, engineDepth;
+        };
+        const Case cases[] = {{"reversed", projection, reversed, 0, 0},
+                              {"reversed, infinite far", infinite, reversedInfinite, 0, 0},
+                              {"reversed, opaque depth", projection, reversed, engine.depth.id(), engineReversed.depth.id()}};
+        for (const Case& c : cases) {
+            const std::vector<float> want = renderWith(c.reference, false, c.referenceDepth);
+            const std::vector<float> got = renderWith(c.engine, true, c.engineDepth);
+            float worst = 0.0f;
+            size_t off = 0;
+            for (size_t i = 0; i < want.size(); ++i) {
+                worst = std::max(worst, std::abs(got[i] - want[i]));
+                off += !(std::abs(got[i] - want[i]) <= 0.02f);
+            }
+            // The canonical window depth is 1 - z in one convention and z / 2 + 1 / 2 in the other:
+            // the same up to float rounding, which reorders a fragment pair at a few pixels (measured:
+            // at most 0.033, mboit with an infinite far plane, whose logarithmic warp reads view depth
+            // from window depths near 1).
+            EXPECT_LE(off, 4u) << method << ", " << c.name << ": worst " << worst;
+            EXPECT_LT(worst, 0.05f) << method << ", " << c.name;
+            if (worst > 0.01f) std::printf("[ %s, %s ] worst %.3g, %zu channels above 0.02\n", method.c_str(), c.name, worst, off);
+        }
+    }
+    FrameDesc flat = standard;
+    flat.projection = projection;
+    flat.projection[3][2] = 0.0f;  // near plane at 0
+    flat.projection[2][2] = -1.0f;
+    auto m = createMethod("wboit", SceneGpu::surfaceShader());
+    EXPECT_NE(test::errorOf([&] { m->render(flat, s.gpu->callback(flat.view, flat.projection, {})); }).find("FrameDesc::projection"),
+              std::string::npos);
+}

@@ -21,8 +21,9 @@ FragmentCapture::FragmentCapture(const SurfaceShader& surface, const MethodOptio
                                   "#define STARNT_ABUFFER_CAPTURE_ORDER 1\n")) {}
 
 CapturedFrame FragmentCapture::capture(const FrameDesc& frame, const DrawCallback& draw) {
-    opaque_.begin(frame);
-    lists_.build(frame, draw, build_, &opaque_);
+    const FrameDesc canonical = beginDepthConvention(frame);
+    opaque_.begin(canonical);
+    lists_.build(canonical, draw, build_, &opaque_);
     opaque_.end();
     glFinish();
     const size_t pixelCount = size_t(frame.width) * size_t(frame.height);
@@ -71,7 +72,7 @@ unsigned DepthComplexityCounter::count(const FrameDesc& frame, const DrawCallbac
     bindOutputFramebuffer();
     const float zero[4] = {0, 0, 0, 0};
     glClearBufferfv(GL_COLOR, 0, zero);
-    opaque_.begin(frame);
+    opaque_.begin(beginDepthConvention(frame));
     opaque_.beginDepthTest(outputFb_.id(), width_, height_, width_, height_);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);

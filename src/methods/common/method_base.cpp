@@ -2,6 +2,8 @@
 
 #include "starnt/error.hpp"
 
+#include <cmath>
+
 namespace starnt {
 
 MethodBase::MethodBase(SurfaceShader surface)
@@ -35,9 +37,10 @@ void MethodBase::render(const FrameDesc& frame, const DrawCallback& draw) {
     // No GL call before these checks (docs/INTEGRATION.md, "Misuse").
     if (!gl::hasCurrentContext()) throw Error("render(): no OpenGL context is current on this thread");
     gl::checkFrameSize(frame.width, frame.height);
-    opaque_.begin(frame);
+    const FrameDesc canonical = beginDepthConvention(frame);
+    opaque_.begin(canonical);
     try {
-        renderFrame(frame, draw);
+        renderFrame(canonical, draw);
     } catch (...) {
         opaque_.end();
         throw;
@@ -97,7 +100,51 @@ void resetPassState() {
     // the full depth range.
     if (!gl::isEs()) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
     glDisable(GL_POLYGON_OFFSET_FILL);
-    glDepthRangef(0.0f, 1.0f);
+    // Canonical window depth (DepthConvention): the near plane at 0 whatever the engine's projection.
+    if (currentDepthConvention().reversed) glDepthRangef(1.0f, 0.0f);
+    else glDepthRangef(0.0f, 1.0f);
 }
+
+namespace {
+thread_local DepthConvention currentConvention;
+}  // namespace
+
+DepthConvention readDepthConvention(const glm::mat4& projection) {
+    DepthConvention c;
+    GLint mode = GL_NEGATIVE_ONE_TO_ONE;
+    if (!gl::isEs() || epoxy_has_gl_extension("GL_EXT_clip_control")) glGetIntegerv(GL_CLIP_DEPTH_MODE, &mode);
+    c.zeroToOne = mode == GL_ZERO_TO_ONE;
+    // A perspective's clip w grows along its view direction (-z for OpenGL's usual matrices): its
+    // normalised depth at distances 1 and 10 that way tells whether the near plane gets the smaller
+    // depth. An affine projection (orthographic, or none) has no view direction of its own: its
+    // normalised depth is taken as OpenGL's, smaller = nearer.
+    const bool perspective = projection[2][3] != 0.0f;
+    const float forward = projection[2][3] < 0.0f ? -1.0f : 1.0f;
+    auto ndcDepth = [&](float distance) {
+        const glm::vec4 clip = projection * glm::vec4(0.0f, 0.0f, forward * distance, 1.0f);
+        return clip.z / clip.w;
+    };
+    const float nearer = ndcDepth(1.0f), farther = ndcDepth(10.0f);
+    if (!(std::abs(farther - nearer) > 1e-7f)) {
+        throw Error("FrameDesc::projection gives every depth the same window depth (a perspective with its near plane at 0?): "
+                    "the methods cannot order the layers");
+    }
+    c.reversed = perspective && farther < nearer;
+    // Canonical clip z = a z + b w: what maps the engine's normalised depth to [-1, 1], near at -1.
+    const float a = c.zeroToOne ? (c.reversed ? -2.0f : 2.0f) : (c.reversed ? -1.0f : 1.0f);
+    const float b = c.zeroToOne ? (c.reversed ? 1.0f : -1.0f) : 0.0f;
+    c.toCanonical[2][2] = a;
+    c.toCanonical[3][2] = b;
+    return c;
+}
+
+FrameDesc beginDepthConvention(const FrameDesc& frame) {
+    currentConvention = readDepthConvention(frame.projection);
+    FrameDesc canonical = frame;
+    canonical.projection = currentConvention.toCanonical * frame.projection;
+    return canonical;
+}
+
+const DepthConvention& currentDepthConvention() { return currentConvention; }
 
 }  // namespace starnt

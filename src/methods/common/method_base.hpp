@@ -62,7 +62,28 @@ protected:
     OpaqueScene opaque_;  // this frame's opaque depth and background
 };
 
-// Restores the GL state every pass may change to the defaults the methods assume.
+// Restores the GL state every pass may change to the defaults the methods assume (the depth range
+// of the current frame's depth convention).
 void resetPassState();
+
+// How the engine's depth maps to window depth (docs/INTEGRATION.md, "Depth conventions"). The
+// methods work in one canonical convention, OpenGL's default: clip z in [-w, w] with the near plane
+// at -w, window depth 0 (near) to 1 (far). An engine's reversed Z (near at the larger depth) and
+// clip control GL_ZERO_TO_ONE are met by the depth range the passes run with (1, 0 when reversed)
+// and by the projection the methods compute with, `toCanonical * projection`, so that every depth a
+// pass writes or compares is canonical whatever the engine's vertex shader produces.
+struct DepthConvention {
+    bool zeroToOne = false;  // the context's GL_CLIP_DEPTH_MODE is GL_ZERO_TO_ONE
+    bool reversed = false;   // the projection puts the near plane at the larger depth
+    glm::mat4 toCanonical{1.0f};
+};
+// Reads the context's clip control and the projection's depth direction. Throws starnt::Error when
+// the projection maps every depth to one value (a perspective with near = 0): nothing to order by.
+DepthConvention readDepthConvention(const glm::mat4& projection);
+// Makes `convention` the one resetPassState applies, on this thread, and returns `frame` with the
+// canonical projection. MethodBase::render calls it; so do tools that run passes outside render().
+FrameDesc beginDepthConvention(const FrameDesc& frame);
+// The current convention (the last beginDepthConvention on this thread).
+const DepthConvention& currentDepthConvention();
 
 }  // namespace starnt

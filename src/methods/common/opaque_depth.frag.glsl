@@ -5,9 +5,11 @@
 #include "starnt/bindings.h"
 layout(binding = STARNT_UNIT_OPAQUE) uniform highp sampler2D u_opaqueDepth;
 uniform ivec2 u_size, u_fullSize;
+uniform bool u_reversed;  // the engine's depth is reversed (DepthConvention): near at 1
 
 void main() {
     ivec2 i = ivec2(gl_FragCoord.xy);
     ivec2 p = min((2 * i * u_fullSize + u_size) / (2 * u_size), u_fullSize - 1);
-    gl_FragDepth = texelFetch(u_opaqueDepth, p, 0).r;
+    float depth = texelFetch(u_opaqueDepth, p, 0).r;
+    gl_FragDepth = u_reversed ? 1.0 - depth : depth;  // the canonical window depth, as the passes see theirs
 }

@@ -77,6 +77,7 @@ void OpaqueScene::writeDepth(int width, int height, int fullWidth, int fullHeigh
     glUseProgram(fill_.id());
     glUniform2i(fill_.uniform("u_size"), width, height);
     glUniform2i(fill_.uniform("u_fullSize"), fullWidth, fullHeight);
+    glUniform1i(fill_.uniform("u_reversed"), currentDepthConvention().reversed ? 1 : 0);
     bindOpaqueDepth();
     GLboolean colorMask[4] = {GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE};
     glGetBooleanv(GL_COLOR_WRITEMASK, colorMask);

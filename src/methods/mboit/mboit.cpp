@@ -63,7 +63,10 @@ public:
         }
         // near/far of the projection for the logarithmic depth warp.
         const float p22 = frame.projection[2][2], p32 = frame.projection[3][2];
-        const float nearPlane = p32 / (p22 - 1.0f), farPlane = p32 / (p22 + 1.0f);
+        const float nearPlane = p32 / (p22 - 1.0f);
+        // An infinite far plane (p22 = -1): the warp's logarithm ends 10^7 near planes away.
+        float farPlane = p32 / (p22 + 1.0f);
+        if (!(farPlane > 0.0f && farPlane < nearPlane * 1e7f)) farPlane = nearPlane * 1e7f;
         if (!(nearPlane > 0.0f && farPlane > nearPlane)) throw Error("mboit: needs a perspective projection with 0 < near < far");
         const float warp[2] = {std::log(nearPlane), 2.0f / std::log(farPlane / nearPlane)};
         auto setWarp = [&](const gl::Program& p) {

@@ -2,6 +2,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "methods/common/method_base.hpp"
 #include "starnt/error.hpp"
 
 namespace starnt {
@@ -28,6 +29,9 @@ void EmptyPixelSkip::bindCovered(GLuint colorTexture, GLuint pass1Depth, int wid
     glEnable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     glDepthFunc(GL_GREATER);
+    // The full-screen triangle at window depth 1 whatever the clip control and the depth convention
+    // (a reversed depth range would put clip z = w at 0).
+    glDepthRangef(1.0f, 1.0f);
 }
 
 void EmptyPixelSkip::fillEmpty(const OpaqueScene& background, bool halfOutput, const gl::VertexArrayHandle& emptyVao) const {
@@ -43,6 +47,7 @@ void EmptyPixelSkip::fillEmpty(const OpaqueScene& background, bool halfOutput, c
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
     glDisable(GL_DEPTH_TEST);
+    resetPassState();  // the frame's depth range back, among the rest
 }
 
 }  // namespace starnt

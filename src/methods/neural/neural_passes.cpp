@@ -238,6 +238,7 @@ void NeuralPasses::uncoverEmptyPixels() {
     glBindFramebuffer(GL_FRAMEBUFFER, pass1Fb_.id());
     glViewport(0, 0, width_, height_);
     glUseProgram(uncover_.id());
+    glUniform1i(uncover_.uniform("u_reversed"), currentDepthConvention().reversed ? 1 : 0);
     gl::bindTexture(0, nearestDepthCopy_.id());
     opaque_.bindOpaqueDepth();
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);

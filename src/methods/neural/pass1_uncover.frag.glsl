@@ -5,9 +5,11 @@
 #include "starnt/bindings.h"
 layout(binding = 0) uniform highp sampler2D u_nearestDepth;  // a copy of pass 1's depth
 layout(binding = STARNT_UNIT_OPAQUE) uniform highp sampler2D u_opaqueDepth;
+uniform bool u_reversed;  // as opaque_depth.frag.glsl
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
-    if (texelFetch(u_nearestDepth, p, 0).r < texelFetch(u_opaqueDepth, p, 0).r) discard;
+    float opaque = texelFetch(u_opaqueDepth, p, 0).r;
+    if (texelFetch(u_nearestDepth, p, 0).r < (u_reversed ? 1.0 - opaque : opaque)) discard;
     gl_FragDepth = 1.0;
 }
