@@ -9,8 +9,9 @@ namespace {
 
 std::string sizeText(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
 
-// Throws unless `name` is a 2D texture of the frame size with a format of the wanted kind.
-void checkTexture(const char* field, GLuint name, const FrameDesc& frame, bool depth) {
+// Throws unless `name` is a 2D texture of the frame size with a format of the wanted kind; returns
+// its format.
+GLenum checkTexture(const char* field, GLuint name, const FrameDesc& frame, bool depth) {
     const gl::TextureDescription d = gl::describeTexture(name, STARNT_UNIT_OPAQUE);
     const std::string what = std::string("FrameDesc::") + field + " (GL name " + std::to_string(name) + ")";
     if (!d.is2D) throw Error(what + " is not a GL_TEXTURE_2D texture of this context");
@@ -24,6 +25,7 @@ void checkTexture(const char* field, GLuint name, const FrameDesc& frame, bool d
     if (!depth && (gl::isDepthFormat(d.internalFormat) || d.integer)) {
         throw Error(what + " must have a floating-point or normalised colour format (it is sampled as linear RGB)");
     }
+    return d.internalFormat;
 }
 
 }  // namespace
@@ -34,7 +36,7 @@ void OpaqueScene::begin(const FrameDesc& frame) {
     depth_ = background_ = 0;
     clipWidth_ = clipHeight_ = 0;
     transmittanceInAlpha_ = false;
-    if (frame.opaqueDepth) checkTexture("opaqueDepth", frame.opaqueDepth, frame, true);
+    depthFormat_ = frame.opaqueDepth ? checkTexture("opaqueDepth", frame.opaqueDepth, frame, true) : 0;
     if (frame.backgroundTexture && !frame.premultipliedOutput) {
         checkTexture("backgroundTexture", frame.backgroundTexture, frame, false);
     }
@@ -43,6 +45,7 @@ void OpaqueScene::begin(const FrameDesc& frame) {
     if (depth_ || background_) prepare();
     if (depth_ && !(clipDepth_.width() == frame.width && clipDepth_.height() == frame.height)) {
         clipDepth_ = gl::Texture2D(GL_DEPTH_COMPONENT32F, frame.width, frame.height);
+        clipFb_ = gl::makeFramebuffer({}, &clipDepth_);
     }
 }
 
@@ -92,24 +95,37 @@ void OpaqueScene::writeDepth(int width, int height, int fullWidth, int fullHeigh
     glBindSampler(STARNT_UNIT_OPAQUE, 0);
 }
 
-void OpaqueScene::clearDepth(int width, int height, int fullWidth, int fullHeight) {
-    if (!depth_) {
-        const float farDepth = 1.0f;
-        glClearBufferfv(GL_DEPTH, 0, &farDepth);
-        return;
-    }
-    writeDepth(width, height, fullWidth, fullHeight);
+void OpaqueScene::clipInShader(const gl::Program& program, int width, int height, int fullWidth, int fullHeight) const {
+    glUniform1i(program.uniform("u_opaqueClip"), depth_ ? 1 : 0);
+    if (!depth_) return;
+    glUniform2i(program.uniform("u_opaqueSize"), width, height);
+    glUniform2i(program.uniform("u_opaqueFullSize"), fullWidth, fullHeight);
+    glUniform1i(program.uniform("u_opaqueReversed"), currentDepthConvention().reversed ? 1 : 0);
+    bindOpaqueDepth();
 }
 
 void OpaqueScene::beginDepthTest(GLuint framebuffer, int width, int height, int fullWidth, int fullHeight) {
     if (!depth_) return;
-    gl::attachTexture(framebuffer, GL_DEPTH_ATTACHMENT, clipDepth_.id());
-    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     if (clipWidth_ != width || clipHeight_ != height) {
-        writeDepth(width, height, fullWidth, fullHeight);
+        // The canonical opaque depth over this rectangle: a copy where the engine's texture already
+        // holds it (DEPTH32F in the default convention, full size), else a full-screen pass.
+        if (width == fullWidth && height == fullHeight && depthFormat_ == GL_DEPTH_COMPONENT32F &&
+            !currentDepthConvention().reversed) {
+            glCopyImageSubData(depth_, GL_TEXTURE_2D, 0, 0, 0, 0, clipDepth_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width, height, 1);
+        } else {
+            GLfloat viewport[4] = {0, 0, 0, 0};  // a reduced pass's is fractional
+            glGetFloatv(GL_VIEWPORT, viewport);
+            glBindFramebuffer(GL_FRAMEBUFFER, clipFb_.id());
+            glViewport(0, 0, width, height);
+            writeDepth(width, height, fullWidth, fullHeight);
+            gl::setViewportF(viewport[0], viewport[1], viewport[2], viewport[3]);
+        }
         clipWidth_ = width;
         clipHeight_ = height;
     }
+    gl::bindTexture(STARNT_UNIT_OPAQUE, 0);  // the pass's shader must not sample what it tests against
+    gl::attachTexture(framebuffer, GL_DEPTH_ATTACHMENT, clipDepth_.id());
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_FALSE);

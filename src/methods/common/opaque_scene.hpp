@@ -1,12 +1,12 @@
 // The engine's opaque scene as every method uses it (FrameDesc::opaqueDepth, backgroundTexture,
 // premultipliedOutput; docs/DESIGN.md, "Opaque geometry"):
-//   - clipping: each geometry pass drops fragments at or behind the opaque depth by the depth test,
-//     before its fragment shader runs. Passes with a depth target of their own (nearest layer,
-//     peel layers) start it from the opaque depth instead of the far plane; passes without one
-//     (sums, accumulation, lists) test against a depth target of the method's holding the opaque
-//     depth, with depth writes off. Either way the engine's texture is only sampled, by one
-//     full-screen pass that writes it into the method's target (any depth format the engine uses,
-//     and the reduced passes' rectangles).
+//   - clipping: each geometry pass drops fragments at or behind the opaque depth. Passes without a
+//     depth target of their own (sums, accumulation, lists: most fragments) by the depth test before
+//     their fragment shader runs, against a DEPTH32F copy of the opaque depth in the engine's
+//     convention made canonical (one copy or full-screen pass a frame, depth writes off); passes that
+//     keep the nearest fragment in a depth target of their own (pass 1, pass 2, peel layers), whose
+//     depth must stay 1 where nothing transparent is, in surface_fetch.glsl, comparing the same float
+//     values first thing. The engine's texture is only sampled.
 //   - the background: every composite reads background.glsl, whose uniforms bindBackground sets.
 #pragma once
 #include <string>
@@ -31,12 +31,12 @@ public:
     // Whether the frame's geometry passes are clipped by an opaque depth.
     bool clips() const { return depth_ != 0; }
 
-    // For a pass with a depth target of its own, bound now with its rectangle `size` of a frame of
-    // `full` (the same for full-resolution passes) set as viewport and scissor: sets that target's
-    // depth to the far plane, or to the opaque depth when the frame has one (the reduced rectangle
-    // takes the opaque depth at the full pixel holding each reduced sample, reduced_grid.hpp, so a
-    // reduced pass is clipped where pass 1 is at that pixel).
-    void clearDepth(int width, int height, int fullWidth, int fullHeight);
+    // For a pass with a depth target of its own (its program bound) rendering a rectangle of
+    // width x height of a frame of fullWidth x fullHeight: the clip in its fragment shader
+    // (surface_fetch.glsl), on when the frame clips and off otherwise; a reduced texel takes the
+    // opaque depth of the full pixel holding its sample (reduced_grid.hpp), as pass 3's copy does,
+    // so pass 1, 2 and 3 keep the same fragments.
+    void clipInShader(const gl::Program& program, int width, int height, int fullWidth, int fullHeight) const;
     // For a pass without a depth target of its own, rendering into `framebuffer` (bound, viewport
     // and scissor set, rectangle as above): when the frame clips, attaches the method's copy of
     // the opaque depth and enables the depth test (LESS, no depth writes). endDepthTest detaches
@@ -69,6 +69,7 @@ private:
     void prepare();
 
     GLuint depth_ = 0, background_ = 0;
+    GLenum depthFormat_ = 0;
     bool premultiplied_ = false, transmittanceInAlpha_ = false;
     mutable GLuint depthUnit_ = STARNT_UNIT_OPAQUE;  // where bindOpaqueDepth put the sampler last
     glm::vec3 color_{1.0f};
@@ -76,6 +77,7 @@ private:
     gl::VertexArrayHandle vao_;
     gl::SamplerHandle sampler_;
     gl::Texture2D clipDepth_;        // frame size; holds the rectangle last written
+    gl::FramebufferHandle clipFb_;  // clipDepth_ alone, for the copy's full-screen pass
     int clipWidth_ = 0, clipHeight_ = 0;  // that rectangle this frame (0: not written yet)
 };
 

@@ -1,8 +1,24 @@
 // Wraps the engine's starntSurface(): applies the alpha cut-off every pass shares (docs/DESIGN.md, "Pipeline and formats":
 // fragments with alpha below it are discarded in all passes) and clamps to valid ranges.
 uniform float u_alphaCutoff;
+#include "starnt/bindings.h"
+
+// The engine's opaque depth for the passes that keep their nearest fragment in a depth target of
+// their own (OpaqueScene::clipInShader): a fragment at or behind it is dropped before the surface
+// is evaluated. The passes without one test against the same values by the depth test instead.
+uniform bool u_opaqueClip;
+uniform bool u_opaqueReversed;  // the engine's depth is reversed (DepthConvention): near at 1
+uniform ivec2 u_opaqueSize, u_opaqueFullSize;
+layout(binding = STARNT_UNIT_OPAQUE) uniform highp sampler2D u_opaqueDepthClip;
 
 vec4 fetchSurfaceOrDiscard() {
+    if (u_opaqueClip) {
+        // A reduced texel i takes the full pixel holding its sample, floor(i F / R + 0.5).
+        ivec2 i = ivec2(gl_FragCoord.xy);
+        ivec2 p = min((2 * i * u_opaqueFullSize + u_opaqueSize) / (2 * u_opaqueSize), u_opaqueFullSize - 1);
+        float opaque = texelFetch(u_opaqueDepthClip, p, 0).r;
+        if (!(gl_FragCoord.z < (u_opaqueReversed ? 1.0 - opaque : opaque))) discard;
+    }
     vec4 s = starntSurface();
     s = clamp(s, vec4(0.0), vec4(1.0));
     if (!(s.a >= u_alphaCutoff)) discard;  // also discards NaN alpha

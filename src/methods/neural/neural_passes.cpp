@@ -195,14 +195,13 @@ void NeuralPasses::addMemoryTargets(OitMethod::MemoryTargets& out) const {
                            {"pass3_transmittance", transmittance_.bytes()},
                            {"layer_alphas", layerAlpha_.bytes()},
                            {"pass3_tail_moments", tailMoment1_.bytes() + tailMoment2_.bytes()},
-                           {"pass3_resolve_copies_es", esResolveCopies_.bytes()},
-                           {"pass1_depth_copy_opaque", nearestDepthCopy_.bytes()}});
+                           {"pass3_resolve_copies_es", esResolveCopies_.bytes()}});
 }
 
 size_t NeuralPasses::gpuMemoryBytes() const {
     return nearest_.bytes() + nearestDepth_.bytes() + second_.bytes() + secondDepth_.bytes() +
            alphaColor_.bytes() + colorCount_.bytes() + transmittance_.bytes() + layerAlpha_.bytes() +
-           tailMoment1_.bytes() + tailMoment2_.bytes() + esResolveCopies_.bytes() + nearestDepthCopy_.bytes();
+           tailMoment1_.bytes() + tailMoment2_.bytes() + esResolveCopies_.bytes();
 }
 
 void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) {
@@ -213,40 +212,18 @@ void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) 
     useRectangle({width_, height_});
     glBindFramebuffer(GL_FRAMEBUFFER, pass1Fb_.id());
     glClearBufferfv(GL_COLOR, 0, zero);
-    opaque_.clearDepth(width_, height_, width_, height_);
+    const float farDepth = 1.0f;
+    glClearBufferfv(GL_DEPTH, 0, &farDepth);
     if (narrowLayers_) {
         glClearBufferfv(GL_COLOR, 1, zero);                        // both alphas (before the mask)
         glColorMaski(1, GL_TRUE, GL_FALSE, GL_FALSE, GL_FALSE);  // pass 1 writes a1 alone
     }
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
+    glUseProgram(pass1_.id());
+    opaque_.clipInShader(pass1_, width_, height_, width_, height_);
     MethodBase::runGeometryPass("pass1", pass1_, frame, draw);
     resetPassState();
-    if (opaque_.clips()) uncoverEmptyPixels();
-}
-
-void NeuralPasses::uncoverEmptyPixels() {
-    if (!uncover_) {
-        uncover_ = gl::buildProgram("pass1_uncover", gl::embeddedSource("methods/common/fullscreen.vert.glsl"),
-                                    gl::embeddedSource("methods/neural/pass1_uncover.frag.glsl"));
-    }
-    if (nearestDepthCopy_.width() != width_ || nearestDepthCopy_.height() != height_) {
-        nearestDepthCopy_ = gl::Texture2D(GL_DEPTH_COMPONENT32F, width_, height_);
-    }
-    glCopyImageSubData(nearestDepth_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, nearestDepthCopy_.id(), GL_TEXTURE_2D, 0, 0, 0, 0,
-                       width_, height_, 1);
-    glBindFramebuffer(GL_FRAMEBUFFER, pass1Fb_.id());
-    glViewport(0, 0, width_, height_);
-    glUseProgram(uncover_.id());
-    glUniform1i(uncover_.uniform("u_reversed"), currentDepthConvention().reversed ? 1 : 0);
-    gl::bindTexture(0, nearestDepthCopy_.id());
-    opaque_.bindOpaqueDepth();
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_ALWAYS);
-    gl::drawFullscreenTriangle(emptyVao_);
-    resetPassState();
-    opaque_.end();
 }
 
 void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float peelEpsilon, Size2 pass2Size,
@@ -262,11 +239,13 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
         useReducedRectangle(pass2Size, full);
         glBindFramebuffer(GL_FRAMEBUFFER, pass2Fb_.id());
         glClearBufferfv(GL_COLOR, 0, zero);
-        opaque_.clearDepth(pass2Size.width, pass2Size.height, full.width, full.height);
+        const float farDepth = 1.0f;
+        glClearBufferfv(GL_DEPTH, 0, &farDepth);
         if (narrowLayers_) glColorMaski(1, GL_FALSE, GL_TRUE, GL_FALSE, GL_FALSE);  // a2 beside pass 1's a1
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
         glUseProgram(pass2_.id());
+        opaque_.clipInShader(pass2_, pass2Size.width, pass2Size.height, full.width, full.height);
         glUniform1f(pass2_.uniform("u_peelEpsilon"), peelEpsilon);
         glUniform2i(pass2_.uniform("u_fullSize"), full.width, full.height);
         glUniform2i(pass2_.uniform("u_reducedSize"), pass2Size.width, pass2Size.height);

@@ -151,13 +151,7 @@ public:
 
 private:
     void runSums(const FrameDesc& frame, const DrawCallback& draw, Size2 pass3Size);  // pass 3
-    // After pass 1 clipped by an opaque depth: where it kept no fragment its depth still holds the
-    // opaque depth; this puts the far plane back there, so that pass-1 depth 1 keeps meaning
-    // "nothing transparent here" (the empty-pixel skip, the temporal frames).
-    void uncoverEmptyPixels();
     OpaqueScene& opaque_;
-    gl::Program uncover_;            // built on first need
-    gl::Texture2D nearestDepthCopy_;  // what uncoverEmptyPixels reads (only with an opaque depth)
     gl::Program pass1_;
     gl::Program pass2_;
     gl::Program pass3_;

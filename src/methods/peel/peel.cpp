@@ -61,13 +61,14 @@ public:
                 gl::ScopedPass timing(frame.timing, "peel");
                 glBindFramebuffer(GL_FRAMEBUFFER, layerFb_[cur].id());
                 const float clearColor[4] = {0, 0, 0, 0};
+                const float clearDepth = 1.0f;
                 glClearBufferfv(GL_COLOR, 0, clearColor);
-                glViewport(0, 0, width_, height_);
-                opaque_.clearDepth(width_, height_, width_, height_);  // the far plane, or the opaque depth
+                glClearBufferfv(GL_DEPTH, 0, &clearDepth);
                 glEnable(GL_DEPTH_TEST);
                 glDepthFunc(GL_LESS);
                 glDepthMask(GL_TRUE);
                 glUseProgram(layer_.id());
+                opaque_.clipInShader(layer_, width_, height_, width_, height_);
                 glUniform1i(layer_.uniform("u_firstLayer"), layer == 0 ? 1 : 0);
                 gl::bindTexture(0, depth_[cur ^ 1].id());
                 glBeginQuery(GL_ANY_SAMPLES_PASSED, query_.id());
