@@ -86,9 +86,11 @@ constexpr uint64_t kValidationSeedOffset = 1'000'003;
 
 struct TrainArgs {
     std::string network, out, families, holdOut, report, weighting = "none";
-    uint64_t samples = 10'000'000, seed = 1, synthetic = 300'000, familyLists = 50'000, validationLists = 20'000;
+    // samples 0: the network's recipe (nn::recipeOptions).
+    uint64_t samples = 0, seed = 1, synthetic = 300'000, familyLists = 50'000, validationLists = 20'000;
     std::vector<std::string> scenes;
     int captureWidth = 96, captureHeight = 72;
+    float learningRate = 0.0f;  // 0: the network's recipe
 };
 
 // What the arguments resolve to, checked before minutes of capture and training.
@@ -105,7 +107,10 @@ TrainPlan checkTrainArgs(const TrainArgs& a) {
     plan.kind = nn::parseKind(a.network);
     checkJsonOutput("--out", "a weights file", a.out);
     if (!a.report.empty()) checkJsonOutput("--report", "the report", a.report);
-    if (a.samples < 1000 || a.samples > 10'000'000'000ull) throw Error("--samples must be in 1000..1e10");
+    if (a.samples != 0 && (a.samples < 1000 || a.samples > 10'000'000'000ull)) throw Error("--samples must be in 1000..1e10");
+    if (a.learningRate != 0.0f && !(a.learningRate > 0.0f && a.learningRate <= 1.0f)) {
+        throw Error("--learning-rate must be in (0, 1]");
+    }
     if (a.captureWidth < 8 || a.captureHeight < 8 || a.captureWidth > 1024 || a.captureHeight > 1024) {
         throw Error("--capture-width/--capture-height must be in 8..1024");
     }
@@ -184,8 +189,9 @@ nn::Network trainAndSave(const TrainArgs& a, const TrainPlan& plan, const std::v
     }
     std::fprintf(stderr, "training set: %zu samples (lists per family:%s; %llu synthetic lists)\n", set.size(),
                  composition.c_str(), (unsigned long long)a.synthetic);
-    nn::TrainOptions options;
-    options.samples = a.samples;
+    nn::TrainOptions options = nn::recipeOptions(plan.kind);
+    if (a.samples != 0) options.samples = a.samples;
+    if (a.learningRate != 0.0f) options.learningRate = a.learningRate;
     options.seed = a.seed;
     options.progress = [](double p, double loss) {
         char buf[64];
@@ -206,7 +212,7 @@ nn::Network trainAndSave(const TrainArgs& a, const TrainPlan& plan, const std::v
 void reportFamilies(const TrainArgs& a, const nn::Network& net, const std::vector<nn::TrainingFamily>& families) {
     // Per-family image-space errors on lists never trained on (composite over black vs exact).
     nlohmann::json report = {{"network", nn::kindName(net.kind)}, {"held_out", a.holdOut},
-                             {"samples", a.samples},     {"seed", a.seed}, {"weighting", a.weighting},
+                             {"samples", net.trainingSamples},     {"seed", a.seed}, {"weighting", a.weighting},
                              {"families", nlohmann::json::array()}};
     // Whole family (every covered pixel), then its tail pixels (N > 3) alone.
     std::printf("%-10s %-9s %7s %10s %10s %10s %10s %9s %7s %10s %10s %10s %9s\n", "family", "trained", "pixels",
@@ -265,7 +271,8 @@ void addTrainCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand("train", "train the STAR-NT (or its residual or depth kind) or DFAOIT network and write a weights file");
     cmd->add_option("--network", a.network, "starnt|starnt-residual|starnt-d|dfaoit")->required();
     cmd->add_option("--out", a.out, "weights file to write (.json)")->required();
-    cmd->add_option("--samples", a.samples, "training samples seen in total")->capture_default_str();
+    cmd->add_option("--samples", a.samples, "training samples seen in total (default: 10000000; dfaoit 30000000)");
+    cmd->add_option("--learning-rate", a.learningRate, "Adam's initial step size, cosine-decayed (default: 1e-3; dfaoit 3e-3)");
     cmd->add_option("--seed", a.seed, "random seed (weights, split, synthetic data)")->capture_default_str();
     cmd->add_option("--synthetic", a.synthetic, "synthetic fragment lists added to the captured ones")->capture_default_str();
     cmd->add_option("--scenes", a.scenes, "built-in scenes to capture (builtin:NAME; default: all built-ins)");

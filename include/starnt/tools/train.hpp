@@ -59,6 +59,12 @@ struct TrainOptions {
     std::function<void(double progress, double trainLoss)> progress;
 };
 
+// The options of a kind's shipped recipe (what `starnt train` uses unless told otherwise): the
+// defaults above, except DFAOIT's 30 M samples at a step size of 3e-3. With the defaults DFAOIT is
+// under-trained: its error on pixels of one or two fragments, where WBOIT is exact, stays near 1e-4
+// (docs/DESIGN.md, "Training", DFAOIT's recipe).
+TrainOptions recipeOptions(NetworkKind kind);
+
 // Trains a network of `kind` on `set` (set.inputs must match the kind). Input normalisation is
 // mean/std of the training split (scale 1 for a constant input). Records seed, samples seen and the
 // validation MSE (mean over samples and the 3 channels, weighted by the sample weights if any) in
