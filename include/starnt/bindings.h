@@ -49,6 +49,10 @@
 /* Scale guard: per-tile sums. */
 #define STARNT_SSBO_TILE_GUARD 8
 
+/* Largest linear colour channel a surface may return (HDR); larger values are clamped to it. With
+ * 16-bit float sums (65504 at most) it leaves room for 100 layers of alpha 0.6. */
+#define STARNT_MAX_SURFACE_COLOR 1024.0
+
 /* A-buffer list terminator. */
 #define STARNT_ABUFFER_END 0xFFFFFFFFu
 

@@ -162,14 +162,34 @@ glm::vec3 compositeThreeLayersExact(const PixelSums& s, glm::vec3 background, De
 
 }  // namespace
 
+namespace {
+
+// CPU reference of methods/neural/network_hdr.glsl (docs/DESIGN.md, "HDR"): the colour inputs from
+// `firstColour` on divided by the pixel's scale k = max(1, the largest of them outside
+// [skipBegin, skipEnd)), the output multiplied by k. k = 1 for colours within [0, 1].
+template <size_t N>
+glm::vec3 forwardInColourScale(const Network& net, std::array<float, N> x, size_t firstColour, size_t skipBegin = N,
+                               size_t skipEnd = N) {
+    float k = 1.0f;
+    for (size_t i = firstColour; i < N; ++i) {
+        if (i < skipBegin || i >= skipEnd) k = std::max(k, x[i]);
+    }
+    if (k > 1.0f) {
+        for (size_t i = firstColour; i < N; ++i) x[i] /= k;
+    }
+    return k * net.forward(x.data());
+}
+
+}  // namespace
+
 glm::vec3 compositeStarnt(const Network& net, const PixelSums& s, glm::vec3 background) {
-    return compositeThreeLayersExact(s, background, [&](const auto& x) { return net.forward(x.data()); });
+    return compositeThreeLayersExact(s, background, [&](const auto& x) { return forwardInColourScale(net, x, 2); });
 }
 
 glm::vec3 compositeStarntResidual(const Network& net, const PixelSums& s, glm::vec3 background) {
     return compositeThreeLayersExact(s, background, [&](const auto& x) {
         const glm::vec3 cTilde(x[2], x[3], x[4]);
-        return (1.0f - x[0]) * glm::max(cTilde + net.forward(x.data()), glm::vec3(0.0f));
+        return (1.0f - x[0]) * glm::max(cTilde + forwardInColourScale(net, x, 2), glm::vec3(0.0f));
     });
 }
 
@@ -275,15 +295,15 @@ glm::vec3 starntDepthTarget(const FragmentList& sorted, const PixelSums& sums, c
 glm::vec3 compositeStarntDepth(const Network& net, const PixelSums& s, const TailMoments& m, glm::vec3 background) {
     return compositeThreeLayersExact(s, background, [&](const auto& x) {
         const auto d = starntDepthFeatures(s, m);
-        return (1.0f - x[0]) * glm::max(glm::vec3(d[5], d[6], d[7]) + net.forward(d.data()), glm::vec3(0.0f));
+        return (1.0f - x[0]) * glm::max(glm::vec3(d[5], d[6], d[7]) + forwardInColourScale(net, d, 2), glm::vec3(0.0f));
     });
 }
 
 glm::vec3 compositeDfaoit(const Network& net, const PixelSums& s, glm::vec3 background) {
     glm::vec3 transparent(0.0f);
     if (s.count > 0.5f) {
-        const auto x = dfaoitFeatures(s);
-        transparent = net.forward(x.data());
+        // Colour inputs from x[1]; sum a C (x[4..6]) scaled but not setting the scale.
+        transparent = forwardInColourScale(net, dfaoitFeatures(s), 1, 4, 7);
     }
     return transparent + s.transmittance * background;
 }

@@ -20,7 +20,9 @@ vec4 fetchSurfaceOrDiscard() {
         if (!(gl_FragCoord.z < (u_opaqueReversed ? 1.0 - opaque : opaque))) discard;
     }
     vec4 s = starntSurface();
-    s = clamp(s, vec4(0.0), vec4(1.0));
+    // Colours may exceed 1 (linear HDR) up to STARNT_MAX_SURFACE_COLOR, where 16-bit float sums of
+    // hundreds of layers still hold them; alpha within [0, 1].
+    s = vec4(clamp(s.rgb, vec3(0.0), vec3(STARNT_MAX_SURFACE_COLOR)), clamp(s.a, 0.0, 1.0));
     if (!(s.a >= u_alphaCutoff)) discard;  // also discards NaN alpha
     return s;
 }

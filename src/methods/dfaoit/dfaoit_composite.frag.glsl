@@ -9,6 +9,12 @@
 
 bool networkApplies(PixelSums s) { return s.count >= 0.5; }
 
+// Colour inputs from x[1] on; sum a C (x[4..6]) is scaled with them but does not set the pixel's
+// scale (network_hdr.glsl).
+#define STARNT_NN_FIRST_COLOUR_INPUT 1
+#define STARNT_NN_SCALE_SKIP_BEGIN 4
+#define STARNT_NN_SCALE_SKIP_END 7
+
 void networkInputs(PixelSums s, out float x[STARNT_NN_INPUTS]) {
     float tailCount = s.count - 2.0;
     float aAvg = 0.0;

@@ -7,6 +7,7 @@
 
 layout(std430, binding = STARNT_SSBO_TILE_MASKS_IN) readonly buffer Masks { uint masks[]; };
 uniform ivec2 u_tiles;
+#include "methods/neural/network_hdr.glsl"
 layout(location = 0) out vec4 outNetwork;
 
 void main() {
@@ -19,7 +20,5 @@ void main() {
         outNetwork = vec4(0.0);
         return;
     }
-    float x[STARNT_NN_INPUTS];
-    networkInputs(s, x);
-    outNetwork = vec4(nnEvaluate(x), 1.0);
+    outNetwork = vec4(evaluateNetwork(s), 1.0);
 }

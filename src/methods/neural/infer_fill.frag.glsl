@@ -8,6 +8,7 @@ layout(std430, binding = STARNT_SSBO_TILE_MASKS_IN) readonly buffer Masks { uint
 layout(binding = STARNT_UNIT_CORNER_NETWORK) uniform sampler2D u_cornerNetwork;
 uniform ivec2 u_tiles;
 #include "methods/neural/half_targets.glsl"
+#include "methods/neural/network_hdr.glsl"
 layout(location = 0) out vec4 outColor;
 
 void main() {
@@ -26,9 +27,7 @@ void main() {
         if (weight > 0.0) {
             network = (w.x * n00.rgb + w.y * n10.rgb + w.z * n01.rgb + w.w * n11.rgb) / weight;
         } else {
-            float x[STARNT_NN_INPUTS];
-            networkInputs(s, x);
-            network = nnEvaluate(x);
+            network = evaluateNetwork(s);
         }
     }
     outColor = targetValue(vec4(compositePixel(s, network), outputAlpha(s.transmittance)));

@@ -2,6 +2,7 @@
 // the method's composite. The method's features and composite (networkApplies, networkInputs,
 // compositePixel) are included before this file.
 #include "methods/neural/half_targets.glsl"
+#include "methods/neural/network_hdr.glsl"
 layout(location = 0) out vec4 outColor;
 #ifdef STARNT_CAPTURE_CORRECTION
 // The fused capture of corrected frames (CorrectedFrames::beginFusedCapture): what the capture
@@ -16,11 +17,7 @@ uniform vec4 u_sourceScale;
 void main() {
     PixelSums s = readPixelSums(ivec2(gl_FragCoord.xy));
     vec3 network = vec3(0.0);
-    if (networkApplies(s)) {
-        float x[STARNT_NN_INPUTS];
-        networkInputs(s, x);
-        network = nnEvaluate(x);
-    }
+    if (networkApplies(s)) network = evaluateNetwork(s);
     vec4 color = targetValue(vec4(compositePixel(s, network), outputAlpha(s.transmittance)));
     outColor = color;
 #ifdef STARNT_CAPTURE_CORRECTION
