@@ -167,6 +167,19 @@ std::vector<float> blendOverEngineColor(GLuint premultiplied, const OpaqueImage&
     return gl::readTextureFloats(target.id(), kW, kH, 4);
 }
 
+// The courtyard along an 8-frame orbit of 16 degrees at 160x120, each frame against the A-buffer.
+RenderJob courtyardPath(const Scene& scene, const std::string& method) {
+    RenderJob job;
+    job.method = method;
+    job.width = 160;
+    job.height = 120;
+    job.frames = 8;
+    job.background = kBackground;
+    job.path = parseCameraPathSpec("orbit:0,16", scene.bounds(), 160.0f / 120.0f);
+    job.referenceMethod = "abuffer";
+    return job;
+}
+
 const std::vector<std::string> kMethods = {"abuffer", "peel",   "unsorted",       "wboit",         "mboit", "starnt",
                                 "hybrid",  "dfaoit", "starnt-residual", "hybrid-moments", "starnt-d"};
 
@@ -359,16 +372,9 @@ TEST(Opaque, CourtyardWithWarpAndRefreshFramesAlongAPath) {
     const Scene scene = makeBuiltinScene("courtyard", 1);
     const SceneGpu gpu(scene);
     for (auto mode : {NeuralOptions::TemporalMode::Warp, NeuralOptions::TemporalMode::Refresh}) {
-        RenderJob job;
-        job.method = "starnt";
+        RenderJob job = courtyardPath(scene, "starnt");
         job.methodOptions.neural.temporalInterval = 2;
         job.methodOptions.neural.temporalMode = mode;
-        job.width = 160;
-        job.height = 120;
-        job.frames = 8;
-        job.background = kBackground;
-        job.path = parseCameraPathSpec("orbit:0,16", scene.bounds(), 160.0f / 120.0f);
-        job.referenceMethod = "abuffer";
         const auto stats = renderScene(gpu, job).stats;
         const double real = stats["error"]["real"]["mse_mean"].get<double>();
         const double interpolated = stats["error"]["interpolated"]["mse_mean"].get<double>();
@@ -439,17 +445,7 @@ TEST(Opaque, CourtyardWithCorrectedFramesAlongAPath) {
     SurfaceOptions allTransparent;
     allTransparent.alphaOverride = 0.3f;
     EXPECT_FALSE(gpu.hasOpaque(allTransparent)) << "--alpha turns every material into BLEND";
-    auto run = [&](const std::string& method) {
-        RenderJob job;
-        job.method = method;
-        job.width = 160;
-        job.height = 120;
-        job.frames = 8;
-        job.background = kBackground;
-        job.path = parseCameraPathSpec("orbit:0,16", scene.bounds(), 160.0f / 120.0f);
-        job.referenceMethod = "abuffer";
-        return renderScene(gpu, job).stats;
-    };
+    auto run = [&](const std::string& method) { return renderScene(gpu, courtyardPath(scene, method)).stats; };
     const auto wboit = run("wboit"), recommended = run("recommended");
     const double wboitMse = wboit["error"]["real"]["mse_mean"].get<double>();
     const auto& real = recommended["error"]["real"];

@@ -521,15 +521,18 @@ int run(const std::filesystem::path& outdir, bool es) {
     const starnt::SurfaceShader surface{kVertexShader, kSurfaceFunction};
     const starnt::MethodOptions options;  // defaults: exact A-buffer and peel, eq10 wboit, 6 moments
 
+    // The engine's transparent draws, as every geometry pass of every method calls them.
+    const starnt::DrawCallback drawTransparent = [&](const starnt::GeometryPass& pass) {
+        glUniformMatrix4fv(glGetUniformLocation(pass.program, "u_viewProjection"), 1, GL_FALSE,
+                           glm::value_ptr(viewProjection));
+        mesh.draw();
+    };
+
     std::filesystem::create_directories(outdir);
     std::map<std::string, starnt::Image> images;
     for (const std::string& name : wanted) {
         auto method = starnt::createMethod(name, surface, options);
-        method->render(frame, [&](const starnt::GeometryPass& pass) {
-            glUniformMatrix4fv(glGetUniformLocation(pass.program, "u_viewProjection"), 1, GL_FALSE,
-                               glm::value_ptr(viewProjection));
-            mesh.draw();
-        });
+        method->render(frame, drawTransparent);
         images[name] = readOutput(method->outputTexture(), kSize, kSize);
         const starnt::FrameStats stats = method->lastFrameStats();
         if (stats.peel) std::fprintf(stderr, "minimal_engine: peel peeled %d layers\n", stats.peel->layers);
@@ -572,11 +575,7 @@ int run(const std::filesystem::path& outdir, bool es) {
     std::unique_ptr<starnt::OitMethod> starntMethod;
     for (const std::string& name : wanted) {
         auto method = starnt::createMethod(name, surface, options);
-        method->render(frame, [&](const starnt::GeometryPass& pass) {
-            glUniformMatrix4fv(glGetUniformLocation(pass.program, "u_viewProjection"), 1, GL_FALSE,
-                               glm::value_ptr(viewProjection));
-            mesh.draw();
-        });
+        method->render(frame, drawTransparent);
         withOpaque[name] = readOutput(method->outputTexture(), kSize, kSize);
         starnt::savePng(withOpaque[name], (outdir / (name + "_opaque.png")).string());
         if (name == "starnt") starntMethod = std::move(method);
@@ -614,10 +613,7 @@ int run(const std::filesystem::path& outdir, bool es) {
         failures.push_back("starnt with the opaque quad: MSE not below wboit's");
     // The premultiplied output, blended by the engine onto its own colour, equals the composite.
     frame.premultipliedOutput = true;
-    starntMethod->render(frame, [&](const starnt::GeometryPass& pass) {
-        glUniformMatrix4fv(glGetUniformLocation(pass.program, "u_viewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
-        mesh.draw();
-    });
+    starntMethod->render(frame, drawTransparent);
     blendPremultiplied(starntMethod->outputTexture(), opaque.framebuffer, es);
     const Difference premultiplied = compare(withOpaque.at("starnt"), readOutput(opaque.colour, kSize, kSize));
     std::printf("starnt premultiplied, blended by the engine: max difference %.6g from the composite\n", premultiplied.maxDiff);

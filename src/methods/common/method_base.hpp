@@ -62,6 +62,12 @@ protected:
     OpaqueScene opaque_;  // this frame's opaque depth and background
 };
 
+// Starts a pass that accumulates into `framebuffer` (width x height, from the origin): draw buffer 0
+// a sum (cleared to 0, blend ONE, ONE), draw buffer 1 a product (cleared to 1, blend ZERO,
+// `productFactor`), clipped by the frame's opaque depth. End it with opaque.endDepthTest and
+// resetPassState. WBOIT's accumulation and the corrected frames' sums.
+void beginSumAndProduct(GLuint framebuffer, int width, int height, OpaqueScene& opaque, GLenum productFactor);
+
 // Restores the GL state every pass may change to the defaults the methods assume (the depth range
 // of the current frame's depth convention).
 void resetPassState();

@@ -301,16 +301,8 @@ void NeuralPasses::runNearestAndSums(const FrameDesc& frame, const DrawCallback&
     runNearest(frame, draw);
     prepareNearestAndSums();
     pass3Size_ = {width_, height_};
-    const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1};
     gl::ScopedPass timing(frame.timing, "pass3");
-    glBindFramebuffer(GL_FRAMEBUFFER, sumsFb_.id());
-    glViewport(0, 0, width_, height_);
-    glClearBufferfv(GL_COLOR, 0, zero);
-    glClearBufferfv(GL_COLOR, 1, one);
-    opaque_.beginDepthTest(sumsFb_.id(), width_, height_, width_, height_);
-    glEnable(GL_BLEND);
-    glBlendFunci(0, GL_ONE, GL_ONE);
-    glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
+    beginSumAndProduct(sumsFb_.id(), width_, height_, opaque_, GL_ONE_MINUS_SRC_ALPHA);  // sum a C, sum a; prod (1 - a)
     MethodBase::runGeometryPass("pass3", pass3Sums_, frame, draw);
     opaque_.endDepthTest(sumsFb_.id());
     resetPassState();

@@ -37,15 +37,7 @@ public:
         resetPassState();
         {
             gl::ScopedPass timing(frame.timing, "accumulate");
-            glBindFramebuffer(GL_FRAMEBUFFER, fb_.id());
-            glViewport(0, 0, width_, height_);
-            const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1};
-            glClearBufferfv(GL_COLOR, 0, zero);
-            glClearBufferfv(GL_COLOR, 1, one);
-            opaque_.beginDepthTest(fb_.id(), width_, height_, width_, height_);
-            glEnable(GL_BLEND);
-            glBlendFunci(0, GL_ONE, GL_ONE);
-            glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);
+            beginSumAndProduct(fb_.id(), width_, height_, opaque_, GL_ONE_MINUS_SRC_COLOR);  // weighted sums; revealage
             glUseProgram(accumulate_.id());
             glUniform1i(accumulate_.uniform("u_weightFunction"), weightFunction_);
             glUniform2f(accumulate_.uniform("u_projZ"), frame.projection[2][2], frame.projection[3][2]);
