@@ -16,6 +16,7 @@
 #include "methods/neural/neural_method.hpp"
 #include "methods/neural/neural_passes.hpp"
 #include "methods/neural/tiles/tile_constants.h"
+#include "reference/fragment_capture.hpp"
 #include "reference/tiles_cpu.hpp"
 #include "methods/neural/tiles/tiles_gpu.hpp"
 #include "reference/upsample_cpu.hpp"
@@ -415,45 +416,72 @@ void main() {
 // Sampling at the reduced texel centres (the viewport not moved) fails this on most edge texels.
 TEST(GlTiles, ReducedPassesSampleFullPixelCentres) {
     test::TestScene c(makeBuiltinScene("tubes", 3), 96, 64, 30.0f, 20.0f, kBackground);
-    // 32-bit targets: the algorithm against its CPU reference (the compact rounding is tested apart).
-    OpaqueScene opaque;
-    NeuralPasses passes(SceneGpu::surfaceShader(), opaque, true, NeuralOptions::Targets::Float32);
-    const FrameDesc frame = c.frame();
-    const DrawCallback draw = c.gpu->callback(frame.view, frame.projection, {});
-    const Size2 full{c.width, c.height};
-    const float eps = NeuralPasses::kDefaultPeelEpsilon;
-    passes.run(frame, draw, eps, full, full);
-    // Targets at their full allocated size, rows bottom-first.
-    auto texels = [](const gl::Texture2D& t) { return glOrder(gl::readTexture(t)); };
-    const auto nearest = texels(passes.nearest()), second = texels(passes.second());
-    const auto sumsAc = texels(passes.alphaColor()), sumsCn = texels(passes.colorCount());
-    for (int k : {2, 4}) {
-        const Size2 reduced{full.width / k, full.height / k};
-        passes.run(frame, draw, eps, full, reduced);
-        const auto tailAc = texels(passes.alphaColor()), tailCn = texels(passes.colorCount());
-        int tails = 0, mismatches = 0;
-        for (int y = 0; y < reduced.height; ++y)
-            for (int x = 0; x < reduced.width; ++x) {
-                const size_t t = size_t(y) * size_t(full.width) + size_t(x);  // reduced texel t in the full-size target
-                const size_t p = size_t(k * y) * size_t(full.width) + size_t(k * x);
-                const glm::vec4 f1 = nearest[p], f2 = second[p];
-                const float layers = (f1.a > 0.0f ? 1.0f : 0.0f) + (f2.a > 0.0f ? 1.0f : 0.0f);
-                const float wantCount = std::max(sumsCn[p].a - layers, 0.0f);
-                const glm::vec4 wantAc = glm::max(sumsAc[p] - glm::vec4(glm::vec3(f1) * f1.a, f1.a) -
-                                                      glm::vec4(glm::vec3(f2) * f2.a, f2.a), glm::vec4(0.0f));
-                tails += wantCount > 0.0f ? 1 : 0;
-                // The same fragments: equal counts and alpha sums. The colours may differ in the
-                // last bits and more where lighting uses screen-space derivatives, which change with scale.
-                bool same = tailCn[t].a == wantCount && std::abs(tailAc[t].a - wantAc.a) <= 1e-5f;
-                for (int ch = 0; ch < 3; ++ch) same = same && std::abs(tailAc[t][ch] - wantAc[ch]) <= 1e-2f * std::max(1.0f, wantAc[ch]);
-                mismatches += same ? 0 : 1;
-            }
-        const int n = reduced.width * reduced.height;
-        EXPECT_GT(tails, n / 20) << "the render should have tails at scale 1/" << k;
-        // Rasterising the same point at another scale may still decide an edge sample differently
-        // after snapping to the rasteriser's fixed point: 3 and 5 texels on llvmpipe, against 196
-        // and 48 with the viewport not moved.
-        EXPECT_LE(mismatches, n / 40) << "of " << n << " texels at scale 1/" << k;
+    // With an engine's opaque depth too (a wall slanted through the tubes): a reduced texel takes
+    // the opaque depth of the full pixel holding its sample, so the same equality holds
+    // (OpaqueScene; the shader clip of pass 2 and the copy of pass 3 use one rule).
+    const CapturedFrame all = c.capture();
+    float zmin = 1.0f, zmax = 0.0f;
+    for (const auto& list : all.pixels) {
+        for (const Fragment& f : list) zmin = std::min(zmin, f.depth), zmax = std::max(zmax, f.depth);
+    }
+    std::vector<float> wall;
+    for (int y = 0; y < c.height; ++y)
+        for (int x = 0; x < c.width; ++x) wall.push_back(zmin + (zmax - zmin) * (0.3f + 0.4f * float(x) / float(c.width - 1)));
+    gl::Texture2D wallDepth(GL_DEPTH_COMPONENT32F, c.width, c.height);
+    starnt::gl::uploadTexture(wallDepth.id(), c.width, c.height, GL_DEPTH_COMPONENT, GL_FLOAT, wall.data());
+    std::vector<glm::vec4> openCounts;
+    for (bool withWall : {false, true}) {
+        SCOPED_TRACE(withWall ? "with an opaque depth" : "without an opaque depth");
+        // 32-bit targets: the algorithm against its CPU reference (the compact rounding is tested apart).
+        OpaqueScene opaque;
+        NeuralPasses passes(SceneGpu::surfaceShader(), opaque, true, NeuralOptions::Targets::Float32);
+        FrameDesc frame = c.frame();
+        frame.opaqueDepth = withWall ? wallDepth.id() : 0;
+        opaque.begin(beginDepthConvention(frame));
+        const DrawCallback draw = c.gpu->callback(frame.view, frame.projection, {});
+        const Size2 full{c.width, c.height};
+        const float eps = NeuralPasses::kDefaultPeelEpsilon;
+        passes.run(frame, draw, eps, full, full);
+        // Targets at their full allocated size, rows bottom-first.
+        auto texels = [](const gl::Texture2D& t) { return glOrder(gl::readTexture(t)); };
+        const auto nearest = texels(passes.nearest()), second = texels(passes.second());
+        const auto sumsAc = texels(passes.alphaColor()), sumsCn = texels(passes.colorCount());
+        if (!withWall) {
+            openCounts = sumsCn;
+        } else {
+            int clipped = 0;
+            for (size_t i = 0; i < sumsCn.size(); ++i) clipped += sumsCn[i].a < openCounts[i].a ? 1 : 0;
+            EXPECT_GT(clipped, int(sumsCn.size()) / 10) << "the wall must clip pass 3";
+        }
+        for (int k : {2, 4}) {
+            const Size2 reduced{full.width / k, full.height / k};
+            passes.run(frame, draw, eps, full, reduced);
+            const auto tailAc = texels(passes.alphaColor()), tailCn = texels(passes.colorCount());
+            int tails = 0, mismatches = 0;
+            for (int y = 0; y < reduced.height; ++y)
+                for (int x = 0; x < reduced.width; ++x) {
+                    const size_t t = size_t(y) * size_t(full.width) + size_t(x);  // reduced texel t in the full-size target
+                    const size_t p = size_t(k * y) * size_t(full.width) + size_t(k * x);
+                    const glm::vec4 f1 = nearest[p], f2 = second[p];
+                    const float layers = (f1.a > 0.0f ? 1.0f : 0.0f) + (f2.a > 0.0f ? 1.0f : 0.0f);
+                    const float wantCount = std::max(sumsCn[p].a - layers, 0.0f);
+                    const glm::vec4 wantAc = glm::max(sumsAc[p] - glm::vec4(glm::vec3(f1) * f1.a, f1.a) -
+                                                          glm::vec4(glm::vec3(f2) * f2.a, f2.a), glm::vec4(0.0f));
+                    tails += wantCount > 0.0f ? 1 : 0;
+                    // The same fragments: equal counts and alpha sums. The colours may differ in the
+                    // last bits and more where lighting uses screen-space derivatives, which change with scale.
+                    bool same = tailCn[t].a == wantCount && std::abs(tailAc[t].a - wantAc.a) <= 1e-5f;
+                    for (int ch = 0; ch < 3; ++ch) same = same && std::abs(tailAc[t][ch] - wantAc[ch]) <= 1e-2f * std::max(1.0f, wantAc[ch]);
+                    mismatches += same ? 0 : 1;
+                }
+            const int n = reduced.width * reduced.height;
+            EXPECT_GT(tails, n / 20) << "the render should have tails at scale 1/" << k;
+            // Rasterising the same point at another scale may still decide an edge sample differently
+            // after snapping to the rasteriser's fixed point: 3 and 5 texels on llvmpipe, against 196
+            // and 48 with the viewport not moved.
+            EXPECT_LE(mismatches, n / 40) << "of " << n << " texels at scale 1/" << k;
+        }
+        opaque.end();
     }
 }
 
