@@ -381,7 +381,7 @@ TEST(Opaque, CourtyardWithWarpAndRefreshFramesAlongAPath) {
         std::printf("courtyard %s: real MSE %.3g, interpolated %.3g\n",
                     mode == NeuralOptions::TemporalMode::Warp ? "warp" : "refresh", real, interpolated);
         EXPECT_EQ(stats["error"]["interpolated"]["frames"].get<int>(), 4);
-        EXPECT_LT(interpolated, 8.0 * real);  // measured 3.9-4.2x (warp and refresh frames move the whole back)
+        EXPECT_LT(interpolated, 10.0 * real);  // measured 5.8-6.6x (warp and refresh frames move the whole back)
     }
 }
 

@@ -133,13 +133,10 @@ FrameDesc TestScene::frame() const {
 
 RenderOutput TestScene::render(const std::string& method, const MethodOptions& options,
                                const SurfaceOptions& surface) const {
-    RenderJob job;
+    RenderJob job = sizedJob(width, height, 1, 0, background, 0.03f);
     job.method = method;
     job.methodOptions = options;
-    job.width = width;
-    job.height = height;
     job.camera = camera;
-    job.background = background;
     job.surface = surface;
     return renderScene(*gpu, job);
 }

@@ -176,14 +176,8 @@ void checkRenderArgs(const RenderArgs& a) {
 }
 
 RenderJob makeRenderJob(const RenderArgs& a, const Scene& scene) {
-    RenderJob job;
+    RenderJob job = sizedJob(a.width, a.height, a.frames, a.warmup, parseColor(a.background, "--background"), float(a.alphaCutoff));
     job.method = a.method;
-    job.width = a.width;
-    job.height = a.height;
-    job.frames = a.frames;
-    job.warmupFrames = a.warmup;
-    job.background = parseColor(a.background, "--background");
-    job.alphaCutoff = float(a.alphaCutoff);
     const float aspect = float(a.width) / float(a.height);
     job.camera = parseCameraSpec(a.camera, scene.bounds(), aspect);
     if (!a.cameraPath.empty()) job.path = parseCameraPathSpec(a.cameraPath, scene.bounds(), aspect);

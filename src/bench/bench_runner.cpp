@@ -31,14 +31,9 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 // Everything a scene's jobs share: size, path, background, surface settings.
 RenderJob baseJob(const Plan& plan, const SceneSpec& spec, const Scene& scene) {
-    RenderJob job;
-    job.width = plan.width;
-    job.height = plan.height;
-    job.frames = plan.frames;
-    job.warmupFrames = plan.warmupFrames;
+    // White: the command line's default background.
+    RenderJob job = sizedJob(plan.width, plan.height, plan.frames, plan.warmupFrames, glm::vec3(1.0f), spec.alphaCutoff);
     job.qualityEvery = plan.qualityEvery;
-    job.background = glm::vec3(1.0f);  // the command line's default: white
-    job.alphaCutoff = spec.alphaCutoff;
     job.surface = surfaceOptionsFor(spec);
     job.path = parseCameraPathSpec(plan.cameraPath, scene.bounds(), float(plan.width) / float(plan.height));
     return job;

@@ -279,6 +279,17 @@ private:
 
 }  // namespace
 
+RenderJob sizedJob(int width, int height, int frames, int warmupFrames, const glm::vec3& background, float alphaCutoff) {
+    RenderJob job;
+    job.width = width;
+    job.height = height;
+    job.frames = frames;
+    job.warmupFrames = warmupFrames;
+    job.background = background;
+    job.alphaCutoff = alphaCutoff;
+    return job;
+}
+
 RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) { return SceneRun(scene, job).run(); }
 
 std::optional<InterpolatedFlash> worstInterpolatedFlash(const std::vector<std::pair<bool, double>>& msePerFrame) {

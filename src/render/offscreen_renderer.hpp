@@ -56,6 +56,10 @@ struct RenderJob {
     std::function<void(const FrameRecord&)> onFrame;
 };
 
+// A job of the given size and frame counts over `background`, the rest at its defaults: what the
+// render command and the bench start from.
+RenderJob sizedJob(int width, int height, int frames, int warmupFrames, const glm::vec3& background, float alphaCutoff);
+
 struct RenderOutput {
     Image image;                         // last frame, linear
     std::optional<Image> tileOverlay;    // last frame's tile levels over the image, when asked and available

@@ -50,6 +50,13 @@ public:
     // Uniform in [0, 1) from the top 24 bits of one mt19937 output.
     float uniform() { return float(gen_() >> 8) * (1.0f / 16777216.0f); }
     float range(float lo, float hi) { return lo + (hi - lo) * uniform(); }
+    // A point uniform in the box [lo, hi], drawn x, then y, then z.
+    glm::vec3 inBox(const glm::vec3& lo, const glm::vec3& hi) {
+        const float x = range(lo.x, hi.x);
+        const float y = range(lo.y, hi.y);
+        const float z = range(lo.z, hi.z);
+        return {x, y, z};
+    }
     glm::vec3 inBall(float radius) {
         for (;;) {
             // One statement per draw: argument evaluation order is unspecified in C++.
@@ -92,6 +99,12 @@ void appendQuad(Mesh& mesh, const std::array<glm::vec3, 4>& corners, const glm::
         mesh.colors.push_back(color);
     }
     mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+}
+
+// A square of half-size h around `centre`, facing +Z (a particle, a leaf).
+void appendFacingSquare(Mesh& mesh, const glm::vec3& centre, float h, const glm::vec4& color) {
+    appendQuad(mesh, {centre + glm::vec3(-h, -h, 0), centre + glm::vec3(h, -h, 0), centre + glm::vec3(h, h, 0), centre + glm::vec3(-h, h, 0)},
+               {0, 0, 1}, color);
 }
 
 Scene makeTubes(uint32_t seed) {
@@ -152,17 +165,11 @@ Scene makeSmoke(uint32_t seed) {
     s.materials.push_back(blendMaterial(true));
     Mesh mesh;
     for (int p = 0; p < kParticles; ++p) {
-        const float x = rng.range(-0.7f, 0.7f);
-        const float y = rng.range(-0.7f, 0.7f);
-        const float z = rng.range(-0.6f, 0.6f);
+        const glm::vec3 centre = rng.inBox({-0.7f, -0.7f, -0.6f}, {0.7f, 0.7f, 0.6f});
         const float h = rng.range(0.04f, 0.12f);
         const float grey = rng.range(0.55f, 0.95f);
         const glm::vec3 tint = randomColor(rng, 0.85f);
-        const glm::vec4 color(grey * tint, rng.range(0.05f, 0.4f));
-        appendQuad(mesh,
-                   {glm::vec3(x - h, y - h, z), glm::vec3(x + h, y - h, z), glm::vec3(x + h, y + h, z),
-                    glm::vec3(x - h, y + h, z)},
-                   glm::vec3(0.0f, 0.0f, 1.0f), color);
+        appendFacingSquare(mesh, centre, h, glm::vec4(grey * tint, rng.range(0.05f, 0.4f)));
     }
     s.meshes.push_back(std::move(mesh));
     return s;
@@ -193,10 +200,9 @@ Scene makeRandom(uint32_t seed) {
     for (int t = 0; t < kTriangles; ++t) {
         // A roughly equilateral triangle (circumradius 0.6-0.95, jittered angles) around a centre
         // near the middle, each vertex at its own depth, clamped to the box.
-        const float cx = rng.range(-0.55f, 0.55f);
-        const float cy = rng.range(-0.55f, 0.55f);
-        const glm::vec2 c(cx, cy);
-        const float cz = rng.range(-0.5f, 0.5f);
+        const glm::vec3 centre = rng.inBox({-0.55f, -0.55f, -0.5f}, {0.55f, 0.55f, 0.5f});
+        const glm::vec2 c(centre);
+        const float cz = centre.z;
         const float r = rng.range(0.28f, 0.5f);
         const float a0 = rng.range(0.0f, 2.0f * std::numbers::pi_v<float>);
         const glm::vec3 rgb = randomColor(rng, 0.1f);
@@ -303,7 +309,8 @@ Scene makeCourtyard(uint32_t seed) {
         const float x = rng.range(-0.5f, 0.5f);
         const float y = rng.range(-0.3f, 0.2f);
         const float w = rng.range(0.3f, 0.55f), h = rng.range(0.3f, 0.5f);
-        const glm::vec4 color(randomColor(rng, 0.3f), rng.range(0.2f, 0.5f));
+        const glm::vec3 tint = randomColor(rng, 0.3f);  // one draw a statement: argument order is unspecified
+        const glm::vec4 color(tint, rng.range(0.2f, 0.5f));
         appendQuad(panes, {glm::vec3(x - w, y - h, z), glm::vec3(x + w, y - h, z), glm::vec3(x + w, y + h, z),
                            glm::vec3(x - w, y + h, z)},
                    {0, 0, 1}, color);
@@ -312,22 +319,20 @@ Scene makeCourtyard(uint32_t seed) {
 
     Mesh leaves;  // material 2: alpha-tested
     for (int i = 0; i < 60; ++i) {
-        const glm::vec3 c(rng.range(-0.8f, 0.8f), rng.range(floorY, 0.1f), rng.range(-0.8f, 0.8f));
+        const glm::vec3 c = rng.inBox({-0.8f, floorY, -0.8f}, {0.8f, 0.1f, 0.8f});
         const float h = rng.range(0.04f, 0.09f);
-        const glm::vec4 color(0.15f + 0.2f * rng.uniform(), 0.45f + 0.3f * rng.uniform(), 0.12f, rng.uniform() < 0.5f ? 0.2f : 0.9f);
-        appendQuad(leaves, {c + glm::vec3(-h, -h, 0), c + glm::vec3(h, -h, 0), c + glm::vec3(h, h, 0), c + glm::vec3(-h, h, 0)},
-                   {0, 0, 1}, color);
+        const float red = 0.15f + 0.2f * rng.uniform();
+        const float green = 0.45f + 0.3f * rng.uniform();
+        appendFacingSquare(leaves, c, h, glm::vec4(red, green, 0.12f, rng.uniform() < 0.5f ? 0.2f : 0.9f));
     }
     leaves.material = 2;
 
     Mesh haze;  // material 3: faint, many layers
     for (int i = 0; i < 240; ++i) {
-        const glm::vec3 c(rng.range(-0.7f, 0.7f), rng.range(-0.6f, 0.5f), rng.range(-0.8f, 0.8f));
+        const glm::vec3 c = rng.inBox({-0.7f, -0.6f, -0.8f}, {0.7f, 0.5f, 0.8f});
         const float h = rng.range(0.06f, 0.16f);
         const float grey = rng.range(0.6f, 0.95f);
-        const glm::vec4 color(glm::vec3(grey), rng.range(0.05f, 0.25f));
-        appendQuad(haze, {c + glm::vec3(-h, -h, 0), c + glm::vec3(h, -h, 0), c + glm::vec3(h, h, 0), c + glm::vec3(-h, h, 0)},
-                   {0, 0, 1}, color);
+        appendFacingSquare(haze, c, h, glm::vec4(glm::vec3(grey), rng.range(0.05f, 0.25f)));
     }
     haze.material = 3;
     s.meshes = {std::move(solid), std::move(panes), std::move(leaves), std::move(haze)};
