@@ -538,6 +538,27 @@ TEST(DepthConventions, ReversedZAndZeroToOneGiveTheDefaultConventionsImage) {
             if (worst > 0.01f) std::printf("[ %s, %s ] worst %.3g, %zu channels above 0.02\n", method.c_str(), c.name, worst, off);
         }
     }
+    // A warp frame hides kept layers behind this frame's opaque depth, read in the engine's
+    // convention: with a still camera it equals the real frame.
+    {
+        MethodOptions warp;
+        warp.neural.temporalInterval = 2;
+        warp.neural.temporalMode = NeuralOptions::TemporalMode::Warp;
+        auto m = createMethod("starnt", SceneGpu::surfaceShader(), warp);
+        FrameDesc frame = standard;
+        frame.projection = reversed;
+        frame.opaqueDepth = engineReversed.depth.id();
+        setClipControl(true);
+        m->render(frame, s.gpu->callback(frame.view, reversed, {}));
+        const std::vector<float> real = gl::readTextureFloats(m->outputTexture(), kW, kH, 4);
+        m->render(frame, s.gpu->callback(frame.view, reversed, {}));
+        const std::vector<float> interpolated = gl::readTextureFloats(m->outputTexture(), kW, kH, 4);
+        setClipControl(false);
+        ASSERT_TRUE(m->lastFrameStats().interpolated());
+        float worst = 0.0f;
+        for (size_t i = 0; i < real.size(); ++i) worst = std::max(worst, std::abs(real[i] - interpolated[i]));
+        EXPECT_LT(worst, 4e-3f) << "warp frame, reversed Z with an opaque depth";
+    }
     FrameDesc flat = standard;
     flat.projection = projection;
     flat.projection[3][2] = 0.0f;  // near plane at 0

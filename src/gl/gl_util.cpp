@@ -292,6 +292,9 @@ TextureDescription describeTexture(GLuint texture, GLuint unit) {
         glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &height);
         glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
         glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_RED_TYPE, &redType);
+        GLint immutable = 0;
+        glGetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_IMMUTABLE_FORMAT, &immutable);
+        d.immutable = immutable != 0;
     } else {
         GLint target = 0;
         glGetTextureParameteriv(texture, GL_TEXTURE_TARGET, &target);
@@ -300,6 +303,9 @@ TextureDescription describeTexture(GLuint texture, GLuint unit) {
         glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_HEIGHT, &height);
         glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
         glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_RED_TYPE, &redType);
+        GLint immutable = 0;
+        glGetTextureParameteriv(texture, GL_TEXTURE_IMMUTABLE_FORMAT, &immutable);
+        d.immutable = immutable != 0;
     }
     d.is2D = true;
     d.width = width;

@@ -135,6 +135,7 @@ struct TextureDescription {
     int width = 0, height = 0;
     GLenum internalFormat = 0;
     bool integer = false;  // an integer colour format (sampled by a float sampler: undefined)
+    bool immutable = false;  // glTexStorage: complete whatever its filter (glCopyImageSubData needs that)
 };
 TextureDescription describeTexture(GLuint texture, GLuint unit);
 bool isDepthFormat(GLenum internalFormat);

@@ -21,9 +21,14 @@ FragmentCapture::FragmentCapture(const SurfaceShader& surface, const MethodOptio
                                   "#define STARNT_ABUFFER_CAPTURE_ORDER 1\n")) {}
 
 CapturedFrame FragmentCapture::capture(const FrameDesc& frame, const DrawCallback& draw) {
-    const FrameDesc canonical = beginDepthConvention(frame);
-    opaque_.begin(canonical);
-    lists_.build(canonical, draw, build_, &opaque_);
+    CapturedFrame out = captureCanonical(beginDepthConvention(frame), draw);
+    glDepthRangef(0.0f, 1.0f);  // as MethodBase::render leaves it
+    return out;
+}
+
+CapturedFrame FragmentCapture::captureCanonical(const FrameDesc& frame, const DrawCallback& draw) {
+    opaque_.begin(frame);
+    lists_.build(frame, draw, build_, &opaque_);
     opaque_.end();
     glFinish();
     const size_t pixelCount = size_t(frame.width) * size_t(frame.height);
@@ -62,6 +67,12 @@ DepthComplexityCounter::DepthComplexityCounter(const SurfaceShader& surface)
     : MethodBase(surface), program_((tools::useToolSources(), buildGeometryProgram("count", "reference/count.frag.glsl"))) {}
 
 unsigned DepthComplexityCounter::count(const FrameDesc& frame, const DrawCallback& draw) {
+    const unsigned maximum = countCanonical(beginDepthConvention(frame), draw);
+    glDepthRangef(0.0f, 1.0f);  // as MethodBase::render leaves it
+    return maximum;
+}
+
+unsigned DepthComplexityCounter::countCanonical(const FrameDesc& frame, const DrawCallback& draw) {
     if (frame.width != width_ || frame.height != height_ || !output_) {
         width_ = frame.width;
         height_ = frame.height;
@@ -72,7 +83,7 @@ unsigned DepthComplexityCounter::count(const FrameDesc& frame, const DrawCallbac
     bindOutputFramebuffer();
     const float zero[4] = {0, 0, 0, 0};
     glClearBufferfv(GL_COLOR, 0, zero);
-    opaque_.begin(beginDepthConvention(frame));
+    opaque_.begin(frame);
     opaque_.beginDepthTest(outputFb_.id(), width_, height_, width_, height_);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);

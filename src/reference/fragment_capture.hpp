@@ -23,7 +23,13 @@ public:
 
     // OitMethod (unused: capture has no image output)
     std::string name() const override { return "capture"; }
-    void renderFrame(const FrameDesc& frame, const DrawCallback& draw) override { capture(frame, draw); }
+    void renderFrame(const FrameDesc& canonical, const DrawCallback& draw) override { captureCanonical(canonical, draw); }
+
+private:
+    // capture() of a frame already in the canonical depth convention (beginDepthConvention).
+    CapturedFrame captureCanonical(const FrameDesc& canonical, const DrawCallback& draw);
+
+public:
     size_t gpuMemoryBytes() const override { return lists_.gpuMemoryBytes(); }
 
 private:
@@ -40,7 +46,12 @@ public:
     unsigned count(const FrameDesc& frame, const DrawCallback& draw);
 
     std::string name() const override { return "count"; }
-    void renderFrame(const FrameDesc& frame, const DrawCallback& draw) override { count(frame, draw); }
+    void renderFrame(const FrameDesc& canonical, const DrawCallback& draw) override { countCanonical(canonical, draw); }
+
+private:
+    unsigned countCanonical(const FrameDesc& canonical, const DrawCallback& draw);
+
+public:
     size_t gpuMemoryBytes() const override { return outputBytes(); }
 
 private:

@@ -165,8 +165,9 @@ glm::vec3 compositeThreeLayersExact(const PixelSums& s, glm::vec3 background, De
 namespace {
 
 // CPU reference of methods/neural/network_hdr.glsl (docs/DESIGN.md, "HDR"): the colour inputs from
-// `firstColour` on divided by the pixel's scale k = max(1, the largest of them outside
-// [skipBegin, skipEnd)), the output multiplied by k. k = 1 for colours within [0, 1].
+// `firstColour` on divided by the pixel's scale k = the largest of them outside [skipBegin, skipEnd),
+// the output multiplied by k, where k exceeds 1 + 2^-8 (LDR pixels, 16-bit rounding included, keep
+// their bits).
 template <size_t N>
 glm::vec3 forwardInColourScale(const Network& net, std::array<float, N> x, size_t firstColour, size_t skipBegin = N,
                                size_t skipEnd = N) {
@@ -174,9 +175,8 @@ glm::vec3 forwardInColourScale(const Network& net, std::array<float, N> x, size_
     for (size_t i = firstColour; i < N; ++i) {
         if (i < skipBegin || i >= skipEnd) k = std::max(k, x[i]);
     }
-    if (k > 1.0f) {
-        for (size_t i = firstColour; i < N; ++i) x[i] /= k;
-    }
+    if (!(k > 1.0f + 1.0f / 256.0f)) return net.forward(x.data());
+    for (size_t i = firstColour; i < N; ++i) x[i] /= k;
     return k * net.forward(x.data());
 }
 

@@ -39,13 +39,18 @@ void MethodBase::render(const FrameDesc& frame, const DrawCallback& draw) {
     gl::checkFrameSize(frame.width, frame.height);
     const FrameDesc canonical = beginDepthConvention(frame);
     opaque_.begin(canonical);
+    // The engine gets the default depth range back: a reversed-Z engine rarely sets it itself.
+    auto finish = [this] {
+        opaque_.end();
+        glDepthRangef(0.0f, 1.0f);
+    };
     try {
         renderFrame(canonical, draw);
     } catch (...) {
-        opaque_.end();
+        finish();
         throw;
     }
-    opaque_.end();
+    finish();
 }
 
 bool MethodBase::resizeOutput(int width, int height) {
@@ -124,7 +129,10 @@ thread_local DepthConvention currentConvention;
 DepthConvention readDepthConvention(const glm::mat4& projection) {
     DepthConvention c;
     GLint mode = GL_NEGATIVE_ONE_TO_ONE;
-    if (!gl::isEs() || epoxy_has_gl_extension("GL_EXT_clip_control")) glGetIntegerv(GL_CLIP_DEPTH_MODE, &mode);
+    // Desktop 4.5 has clip control; ES only with the extension (asked once: the extension walk
+    // queries every extension string).
+    static const bool esClipControl = gl::isEs() && epoxy_has_gl_extension("GL_EXT_clip_control");
+    if (!gl::isEs() || esClipControl) glGetIntegerv(GL_CLIP_DEPTH_MODE, &mode);
     c.zeroToOne = mode == GL_ZERO_TO_ONE;
     // A perspective's clip w grows along its view direction (-z for OpenGL's usual matrices): its
     // normalised depth at distances 1 and 10 that way tells whether the near plane gets the smaller

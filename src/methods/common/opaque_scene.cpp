@@ -10,8 +10,8 @@ namespace {
 std::string sizeText(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
 
 // Throws unless `name` is a 2D texture of the frame size with a format of the wanted kind; returns
-// its format.
-GLenum checkTexture(const char* field, GLuint name, const FrameDesc& frame, bool depth) {
+// what it is.
+gl::TextureDescription checkTexture(const char* field, GLuint name, const FrameDesc& frame, bool depth) {
     const gl::TextureDescription d = gl::describeTexture(name, STARNT_UNIT_OPAQUE);
     const std::string what = std::string("FrameDesc::") + field + " (GL name " + std::to_string(name) + ")";
     if (!d.is2D) throw Error(what + " is not a GL_TEXTURE_2D texture of this context");
@@ -25,7 +25,7 @@ GLenum checkTexture(const char* field, GLuint name, const FrameDesc& frame, bool
     if (!depth && (gl::isDepthFormat(d.internalFormat) || d.integer)) {
         throw Error(what + " must have a floating-point or normalised colour format (it is sampled as linear RGB)");
     }
-    return d.internalFormat;
+    return d;
 }
 
 }  // namespace
@@ -36,7 +36,12 @@ void OpaqueScene::begin(const FrameDesc& frame) {
     depth_ = background_ = 0;
     clipWidth_ = clipHeight_ = 0;
     transmittanceInAlpha_ = false;
-    depthFormat_ = frame.opaqueDepth ? checkTexture("opaqueDepth", frame.opaqueDepth, frame, true) : 0;
+    depthFormat_ = 0;
+    if (frame.opaqueDepth) {
+        const gl::TextureDescription d = checkTexture("opaqueDepth", frame.opaqueDepth, frame, true);
+        // A copy needs a complete texture whatever its filter: immutable storage (else a full-screen pass).
+        depthFormat_ = d.immutable ? d.internalFormat : 0;
+    }
     if (frame.backgroundTexture && !frame.premultipliedOutput) {
         checkTexture("backgroundTexture", frame.backgroundTexture, frame, false);
     }
@@ -82,14 +87,12 @@ void OpaqueScene::writeDepth(int width, int height, int fullWidth, int fullHeigh
     glUniform2i(fill_.uniform("u_fullSize"), fullWidth, fullHeight);
     glUniform1i(fill_.uniform("u_reversed"), currentDepthConvention().reversed ? 1 : 0);
     bindOpaqueDepth();
-    GLboolean colorMask[4] = {GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE};
-    glGetBooleanv(GL_COLOR_WRITEMASK, colorMask);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_ALWAYS);
     glDepthMask(GL_TRUE);
     gl::drawFullscreenTriangle(vao_);
-    glColorMask(colorMask[0], colorMask[1], colorMask[2], colorMask[3]);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);  // what resetPassState leaves, and every caller has
     glDepthFunc(GL_LESS);
     glDisable(GL_DEPTH_TEST);
     glBindSampler(STARNT_UNIT_OPAQUE, 0);

@@ -35,7 +35,8 @@ public:
     // (the fused capture of corrected frames); fillEmpty leaves it untouched.
     void bindCovered(GLuint colorTexture, GLuint pass1Depth, int width, int height, GLuint secondColor = 0);
     // After the covered pixels were drawn: writes the background into the empty ones and restores
-    // the default depth state (test off, function LESS, writes on). The depth range is not touched.
+    // the default depth state (test off, function LESS, writes on) and the frame's depth range
+    // (resetPassState).
     void fillEmpty(const OpaqueScene& background, bool halfOutput, const gl::VertexArrayHandle& emptyVao) const;
 
 private:

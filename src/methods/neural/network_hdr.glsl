@@ -2,8 +2,10 @@
 // colours in [0, 1], and every colour input of every kind is linear in the pixel's fragment colours
 // (means and sums of a C), as is what the network predicts (a tail's colour, a correction of one,
 // the whole transparent colour). So the colour inputs are divided by the pixel's scale
-// k = max(1, the largest colour input) and the output multiplied by it; for a pixel within [0, 1]
-// k = 1 and nothing changes. CPU reference: nn::forwardInColourScale (features.cpp).
+// k = the largest colour input and the output multiplied by it, where k exceeds 1 + 2^-8; for a
+// pixel within [0, 1] nothing changes, nor where 16-bit sums round an LDR input a little above 1.
+// CPU reference: nn::forwardInColourScale (features.cpp).
+#define STARNT_NN_HDR_THRESHOLD (1.0 + 1.0 / 256.0)
 // A method's composite may set the inputs that are colours: from STARNT_NN_FIRST_COLOUR_INPUT on,
 // those in [STARNT_NN_SCALE_SKIP_BEGIN, STARNT_NN_SCALE_SKIP_END) scaled but not setting k
 // (DFAOIT's sum a C, above 1 in LDR pixels too).
@@ -22,8 +24,7 @@ vec3 evaluateNetwork(PixelSums s) {
     for (int i = STARNT_NN_FIRST_COLOUR_INPUT; i < STARNT_NN_INPUTS; ++i) {
         if (i < STARNT_NN_SCALE_SKIP_BEGIN || i >= STARNT_NN_SCALE_SKIP_END) k = max(k, x[i]);
     }
-    if (k > 1.0) {
-        for (int i = STARNT_NN_FIRST_COLOUR_INPUT; i < STARNT_NN_INPUTS; ++i) x[i] /= k;
-    }
+    if (!(k > STARNT_NN_HDR_THRESHOLD)) return nnEvaluate(x);
+    for (int i = STARNT_NN_FIRST_COLOUR_INPUT; i < STARNT_NN_INPUTS; ++i) x[i] /= k;
     return k * nnEvaluate(x);
 }

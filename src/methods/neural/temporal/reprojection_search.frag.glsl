@@ -56,6 +56,7 @@ vec4 refreshPremultiplied(vec4 kept, vec4 keptNearest, vec4 nearest) {
 #else
 layout(binding = 6) uniform highp sampler2D u_opaqueDepth;  // this frame's (FrameDesc::opaqueDepth)
 uniform bool u_opaqueClip;
+uniform bool u_opaqueReversed;  // that depth is reversed (DepthConvention): canonical = 1 - d
 #endif
 
 
@@ -183,7 +184,8 @@ void main() {
     if (u_opaqueClip && bestTexel.x >= 0) {
         vec4 v = vec4(bestPosition / vec2(u_size) * 2.0 - 1.0, texelFetch(u_depth, bestTexel, 0).r * 2.0 - 1.0, 1.0);
         float newDepth = dot(u_row2, v) / dot(u_row3, v) * 0.5 + 0.5;
-        if (!(newDepth < texelFetch(u_opaqueDepth, p, 0).r)) kept = vec4(0.0, 0.0, 0.0, 1.0);
+        float opaque = texelFetch(u_opaqueDepth, p, 0).r;
+        if (!(newDepth < (u_opaqueReversed ? 1.0 - opaque : opaque))) kept = vec4(0.0, 0.0, 0.0, 1.0);
     }
     o_color = outputValue(vec4(kept.rgb + kept.a * background(), outputAlpha(kept.a)), u_halfOutput);
 #endif

@@ -3,6 +3,7 @@
 #include <glm/gtc/matrix_access.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "methods/common/method_base.hpp"
 #include "methods/neural/temporal/reprojection_constants.h"
 #include "methods/neural/temporal/reprojection_math.hpp"
 #include "methods/neural/temporal/temporal_passes.hpp"
@@ -119,6 +120,7 @@ void Reprojector::reproject(const glm::mat4& newViewProj, GLuint outputTexture, 
     glUniform1i(search_.uniform("u_halfOutput"), halfOutput);
     background.bindBackground(search_);
     glUniform1i(search_.uniform("u_opaqueClip"), background.clips() ? 1 : 0);
+    glUniform1i(search_.uniform("u_opaqueReversed"), currentDepthConvention().reversed ? 1 : 0);
     if (background.clips()) background.bindOpaqueDepth(6);
     gl::drawFullscreenTriangle(emptyVao_);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
