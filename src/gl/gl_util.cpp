@@ -277,7 +277,6 @@ bool isDepthFormat(GLenum f) {
 TextureDescription describeTexture(GLuint texture, GLuint unit) {
     TextureDescription d;
     if (texture == 0 || !glIsTexture(texture)) return d;
-    GLint width = 0, height = 0, format = 0, redType = 0;
     if (isEs()) {
         glActiveTexture(GL_TEXTURE0 + unit);
         glBindTexture(GL_TEXTURE_2D, 0);
@@ -288,25 +287,24 @@ TextureDescription describeTexture(GLuint texture, GLuint unit) {
             glGetError();  // the failed bind's GL_INVALID_OPERATION
             return d;
         }
-        glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &width);
-        glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &height);
-        glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
-        glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_RED_TYPE, &redType);
-        GLint immutable = 0;
-        glGetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_IMMUTABLE_FORMAT, &immutable);
-        d.immutable = immutable != 0;
     } else {
         GLint target = 0;
         glGetTextureParameteriv(texture, GL_TEXTURE_TARGET, &target);
         if (target != GL_TEXTURE_2D) return d;
-        glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_WIDTH, &width);
-        glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_HEIGHT, &height);
-        glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
-        glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_RED_TYPE, &redType);
-        GLint immutable = 0;
-        glGetTextureParameteriv(texture, GL_TEXTURE_IMMUTABLE_FORMAT, &immutable);
-        d.immutable = immutable != 0;
     }
+    // Level 0's parameters and the texture's: direct state access, or ES's bound texture.
+    auto level = [&](GLenum pname) {
+        GLint v = 0;
+        if (isEs()) glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, pname, &v);
+        else glGetTextureLevelParameteriv(texture, 0, pname, &v);
+        return v;
+    };
+    GLint immutable = 0;
+    if (isEs()) glGetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_IMMUTABLE_FORMAT, &immutable);
+    else glGetTextureParameteriv(texture, GL_TEXTURE_IMMUTABLE_FORMAT, &immutable);
+    d.immutable = immutable != 0;
+    const GLint width = level(GL_TEXTURE_WIDTH), height = level(GL_TEXTURE_HEIGHT), format = level(GL_TEXTURE_INTERNAL_FORMAT),
+                redType = level(GL_TEXTURE_RED_TYPE);
     d.is2D = true;
     d.width = width;
     d.height = height;

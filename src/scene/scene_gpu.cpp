@@ -118,8 +118,9 @@ void SceneGpu::drawOpaque(FrameDesc& frame, const SurfaceOptions& options) const
     frame.opaqueDepth = frame.backgroundTexture = 0;
     if (!hasOpaque(options)) return;
     if (!opaqueProgram_) {
-        opaqueProgram_ = gl::buildProgram("scene_opaque", surfaceShader().vertex,
-                                          surfaceShader().fragment + "\n" + tools::toolSource("scene/scene_opaque.frag.glsl"));
+        const SurfaceShader surface = surfaceShader();
+        opaqueProgram_ = gl::buildProgram("scene_opaque", surface.vertex,
+                                          surface.fragment + "\n" + tools::toolSource("scene/scene_opaque.frag.glsl"));
     }
     if (opaqueColor_.width() != frame.width || opaqueColor_.height() != frame.height) {
         opaqueColor_ = gl::Texture2D(GL_RGBA16F, frame.width, frame.height);

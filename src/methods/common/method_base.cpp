@@ -36,7 +36,9 @@ gl::Program MethodBase::buildFullscreenProgram(const std::string& label, const s
 void MethodBase::render(const FrameDesc& frame, const DrawCallback& draw) {
     // No GL call before these checks (docs/INTEGRATION.md, "Misuse").
     if (!gl::hasCurrentContext()) throw Error("render(): no OpenGL context is current on this thread");
-    gl::checkFrameSize(frame.width, frame.height);
+    // A new size is checked against the context's limits before anything of it is allocated
+    // (setFrameSize); the same size was checked when it was new.
+    if (frame.width != width_ || frame.height != height_) gl::checkFrameSize(frame.width, frame.height);
     const FrameDesc canonical = beginDepthConvention(frame);
     opaque_.begin(canonical);
     // The engine gets the default depth range back: a reversed-Z engine rarely sets it itself.
@@ -60,10 +62,8 @@ bool MethodBase::resizeOutput(int width, int height) {
 }
 
 bool MethodBase::setFrameSize(int width, int height) {
-    // Every render() starts here: no GL call before these checks (docs/INTEGRATION.md, "Misuse").
-    if (!gl::hasCurrentContext()) throw Error("render(): no OpenGL context is current on this thread");
+    // render() checked the context and a new size before calling renderFrame.
     if (width == width_ && height == height_) return false;
-    gl::checkFrameSize(width, height);
     width_ = width;
     height_ = height;
     output_ = gl::Texture2D();
