@@ -196,13 +196,23 @@ INSTANTIATE_TEST_SUITE_P(BothMethods, GlTailMoments, ::testing::Values("hybrid-m
 
 TEST(GlNeural, DfaoitMatchesCpuReferencePerPixel) {
     Case c = makeCase("tubes", 200.0f);
-    const nn::Network net = loadMethodNetwork(*neuralConfig("dfaoit"), {});
-    for (auto layout : kLayouts) {
-        // DFAOIT's default (every pass at full resolution, no tiles, no temporal frames) runs the
-        // narrow layers with the compact targets.
-        expectGpuMatchesCpu(c, renderWith(c, "dfaoit", withTargets(layout)),
-                            [&](const nn::PixelSums& s) { return nn::compositeDfaoit(net, s, kBackground); }, 1e-3f, layout,
-                            layout == NeuralOptions::Targets::Compact);
+    // The shipped twelve-input network, and the earlier ten-input one (still loadable: the features
+    // of ten inputs are the first ten of twelve).
+    const std::string tenInputs = std::string(STARNT_SOURCE_DIR) + "/src/methods/dfaoit/dfaoit_weights_10_inputs.json";
+    for (const std::string& weights : {std::string(), tenInputs}) {
+        MethodOptions base;
+        base.neural.weightsPath = weights;
+        const nn::Network net = loadMethodNetwork(*neuralConfig("dfaoit"), base);
+        ASSERT_EQ(net.inputCount(), weights.empty() ? nn::kDfaoitInputs : nn::kDfaoitTenInputs);
+        for (auto layout : kLayouts) {
+            MethodOptions options = withTargets(layout);
+            options.neural.weightsPath = weights;
+            // DFAOIT's default (every pass at full resolution, no tiles, no temporal frames) runs the
+            // narrow layers with the compact targets.
+            expectGpuMatchesCpu(c, renderWith(c, "dfaoit", options),
+                                [&](const nn::PixelSums& s) { return nn::compositeDfaoit(net, s, kBackground); }, 1e-3f,
+                                layout, layout == NeuralOptions::Targets::Compact);
+        }
     }
 }
 

@@ -119,6 +119,8 @@ TEST(NnFeatures, FourFragmentsHandComputed) {
     expectVec({d[1], d[2], d[3]}, {0.5f, 0.5f, 1.0f}, 1e-6f, "C_avg");
     expectVec({d[4], d[5], d[6]}, {0.7f, 0.45f, 0.7f}, 1e-6f, "S_aC");
     expectVec({d[7], d[8], d[9]}, {0.5f, 0.125f, 0.0f}, 1e-7f, "C_exact2");
+    EXPECT_NEAR(d[10], 0.625f, 1e-7);  // the front pair's alpha: 1 - (1 - .5)(1 - .25)
+    EXPECT_EQ(d[11], 4.0f);
     const FragmentList sorted = preparedFragments(list);
     // Tail: blue .5, then white .2 through .5.
     expectVec(starntTarget(sorted), {0.1f, 0.1f, 0.6f}, 1e-7f, "tail target");

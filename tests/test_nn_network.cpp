@@ -76,7 +76,7 @@ TEST(NnNetwork, UntrainedNetworksHaveTheArchitectureAndAreSeeded) {
         const Network a = makeUntrained(kind, 7), b = makeUntrained(kind, 7), c = makeUntrained(kind, 8);
         EXPECT_NO_THROW(validateNetwork(a, "untrained"));
         ASSERT_EQ(a.layers.size(), 3u);
-        EXPECT_EQ(a.layers[0].in, kind == NetworkKind::DFAOIT ? 10 : kind == NetworkKind::StarNTDepth ? 8 : 5);
+        EXPECT_EQ(a.layers[0].in, kind == NetworkKind::DFAOIT ? 12 : kind == NetworkKind::StarNTDepth ? 8 : 5);
         EXPECT_EQ(a.layers[0].out, 32);
         EXPECT_EQ(a.layers[1].out, 16);
         EXPECT_EQ(a.layers[2].out, 3);

@@ -104,7 +104,7 @@ TEST(NnTrainingSet, KeepsThePixelsEachNetworkIsUsedFor) {
     const TrainingSet s = buildTrainingSet(NetworkKind::StarNT, lists, kDefaultAlphaCutoff);
     const TrainingSet d = buildTrainingSet(NetworkKind::DFAOIT, lists, kDefaultAlphaCutoff);
     EXPECT_EQ(s.inputs, 5);
-    EXPECT_EQ(d.inputs, 10);
+    EXPECT_EQ(d.inputs, 12);
     EXPECT_EQ(s.size(), moreThan3);
     EXPECT_EQ(d.size(), atLeast1);
     EXPECT_LT(s.size(), d.size());

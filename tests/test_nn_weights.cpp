@@ -150,10 +150,10 @@ TEST_F(NnWeightsFile, WrongKind) {
     auto j = json;
     j["network"] = "wboit";
     expectLoadError(write(j, "kind.json"), "unknown network kind");
-    // A dfaoit-labelled file with starnt contents fails on the architecture.
+    // A dfaoit-labelled file with starnt contents fails on its inputs.
     j = json;
     j["network"] = "dfaoit";
-    expectLoadError(write(j, "mislabelled.json"), "layer_sizes");
+    expectLoadError(write(j, "mislabelled.json"), "input_order");
     // starnt and starnt-residual share inputs and sizes: the kind and the output activation tell them apart.
     expectLoadError(good, "is a starnt network, --method starnt-residual needs a starnt-residual network",
                     NetworkKind::StarNTResidual);
@@ -178,6 +178,44 @@ TEST_F(NnWeightsFile, WrongInputOrder) {
     auto j = json;
     std::swap(j["input_order"][0], j["input_order"][1]);
     expectLoadError(write(j, "order.json"), "input_order");
+}
+
+// DFAOIT's earlier ten-input files load (their inputs are the first ten of twelve); any other
+// prefix, or ten inputs with twelve-input layer sizes, does not.
+TEST_F(NnWeightsFile, DfaoitTakesItsEarlierTenInputs) {
+    const fs::path twelve = dir / "dfaoit12.json";
+    saveWeights(sampleNetwork(NetworkKind::DFAOIT), twelve);
+    EXPECT_EQ(loadWeights(twelve, NetworkKind::DFAOIT).inputCount(), kDfaoitInputs);
+    const auto dfaoit = nlohmann::json::parse(readText(twelve));
+    ASSERT_EQ(dfaoit["input_order"].size(), size_t(kDfaoitInputs));
+
+    Network ten = sampleNetwork(NetworkKind::DFAOIT);
+    ten.inputNames.resize(kDfaoitTenInputs);
+    ten.inputOffset.resize(kDfaoitTenInputs);
+    ten.inputScale.resize(kDfaoitTenInputs);
+    auto& first = ten.layers[0];
+    std::vector<float> weights;
+    for (int o = 0; o < first.out; ++o) {
+        for (int i = 0; i < kDfaoitTenInputs; ++i) weights.push_back(first.weights[size_t(o) * first.in + i]);
+    }
+    first.weights = weights;
+    first.in = kDfaoitTenInputs;
+    const fs::path tenPath = dir / "dfaoit10.json";
+    saveWeights(ten, tenPath);
+    const Network loaded = loadWeights(tenPath, NetworkKind::DFAOIT);
+    EXPECT_EQ(loaded.inputCount(), kDfaoitTenInputs);
+    // It reads the first ten of the twelve features.
+    float x[kDfaoitInputs];
+    for (int i = 0; i < kDfaoitInputs; ++i) x[i] = 0.05f * float(i + 1);
+    EXPECT_EQ(loaded.forward(x), ten.forward(x));
+
+    auto j = nlohmann::json::parse(readText(tenPath));
+    j["input_order"].erase(9);
+    j["layer_sizes"][0] = 9;
+    expectLoadError(write(j, "dfaoit9.json"), "input_order");
+    j = nlohmann::json::parse(readText(tenPath));
+    j["layer_sizes"][0] = kDfaoitInputs;
+    expectLoadError(write(j, "dfaoit10as12.json"), "layer_sizes");
 }
 
 TEST_F(NnWeightsFile, NonFiniteValues) {

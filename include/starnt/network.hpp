@@ -41,14 +41,23 @@ inline constexpr float kTailAlphaEpsilon = 1e-3f;
 inline constexpr float kDefaultAlphaCutoff = 0.03f;
 
 inline constexpr int kStarntInputs = 5;
-inline constexpr int kDfaoitInputs = 10;
+// DFAOIT: the paper's features (docs/DESIGN.md, "DFAOIT's recipe"): the two front fragments'
+// Porter-Duff composite as RGB and alpha, the tail's mean alpha and colour, sum a C and the count.
+// Weights files of the earlier ten inputs (the composite's RGB, means and sum a C) still load.
+inline constexpr int kDfaoitInputs = 12;
+inline constexpr int kDfaoitTenInputs = 10;
 inline constexpr int kStarntDepthInputs = 8;
 
 // Number of inputs, canonical input names (the `input_order` of the weights file) and layer sizes
-// (5-32-16-3, 10-32-16-3 or 8-32-16-3, including the input layer).
+// (5-32-16-3, 12-32-16-3 or 8-32-16-3, including the input layer) of the networks this project trains.
 int inputCount(NetworkKind kind);
 const std::vector<std::string>& canonicalInputNames(NetworkKind kind);
 std::vector<int> layerSizes(NetworkKind kind);
+// Every input order a weights file of the kind may have: the canonical one first, then DFAOIT's
+// earlier ten (a prefix of its twelve, so the features of a ten-input network are the first ten).
+std::vector<std::vector<std::string>> acceptedInputOrders(NetworkKind kind);
+// The layer sizes of a network of `kind` with `inputs` inputs.
+std::vector<int> layerSizes(NetworkKind kind, int inputs);
 
 struct Network {
     struct Layer {

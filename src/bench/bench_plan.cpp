@@ -48,7 +48,7 @@ const std::vector<Variant>& allVariants() {
                     [](MethodOptions& o) { o.mboit.moments = std::string("6"); }),
         makeVariant("mboit-t3", "mboit", "moment-based OIT, 3 trigonometric moments",
                     [](MethodOptions& o) { o.mboit.moments = std::string("t3"); }),
-        makeVariant("dfaoit", "dfaoit", "DFAOIT: 10-input network, every pass at full resolution"),
+        makeVariant("dfaoit", "dfaoit", "DFAOIT: 12-input network, every pass at full resolution"),
         makeVariant("starnt-full", "starnt", "STAR-NT network, spatial off (all passes at full resolution)",
                     [](MethodOptions& o) { o.neural.spatial = false; }),
         accelerated(makeVariant("starnt", "starnt", "STAR-NT, adaptive tiles on (\"w/o temporal\")",

@@ -3,7 +3,7 @@
 // (registry.cpp) lists these rows after the classic methods, in this order.
 //
 //   name             inputs (NetworkKind)  composite                      network            refuses
-//   dfaoit           DFAOIT, 10 inputs     the whole transparent colour   10-32-16-3 sigmoid -
+//   dfaoit           DFAOIT, 12 inputs     the whole transparent colour   12-32-16-3 sigmoid -
 //   starnt           StarNT, 5 inputs      the paper's tail composite     5-32-16-3 ReLU     -
 //   hybrid           StarNT's inputs       the tail in closed form        none               -
 //   starnt-residual  StarNT, 5 inputs      hybrid's tail + a correction   5-32-16-3 linear   -

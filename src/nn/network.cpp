@@ -33,14 +33,20 @@ const std::vector<std::string>& canonicalInputNames(NetworkKind kind) {
     static const std::vector<std::string> starnt = {"t_tail", "count", "c_tilde_r", "c_tilde_g", "c_tilde_b"};
     static const std::vector<std::string> dfaoit = {
         "alpha_avg",           "c_avg_r",             "c_avg_g",   "c_avg_b",   "sum_alpha_color_r",
-        "sum_alpha_color_g",   "sum_alpha_color_b",   "c_exact2_r", "c_exact2_g", "c_exact2_b"};
+        "sum_alpha_color_g",   "sum_alpha_color_b",   "c_exact2_r", "c_exact2_g", "c_exact2_b", "alpha_exact2", "count"};
     static const std::vector<std::string> depth = {"t_tail",    "count",      "c_tilde_r",  "c_tilde_g",
                                                    "c_tilde_b", "c_moment_r", "c_moment_g", "c_moment_b"};
     return readsStarntInputs(kind) ? starnt : kind == NetworkKind::StarNTDepth ? depth : dfaoit;
 }
 
-std::vector<int> layerSizes(NetworkKind kind) {
-    return {inputCount(kind), 32, 16, 3};
+std::vector<int> layerSizes(NetworkKind kind) { return layerSizes(kind, inputCount(kind)); }
+
+std::vector<int> layerSizes(NetworkKind, int inputs) { return {inputs, 32, 16, 3}; }
+
+std::vector<std::vector<std::string>> acceptedInputOrders(NetworkKind kind) {
+    const auto& names = canonicalInputNames(kind);
+    if (kind != NetworkKind::DFAOIT) return {names};
+    return {names, std::vector<std::string>(names.begin(), names.begin() + kDfaoitTenInputs)};
 }
 
 glm::vec3 Network::forward(const float* rawInputs) const {

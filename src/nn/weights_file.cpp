@@ -11,6 +11,7 @@
 // Every number must be finite with |value| <= 1e6 (kMaxMagnitude).
 // Floats are written with 17 significant digits (nlohmann's double output), so a float survives
 // the round trip exactly.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -91,7 +92,13 @@ const nlohmann::json& field(const nlohmann::json& j, const char* name, const std
 }  // namespace
 
 void validateNetwork(const Network& net, const std::string& what) {
-    const std::vector<int> sizes = layerSizes(net.kind);
+    const auto orders = acceptedInputOrders(net.kind);
+    if (std::find(orders.begin(), orders.end(), net.inputNames) == orders.end()) {
+        std::string expected;
+        for (const auto& n : canonicalInputNames(net.kind)) expected += (expected.empty() ? "" : ",") + n;
+        fail(what, "input order does not match the " + std::string(kindName(net.kind)) + " inputs (expected " + expected + ")");
+    }
+    const std::vector<int> sizes = layerSizes(net.kind, static_cast<int>(net.inputNames.size()));
     const std::string kind = kindName(net.kind);
     if (net.layers.size() + 1 != sizes.size())
         fail(what, "a " + kind + " network has " + std::to_string(sizes.size() - 1) + " layers, found " +
@@ -109,11 +116,6 @@ void validateNetwork(const Network& net, const std::string& what) {
         checkFiniteArray(layer.weights, static_cast<size_t>(layer.in) * layer.out, what, name + " weights");
         checkFiniteArray(layer.bias, static_cast<size_t>(layer.out), what, name + " bias");
     }
-    if (net.inputNames != canonicalInputNames(net.kind)) {
-        std::string expected;
-        for (const auto& n : canonicalInputNames(net.kind)) expected += (expected.empty() ? "" : ",") + n;
-        fail(what, "input order does not match the " + kind + " inputs (expected " + expected + ")");
-    }
     checkFiniteArray(net.inputOffset, static_cast<size_t>(sizes[0]), what, "input_offset");
     checkFiniteArray(net.inputScale, static_cast<size_t>(sizes[0]), what, "input_scale");
     if (!std::isfinite(net.validationMse)) fail(what, "validation_mse is not finite");
@@ -125,7 +127,7 @@ void saveWeights(const Network& net, const std::filesystem::path& path) {
     j["format"] = kFormat;
     j["version"] = kVersion;
     j["network"] = kindName(net.kind);
-    j["layer_sizes"] = layerSizes(net.kind);
+    j["layer_sizes"] = layerSizes(net.kind, static_cast<int>(net.inputNames.size()));
     nlohmann::json activations = nlohmann::json::array();
     for (const auto& layer : net.layers) activations.push_back(activationName(layer.activation));
     j["activations"] = activations;
@@ -195,7 +197,17 @@ Network parseWeights(const std::string& text, const std::string& what, std::opti
             fail(what, std::string("is a ") + kindName(net.kind) + " network, --method " + kindName(*expected) +
                            " needs a " + kindName(*expected) + " network");
 
-        const std::vector<int> sizes = layerSizes(net.kind);
+        const auto& order = field(j, "input_order", what);
+        const auto orders = acceptedInputOrders(net.kind);
+        const auto accepted = std::find_if(orders.begin(), orders.end(),
+                                           [&](const auto& names) { return order == nlohmann::json(names); });
+        if (accepted == orders.end())
+            fail(what, "input_order " + order.dump() + " does not match the " + kindStr + " inputs " +
+                           nlohmann::json(canonicalInputNames(net.kind)).dump() +
+                           (orders.size() > 1 ? " (or their first " + std::to_string(orders[1].size()) + ")" : ""));
+        net.inputNames = *accepted;
+
+        const std::vector<int> sizes = layerSizes(net.kind, static_cast<int>(net.inputNames.size()));
         const auto& sizesJson = field(j, "layer_sizes", what);
         if (!sizesJson.is_array() || sizesJson != nlohmann::json(sizes))
             fail(what, "layer_sizes " + sizesJson.dump() + " do not match the " + kindStr + " architecture " +
@@ -207,11 +219,6 @@ Network parseWeights(const std::string& text, const std::string& what, std::opti
         if (acts != expectedActs)
             fail(what, "activations " + acts.dump() + " do not match the " + kindStr + " network " +
                            expectedActs.dump());
-        const auto& order = field(j, "input_order", what);
-        if (order != nlohmann::json(canonicalInputNames(net.kind)))
-            fail(what, "input_order " + order.dump() + " does not match the " + kindStr + " inputs " +
-                           nlohmann::json(canonicalInputNames(net.kind)).dump());
-        net.inputNames = canonicalInputNames(net.kind);
         net.inputOffset = readFloats(field(j, "input_offset", what), what, "input_offset");
         net.inputScale = readFloats(field(j, "input_scale", what), what, "input_scale");
 

@@ -111,7 +111,7 @@ std::array<float, kDfaoitInputs> dfaoitFeatures(const PixelSums& s) {
     }
     const glm::vec3 exact2 = exactTwoLayers(s);
     return {alphaAvg,           colorAvg.r,         colorAvg.g,         colorAvg.b, s.sumAlphaColor.r,
-            s.sumAlphaColor.g,  s.sumAlphaColor.b,  exact2.r,           exact2.g,   exact2.b};
+            s.sumAlphaColor.g,  s.sumAlphaColor.b,  exact2.r,           exact2.g,   exact2.b, 1.0f - twoLayerTransmittance(s), s.count};
 }
 
 glm::vec3 starntTarget(const FragmentList& sorted) {
@@ -170,13 +170,13 @@ namespace {
 // their bits).
 template <size_t N>
 glm::vec3 forwardInColourScale(const Network& net, std::array<float, N> x, size_t firstColour, size_t skipBegin = N,
-                               size_t skipEnd = N) {
+                               size_t skipEnd = N, size_t colourEnd = N) {
     float k = 1.0f;
-    for (size_t i = firstColour; i < N; ++i) {
+    for (size_t i = firstColour; i < colourEnd; ++i) {
         if (i < skipBegin || i >= skipEnd) k = std::max(k, x[i]);
     }
     if (!(k > 1.0f + 1.0f / 256.0f)) return net.forward(x.data());
-    for (size_t i = firstColour; i < N; ++i) x[i] /= k;
+    for (size_t i = firstColour; i < colourEnd; ++i) x[i] /= k;
     return k * net.forward(x.data());
 }
 
@@ -303,7 +303,7 @@ glm::vec3 compositeDfaoit(const Network& net, const PixelSums& s, glm::vec3 back
     glm::vec3 transparent(0.0f);
     if (s.count > 0.5f) {
         // Colour inputs from x[1]; sum a C (x[4..6]) scaled but not setting the scale.
-        transparent = forwardInColourScale(net, dfaoitFeatures(s), 1, 4, 7);
+        transparent = forwardInColourScale(net, dfaoitFeatures(s), 1, 4, 7, 10);
     }
     return transparent + s.transmittance * background;
 }

@@ -1,12 +1,12 @@
 // Trainer: MSE loss, Adam written by hand, mini-batches, forward and backward with Eigen.
 //
-// Why Eigen and not libtorch: the networks are tiny (5-32-16-3 has 771 parameters, 10-32-16-3
-// has 931), so one training step is a handful of (<=32) x (<=32) x 256 matrix products; framework
+// Why Eigen and not libtorch: the networks are tiny (5-32-16-3 has 771 parameters, 12-32-16-3
+// has 995), so one training step is a handful of (<=32) x (<=32) x 256 matrix products; framework
 // overhead per op would dominate in libtorch. Eigen is header-only and already a dependency of the
 // project, whereas libtorch (CPU) is a ~2 GB download / ~500 MB of shared libraries that no
 // distribution package provides. Measured with this trainer (one thread, batch 256, Release build,
 // `build/test_nn_train --gtest_also_run_disabled_tests --gtest_filter='*DISABLED_Benchmark*'`):
-// 10 M samples in 6.7 s for STAR-NT (~1.5 M samples/s) and 7.6 s for DFAOIT (~1.3 M samples/s),
+// 10 M samples in 6.7 s for STAR-NT (~1.5 M samples/s) and 7.6 s for DFAOIT with ten inputs (~1.3 M samples/s),
 // i.e. the default training takes seconds, not minutes. (libtorch was not measured: it is not
 // installed on the build machines, and this speed leaves nothing for it to win.)
 //

@@ -74,7 +74,8 @@ FragmentList preparedFragments(FragmentList fragments, float alphaCutoff = kDefa
 
 // STAR-NT inputs, in this order: t_tail, N, C_tilde.r, C_tilde.g, C_tilde.b.
 std::array<float, kStarntInputs> starntFeatures(const PixelSums& s);
-// DFAOIT inputs, in this order: a_avg, C_avg.rgb, S_aC.rgb, C_exact2.rgb.
+// DFAOIT inputs, in this order: a_avg, C_avg.rgb, S_aC.rgb, C_exact2.rgb, alpha_exact2 = 1 - T2, N
+// (a ten-input network reads the first ten).
 std::array<float, kDfaoitInputs> dfaoitFeatures(const PixelSums& s);
 
 // Targets, from a list already prepared (cut off and sorted, see preparedFragments).

@@ -6,11 +6,15 @@
 // pixel within [0, 1] nothing changes, nor where 16-bit sums round an LDR input a little above 1.
 // CPU reference: nn::forwardInColourScale (features.cpp).
 #define STARNT_NN_HDR_THRESHOLD (1.0 + 1.0 / 256.0)
-// A method's composite may set the inputs that are colours: from STARNT_NN_FIRST_COLOUR_INPUT on,
-// those in [STARNT_NN_SCALE_SKIP_BEGIN, STARNT_NN_SCALE_SKIP_END) scaled but not setting k
-// (DFAOIT's sum a C, above 1 in LDR pixels too).
+// A method's composite may set the inputs that are colours: from STARNT_NN_FIRST_COLOUR_INPUT up to
+// STARNT_NN_COLOUR_INPUT_END, those in [STARNT_NN_SCALE_SKIP_BEGIN, STARNT_NN_SCALE_SKIP_END) scaled
+// but not setting k (DFAOIT's sum a C, above 1 in LDR pixels too).
 #ifndef STARNT_NN_FIRST_COLOUR_INPUT
 #define STARNT_NN_FIRST_COLOUR_INPUT 2
+#endif
+#if !defined(STARNT_NN_COLOUR_INPUT_END) || STARNT_NN_COLOUR_INPUT_END > STARNT_NN_INPUTS
+#undef STARNT_NN_COLOUR_INPUT_END
+#define STARNT_NN_COLOUR_INPUT_END STARNT_NN_INPUTS
 #endif
 #ifndef STARNT_NN_SCALE_SKIP_BEGIN
 #define STARNT_NN_SCALE_SKIP_BEGIN STARNT_NN_INPUTS
@@ -21,10 +25,10 @@ vec3 evaluateNetwork(PixelSums s) {
     float x[STARNT_NN_INPUTS];
     networkInputs(s, x);
     float k = 1.0;
-    for (int i = STARNT_NN_FIRST_COLOUR_INPUT; i < STARNT_NN_INPUTS; ++i) {
+    for (int i = STARNT_NN_FIRST_COLOUR_INPUT; i < STARNT_NN_COLOUR_INPUT_END; ++i) {
         if (i < STARNT_NN_SCALE_SKIP_BEGIN || i >= STARNT_NN_SCALE_SKIP_END) k = max(k, x[i]);
     }
     if (!(k > STARNT_NN_HDR_THRESHOLD)) return nnEvaluate(x);
-    for (int i = STARNT_NN_FIRST_COLOUR_INPUT; i < STARNT_NN_INPUTS; ++i) x[i] /= k;
+    for (int i = STARNT_NN_FIRST_COLOUR_INPUT; i < STARNT_NN_COLOUR_INPUT_END; ++i) x[i] /= k;
     return k * nnEvaluate(x);
 }
