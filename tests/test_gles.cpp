@@ -88,6 +88,8 @@ TEST(Gles, ReducedPassesTilesAndInterpolatedFramesMatchDesktop) {
     expectSameOnBothApis(base + "--method starnt --temporal 2 --temporal-mode refresh --frames 5", "refresh");
     expectSameOnBothApis(base + "--method starnt --temporal 2 --temporal-mode warp --frames 5", "warp");
     expectSameOnBothApis(base + "--method starnt --temporal 2 --temporal-mode correct --frames 5", "correct");
+    expectSameOnBothApis(base + "--method starnt --temporal 2 --temporal-mode correct --corrected-passes 2 --frames 5",
+                         "correct_two_passes");
 }
 
 TEST(Gles, EveryMethodMatchesDesktopOnSuiteScenes) {

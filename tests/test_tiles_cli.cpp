@@ -60,6 +60,7 @@ TEST(TilesCli, BadSpatialOptionsFailCleanly) {
     expectCleanFailure(common + " --tile-signal depth", out, "back or composite");
     expectCleanFailure(common + " --scale-guard maybe", out, "--scale-guard");
     expectCleanFailure(common + " --temporal 2 --temporal-mode blend", out, "warp, refresh or correct");
+    expectCleanFailure(common + " --temporal 2 --corrected-passes 3", out, "expected 1 or 2");
     for (const char* mode : {"refresh", "correct"}) {
         expectCleanFailure("render --scene builtin:panes --method wboit --width 32 --height 32 --temporal-mode " +
                                std::string(mode) + " --out " + out.string(),

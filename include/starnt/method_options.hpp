@@ -84,6 +84,10 @@ struct NeuralOptions {
     enum class TemporalMode { Warp, Refresh, Correct };
     // The default: Correct, which measured best on quality against time (docs/DESIGN.md, "Corrected frames").
     TemporalMode temporalMode = TemporalMode::Correct;
+    // Corrected frames render one geometry pass: pass 3 finds the nearest fragment too, by
+    // blending a packed (depth, colour) with GL_MIN (docs/DESIGN.md, "Corrected frames in one
+    // geometry pass"); off: pass 1 for the nearest fragment, then pass 3 (two geometry passes).
+    bool correctedOnePass = true;
     double targetFps = 60.0;
     // Precision of the pass targets and the output (docs/DESIGN.md, "Pipeline and formats"): Compact (default) = 16-bit float
     // colours, sums and count, a 16-bit unsigned normalised transmittance, 32-bit depths, and the

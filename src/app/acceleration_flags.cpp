@@ -27,7 +27,10 @@ void addAccelerationOptions(CLI::App* command, AccelerationFlags& flags) {
                         "neural methods: reduced passes back to full resolution: bilinear | joint (bilateral, guided by pass-1 depth)")
         ->capture_default_str();
     command->add_option("--temporal-mode", flags.temporalMode,
-                        "neural methods: interpolated frames: warp (the paper) | refresh (fresh pass 1) | correct (fresh passes 1 and 3, the last real frame's network correction)")
+                        "neural methods: interpolated frames: warp (the paper) | refresh (fresh pass 1) | correct (fresh sums and nearest layer, the last real frame's network correction)")
+        ->capture_default_str();
+    command->add_option("--corrected-passes", flags.correctedPasses,
+                        "neural methods: geometry passes of a corrected frame: 1 (pass 3 finds the nearest fragment too) | 2 (pass 1, then pass 3)")
         ->capture_default_str();
     command->add_option("--targets", flags.targets,
                         "neural methods: pass-target precision: compact (16-bit colours and sums, 36 B/pixel) | fp32")
@@ -44,6 +47,7 @@ void applyAccelerationFlags(const AccelerationFlags& flags, MethodOptions& optio
     parseTileSignalOption(flags.tileSignal, options);
     parseScaleGuardOption(flags.scaleGuard, options);
     parseTemporalModeOption(flags.temporalMode, options);
+    parseCorrectedPassesOption(flags.correctedPasses, options);
     parseUpsampleOption(flags.upsample, options);
     parseTargetsOption(flags.targets, options);
 }

@@ -26,6 +26,7 @@ struct AccelerationFlags {
     std::string tileSignal = "back";        // back | composite
     std::string scaleGuard = "on";          // on | off
     std::string temporalMode = "correct";   // warp | refresh | correct
+    int correctedPasses = 1;                // geometry passes of a corrected frame: 1 | 2
     std::string upsample = "bilinear";      // bilinear | joint
     std::string targets = "compact";        // compact | fp32
 };

@@ -1,11 +1,69 @@
 #include "reference/correction_cpu.hpp"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
+#include "methods/neural/temporal/packed_nearest.h"
 #include "methods/neural/temporal/reprojection_constants.h"
 #include "methods/neural/temporal/reprojection_math.hpp"
 
 namespace starnt::temporal {
+
+namespace {
+
+constexpr uint32_t kPackedMaxKey = (1u << STARNT_PACKED_KEY_BITS) - 1u;
+constexpr uint32_t kPackedPayloadMask = (1u << STARNT_PACKED_PAYLOAD_BITS) - 1u;
+constexpr uint32_t kPackedOne = 0x3F800000u;
+
+uint32_t packedDepthKey(float z) {
+    const uint32_t w = std::bit_cast<uint32_t>(std::clamp(1.0f - z, 0.0f, 1.0f));
+    return std::min((kPackedOne - w) >> STARNT_PACKED_KEY_SHIFT, kPackedMaxKey - 1u);
+}
+
+uint32_t packedColour(float c) {
+    const float r = std::sqrt(std::max(c, 0.0f));
+    return uint32_t(std::floor(r / (1.0f + r) * float(STARNT_PACKED_STEPS) + 0.5f));
+}
+
+float unpackedColour(uint32_t p) {
+    const float x = float(p) / float(STARNT_PACKED_STEPS);
+    const float r = x / (1.0f - x);
+    return r * r;
+}
+
+float packedBits(uint32_t key, uint32_t payload) {
+    return std::bit_cast<float>(0x40000000u | (key << STARNT_PACKED_PAYLOAD_BITS) | payload);
+}
+
+}  // namespace
+
+glm::vec4 packNearest(float z, const glm::vec4& c) {
+    const uint32_t key = packedDepthKey(z);
+    const uint32_t alpha = uint32_t(std::floor(std::clamp(c.a, 0.0f, 1.0f) * float(STARNT_PACKED_STEPS) + 0.5f));
+    return {packedBits(key, packedColour(c.r)), packedBits(key, packedColour(c.g)), packedBits(key, packedColour(c.b)),
+            packedBits(key, alpha)};
+}
+
+glm::vec4 packedEmpty() { return glm::vec4(packedBits(kPackedMaxKey, kPackedPayloadMask)); }
+
+glm::vec4 unpackNearest(const glm::vec4& packed, float& z) {
+    const uint32_t alphaBits = std::bit_cast<uint32_t>(packed.a);
+    const uint32_t key = (alphaBits >> STARNT_PACKED_PAYLOAD_BITS) & kPackedMaxKey;
+    if (key == kPackedMaxKey) {
+        z = 1.0f;
+        return glm::vec4(0.0f);
+    }
+    const uint32_t middle = 1u << (STARNT_PACKED_KEY_SHIFT - 1);
+    z = 1.0f - std::bit_cast<float>(kPackedOne - (key << STARNT_PACKED_KEY_SHIFT) - middle);
+    glm::vec4 out;
+    for (int c = 0; c < 3; ++c) out[c] = unpackedColour(std::bit_cast<uint32_t>(packed[c]) & kPackedPayloadMask);
+    out.a = float(alphaBits & kPackedPayloadMask) / float(STARNT_PACKED_STEPS);
+    return out;
+}
+
+glm::vec4 blendNearest(const glm::vec4& a, const glm::vec4& b) { return glm::min(a, b); }
 
 glm::vec3 closedFormBehind(const glm::vec4& nearest, const glm::vec4& sums, float transmittance, const glm::vec3& background) {
     const float behindT = glm::clamp(transmittance / (1.0f - nearest.a), 0.0f, 1.0f);

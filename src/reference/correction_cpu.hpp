@@ -42,6 +42,16 @@ struct CorrectionSource {
 // most STARNT_TEMPORAL_MIN_TRANSMITTANCE. `viewProj` of the real frame.
 std::vector<glm::vec4> correctionOnCpu(const CorrectionSource& real, const glm::mat4& viewProj, const glm::vec3& background);
 
+// The nearest fragment found by MIN blending (packed_nearest.h, packed_nearest.glsl: the same float
+// operations). packNearest: what a fragment at window depth `z` with colour and alpha `c` blends
+// in (four floats by their bits); packedEmpty: the clear value; unpackNearest: C1, a1 and the
+// window depth of the nearest fragment ({0, 0, 0, 0} and 1 for an empty pixel). blendNearest: the
+// GL_MIN blend of two packed values.
+glm::vec4 packNearest(float z, const glm::vec4& c);
+glm::vec4 packedEmpty();
+glm::vec4 unpackNearest(const glm::vec4& packed, float& z);
+glm::vec4 blendNearest(const glm::vec4& a, const glm::vec4& b);
+
 // One interpolated pixel (x, y): `nearest`, `depth`, `sums`, `transmittance` of the fresh passes at
 // that pixel; `correction` the kept texels of a frame rendered with `oldViewProj` (empty: the frame
 // was kept without a correction, the closed form alone).

@@ -86,6 +86,11 @@ void parseTemporalModeOption(const std::string& text, MethodOptions& options) {
     else throw Error("--temporal-mode '" + text + "': expected warp, refresh or correct");
 }
 
+void parseCorrectedPassesOption(int passes, MethodOptions& options) {
+    if (passes != 1 && passes != 2) throw Error("--corrected-passes " + std::to_string(passes) + ": expected 1 or 2");
+    options.neural.correctedOnePass = passes == 1;
+}
+
 void parseTargetsOption(const std::string& text, MethodOptions& options) {
     if (text == "compact") options.neural.targets = NeuralOptions::Targets::Compact;
     else if (text == "fp32") options.neural.targets = NeuralOptions::Targets::Float32;

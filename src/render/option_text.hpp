@@ -26,6 +26,8 @@ void parseScaleGuardOption(const std::string& text, MethodOptions& options);
 void parseUpsampleOption(const std::string& text, MethodOptions& options);
 // "warp" | "refresh" (docs/DESIGN.md, "Temporal reprojection") | "correct" (beyond it).
 void parseTemporalModeOption(const std::string& text, MethodOptions& options);
+// --corrected-passes 1|2: NeuralOptions::correctedOnePass.
+void parseCorrectedPassesOption(int passes, MethodOptions& options);
 // "compact" | "fp32" (docs/DESIGN.md, "Pipeline and formats": pass-target precision).
 void parseTargetsOption(const std::string& text, MethodOptions& options);
 // Target frame rate for --temporal auto: finite and in (0, 1000].

@@ -45,7 +45,8 @@ public:
           temporal_(options_) {
         if (spatial_ || corners_) tiles_ = std::make_unique<tiles::GpuTiles>();
         if (temporal_.interpolates() && temporal_.corrects()) {
-            passes_.prepareNearestAndSums();
+            if (options_.neural.correctedOnePass) passes_.preparePackedNearestAndSums();
+            else passes_.prepareNearestAndSums();
             if (options_.neural.fusedCorrectionCapture && !corners_) inference("infer_full_capture", true);
         }
         // Compile up front what the frames will need, so no frame pays for a shader compile: the
@@ -155,10 +156,15 @@ public:
             // temporal frames' composite (no inference, no tiles).
             switch (temporal_.interpolatedPasses()) {
                 case TemporalFrames::Passes::NearestAndSums: passes_.runNearestAndSums(frame, draw); break;
+                case TemporalFrames::Passes::PackedNearestAndSums: passes_.runPackedNearestAndSums(frame, draw); break;
                 case TemporalFrames::Passes::Nearest: passes_.runNearest(frame, draw); break;
                 case TemporalFrames::Passes::None: break;
             }
-            temporal_.interpolate(viewProjection, temporalTargets(true), opaque_, out_.texture, frame.timing);
+            TemporalPassTargets targets = temporalTargets(true);
+            if (temporal_.interpolatedPasses() == TemporalFrames::Passes::PackedNearestAndSums) {
+                targets.packedNearest = passes_.packedNearest();
+            }
+            temporal_.interpolate(viewProjection, targets, opaque_, out_.texture, frame.timing);
             return;
         }
         const bool transmittanceInAlpha = premultipliedHistory && !frame.premultipliedOutput;

@@ -1,7 +1,10 @@
 #include "methods/neural/neural_passes.hpp"
 
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 
+#include "methods/neural/temporal/packed_nearest.h"
 #include "starnt/error.hpp"
 #include "starnt/network.hpp"
 
@@ -180,6 +183,7 @@ void NeuralPasses::resize(int width, int height) {
         pass3Fb_ = gl::makeFramebuffer({&alphaColor_, &colorCount_, &transmittance_});
     }
     sumsFb_ = gl::makeFramebuffer({&alphaColor_, &transmittance_});
+    packedFb_.reset();  // runPackedNearestAndSums makes it again around the new targets
     nearestOnlyFb_ = gl::makeFramebuffer({&nearest_});
     secondOnlyFb_ = gl::makeFramebuffer({&second_});
     alphaColorOnlyFb_ = gl::makeFramebuffer({&alphaColor_});
@@ -195,13 +199,14 @@ void NeuralPasses::addMemoryTargets(OitMethod::MemoryTargets& out) const {
                            {"pass3_transmittance", transmittance_.bytes()},
                            {"layer_alphas", layerAlpha_.bytes()},
                            {"pass3_tail_moments", tailMoment1_.bytes() + tailMoment2_.bytes()},
+                           {"corrected_packed_nearest", packedNearest_.bytes()},
                            {"pass3_resolve_copies_es", esResolveCopies_.bytes()}});
 }
 
 size_t NeuralPasses::gpuMemoryBytes() const {
     return nearest_.bytes() + nearestDepth_.bytes() + second_.bytes() + secondDepth_.bytes() +
            alphaColor_.bytes() + colorCount_.bytes() + transmittance_.bytes() + layerAlpha_.bytes() +
-           tailMoment1_.bytes() + tailMoment2_.bytes() + esResolveCopies_.bytes();
+           tailMoment1_.bytes() + tailMoment2_.bytes() + packedNearest_.bytes() + esResolveCopies_.bytes();
 }
 
 void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) {
@@ -305,6 +310,57 @@ void NeuralPasses::runNearestAndSums(const FrameDesc& frame, const DrawCallback&
     beginSumAndProduct(sumsFb_.id(), width_, height_, opaque_, GL_ONE_MINUS_SRC_ALPHA);  // sum a C, sum a; prod (1 - a)
     MethodBase::runGeometryPass("pass3", pass3Sums_, frame, draw);
     opaque_.endDepthTest(sumsFb_.id());
+    resetPassState();
+}
+
+void NeuralPasses::preparePackedNearestAndSums() {
+    if (!pass3Packed_.id()) {
+        pass3Packed_ = buildSurfaceProgram(surface_, "neural_pass3_packed", "methods/neural/pass3_accumulate.frag.glsl",
+                                           "#define STARNT_SUMS_ONLY\n#define STARNT_PACKED_NEAREST\n");
+    }
+}
+
+void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCallback& draw) {
+    resize(frame.width, frame.height);
+    preparePackedNearestAndSums();
+    if (!tailMoments_ && (packedNearest_.width() != width_ || packedNearest_.height() != height_)) {
+        packedNearest_ = gl::Texture2D(GL_RGBA32F, width_, height_);
+        packedFb_.reset();
+    }
+    if (!packedFb_.id()) {
+        const gl::Texture2D& packed = tailMoments_ ? tailMoment1_ : packedNearest_;
+        // Pass 1's depth target, free in an interpolated frame, records which pixels any fragment
+        // covered (depth test ALWAYS: the last fragment's depth, < 1 where anything is) for the
+        // composite's early empty-pixel test; so the opaque clip runs in the shader, as in pass 1.
+        packedFb_ = gl::makeFramebuffer({&alphaColor_, &transmittance_, &packed}, &nearestDepth_);
+    }
+    pass3Size_ = {width_, height_};
+    resetPassState();
+    gl::ScopedPass timing(frame.timing, "pass3");
+    glBindFramebuffer(GL_FRAMEBUFFER, packedFb_.id());
+    glViewport(0, 0, width_, height_);
+    const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1}, farDepth = 1.0f;
+    glClearBufferfv(GL_COLOR, 0, zero);
+    glClearBufferfv(GL_COLOR, 1, one);
+    glClearBufferfv(GL_DEPTH, 0, &farDepth);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_ALWAYS);
+    glEnable(GL_BLEND);
+    glBlendFunci(0, GL_ONE, GL_ONE);                   // sum a C, sum a
+    glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);  // prod (1 - a)
+    float empty[4];
+    {
+        // packedEmpty(): every channel 0x5FFFFFFF (packed_nearest.h).
+        const uint32_t bits = 0x40000000u | (((1u << STARNT_PACKED_KEY_BITS) - 1u) << STARNT_PACKED_PAYLOAD_BITS) |
+                              ((1u << STARNT_PACKED_PAYLOAD_BITS) - 1u);
+        std::memcpy(&empty[0], &bits, 4);
+        for (int i = 1; i < 4; ++i) empty[i] = empty[0];
+    }
+    glClearBufferfv(GL_COLOR, 2, empty);
+    glBlendEquationi(2, GL_MIN);  // blend factors do not apply to MIN
+    glUseProgram(pass3Packed_.id());
+    opaque_.clipInShader(pass3Packed_, width_, height_, width_, height_);
+    MethodBase::runGeometryPass("pass3", pass3Packed_, frame, draw);
     resetPassState();
 }
 

@@ -116,6 +116,14 @@ public:
     void runNearestAndSums(const FrameDesc& frame, const DrawCallback& draw);
     // Compiles runNearestAndSums' pass 3 now rather than in the first frame that needs it.
     void prepareNearestAndSums();
+    // Pass 3 alone at full resolution, finding the nearest fragment by blending as well: the sums
+    // as runNearestAndSums leaves them and packedNearest() (packed_nearest.glsl), for corrected
+    // interpolated frames in one geometry pass. The packed target is the first tail-moment target
+    // where the method has one (a real frame's inference has read it by then), else one of its own;
+    // nearestDepth() then holds a depth below 1 exactly where a fragment was kept (not the nearest).
+    void runPackedNearestAndSums(const FrameDesc& frame, const DrawCallback& draw);
+    void preparePackedNearestAndSums();
+    GLuint packedNearest() const { return tailMoments_ ? tailMoment1_.id() : packedNearest_.id(); }
     // Binds the pass outputs to the NeuralInputUnit units and sets the upsample uniforms of
     // `program` (which includes neural_inputs.glsl).
     void bindInputs(const gl::Program& program) const;
@@ -173,6 +181,10 @@ private:
     SurfaceShader surface_;  // for pass3Sums_, built on first need
     gl::Program pass3Sums_;
     gl::FramebufferHandle sumsFb_;
+    // runPackedNearestAndSums' pass 3 and its targets: the sums and the packed nearest fragment.
+    gl::Program pass3Packed_;
+    gl::Texture2D packedNearest_;  // methods without tail moments only, allocated on first need
+    gl::FramebufferHandle packedFb_;
     gl::FramebufferHandle nearestOnlyFb_, secondOnlyFb_, alphaColorOnlyFb_;  // output slots
 };
 

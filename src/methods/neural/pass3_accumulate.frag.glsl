@@ -11,9 +11,15 @@
 //   target 4 (RGBA32F, blend ONE/ONE):                 sum a_i C_i u_i^2, sum a_i u_i^2
 //   with STARNT_SUMS_ONLY (corrected interpolated frames: the closed form behind the nearest layer
 //   reads nothing else): target 0 as above, target 1 the transmittance; no count, no moments.
+//   and with STARNT_PACKED_NEAREST (corrected frames in one geometry pass, no pass 1):
+//   target 2 (RGBA32F, blend equation GL_MIN):        the nearest fragment (packed_nearest.glsl)
 layout(location = 0) out vec4 outAlphaColor;
 #ifdef STARNT_SUMS_ONLY
 layout(location = 1) out vec4 outTransmittance;
+#ifdef STARNT_PACKED_NEAREST
+#include "methods/neural/temporal/packed_nearest.glsl"
+layout(location = 2) out vec4 outPackedNearest;
+#endif
 #else
 layout(location = 1) out vec4 outColorCount;
 layout(location = 2) out vec4 outTransmittance;
@@ -35,6 +41,9 @@ void main() {
     outColorCount = vec4(s.rgb, 1.0);
 #endif
     outTransmittance = vec4(0.0, 0.0, 0.0, s.a);
+#ifdef STARNT_PACKED_NEAREST
+    outPackedNearest = packNearest(gl_FragCoord.z, s);
+#endif
 #ifdef STARNT_TAIL_MOMENTS
     float second = texelFetch(u_secondDepth, ivec2(gl_FragCoord.xy), 0).r;
     // tail_moments_constants.h: a logarithmic depth behind z2 (1 - second > 0 wherever z > second).

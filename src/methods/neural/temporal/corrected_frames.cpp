@@ -11,6 +11,8 @@ namespace starnt::temporal {
 CorrectedFrames::CorrectedFrames()
     : capture_(buildTemporalPass("correction_capture", "reprojection_behind.frag.glsl", "#define STARNT_BEHIND_CORRECTION 1\n")),
       composite_(buildTemporalPass("correction_composite", "correction_composite.frag.glsl")),
+      compositePacked_(buildTemporalPass("correction_composite_packed", "correction_composite.frag.glsl",
+                                         "#define STARNT_PACKED_NEAREST\n")),
       emptyVao_(gl::makeEmptyVertexArray()) {}
 
 void CorrectedFrames::capture(GLuint composite, GLuint depth, GLuint nearest, GLuint sumAlphaColor, GLuint transmittance,
@@ -80,19 +82,42 @@ void CorrectedFrames::composite(const glm::mat4& newViewProj, GLuint nearest, GL
     }
     glCopyImageSubData(depth, GL_TEXTURE_2D, 0, 0, 0, 0, coverDepth_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width_, height_, 1);
     emptyPixels_.bindCovered(output, coverDepth_.id(), width_, height_);
-    glUseProgram(composite_.id());
-    const CorrectionMatrices m = makeCorrectionMatrices(viewProj_, newViewProj);
-    glUniform2i(composite_.uniform("u_size"), width_, height_);
-    glUniformMatrix4fv(composite_.uniform("u_newToOld"), 1, GL_FALSE, glm::value_ptr(m.newToOld));
-    glUniform4fv(composite_.uniform("u_sourceScale"), 1, glm::value_ptr(m.sourceScale));
-    background.bindBackground(composite_);
-    glUniform1i(composite_.uniform("u_halfOutput"), halfOutput);
-    glUniform1i(composite_.uniform("u_useCorrection"), hasCorrection_);
+    setCompositeUniforms(composite_, newViewProj, background, halfOutput);
     const GLuint inputs[] = {nearest, depth, sumAlphaColor, transmittance, correction_.id()};
     for (GLuint unit = 0; unit < 5; ++unit) gl::bindTexture(unit, inputs[unit]);
     gl::drawFullscreenTriangle(emptyVao_);
     emptyPixels_.fillEmpty(background, halfOutput, emptyVao_);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void CorrectedFrames::compositePacked(const glm::mat4& newViewProj, GLuint packedNearest, GLuint coverDepth,
+                                      GLuint sumAlphaColor, GLuint transmittance, const OpaqueScene& background,
+                                      GLuint output) {
+    if (!hasFrame_) throw Error("internal: a corrected frame before any real frame was captured");
+    if (gl::textureInternalFormat(packedNearest) != GL_RGBA32F) {
+        throw Error("internal: the packed nearest fragment must be an RGBA32F texture");
+    }
+    const bool halfOutput = gl::textureInternalFormat(output) == GL_RGBA16F;  // before any binding (ES)
+    emptyPixels_.bindCovered(output, coverDepth, width_, height_);
+    setCompositeUniforms(compositePacked_, newViewProj, background, halfOutput);
+    // correction_composite.frag.glsl's units with STARNT_PACKED_NEAREST: 0 packed, 2 and 3 the sums, 4 the correction.
+    const GLuint inputs[] = {packedNearest, 0, sumAlphaColor, transmittance, correction_.id()};
+    for (GLuint unit = 0; unit < 5; ++unit) gl::bindTexture(unit, inputs[unit]);
+    gl::drawFullscreenTriangle(emptyVao_);
+    emptyPixels_.fillEmpty(background, halfOutput, emptyVao_);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void CorrectedFrames::setCompositeUniforms(const gl::Program& program, const glm::mat4& newViewProj,
+                                           const OpaqueScene& background, bool halfOutput) const {
+    glUseProgram(program.id());
+    const CorrectionMatrices m = makeCorrectionMatrices(viewProj_, newViewProj);
+    glUniform2i(program.uniform("u_size"), width_, height_);
+    glUniformMatrix4fv(program.uniform("u_newToOld"), 1, GL_FALSE, glm::value_ptr(m.newToOld));
+    glUniform4fv(program.uniform("u_sourceScale"), 1, glm::value_ptr(m.sourceScale));
+    background.bindBackground(program);
+    glUniform1i(program.uniform("u_halfOutput"), halfOutput);
+    glUniform1i(program.uniform("u_useCorrection"), hasCorrection_);
 }
 
 }  // namespace starnt::temporal

@@ -48,6 +48,11 @@ public:
     // would be a rendering feedback loop, GL 4.5 section 9.3.1).
     void composite(const glm::mat4& newViewProj, GLuint nearest, GLuint depth, GLuint sumAlphaColor, GLuint transmittance,
                    const OpaqueScene& background, GLuint output);
+    // The same from pass 3 alone: `packedNearest` holds the nearest fragment it found by blending
+    // (packed_nearest.glsl), `coverDepth` (DEPTH_COMPONENT32F) a depth below 1 where pass 3 kept a
+    // fragment, which the early empty-pixel test runs against (the composite does not sample it).
+    void compositePacked(const glm::mat4& newViewProj, GLuint packedNearest, GLuint coverDepth, GLuint sumAlphaColor,
+                         GLuint transmittance, const OpaqueScene& background, GLuint output);
 
     void reset() { hasFrame_ = false; }
     size_t gpuMemoryBytes() const { return correction_.bytes() + coverDepth_.bytes(); }
@@ -57,7 +62,9 @@ public:
     }
 
 private:
-    gl::Program capture_, composite_;
+    gl::Program capture_, composite_, compositePacked_;
+    void setCompositeUniforms(const gl::Program& program, const glm::mat4& newViewProj, const OpaqueScene& background,
+                              bool halfOutput) const;
     gl::VertexArrayHandle emptyVao_;
     gl::FramebufferHandle framebuffer_;
     gl::Texture2D correction_;

@@ -4,13 +4,19 @@
 // sums plus the network's correction of the last real frame, resampled where the fresh nearest
 // point lay in that frame: bilinearly over the texels whose kept nearest surface is the same one
 // (inverse view depth within STARNT_TEMPORAL_SAME_SURFACE). Where none is (the surface was hidden
-// or off screen), the closed form alone.
+// or off screen), the closed form alone. With STARNT_PACKED_NEAREST (one geometry pass, no pass 1):
+// the nearest fragment and its depth come from pass 3's MIN-blended target (packed_nearest.glsl).
 #include "methods/neural/temporal/reprojection_constants.h"
 #include "methods/neural/temporal/closed_form_behind.glsl"
 #include "methods/neural/half_targets.glsl"
 
+#ifdef STARNT_PACKED_NEAREST
+#include "methods/neural/temporal/packed_nearest.glsl"
+layout(binding = 0) uniform highp sampler2D u_packedNearest;  // fresh pass 3: the nearest fragment, packed
+#else
 layout(binding = 0) uniform highp sampler2D u_nearest;        // fresh pass 1: C1, a1
 layout(binding = 1) uniform highp sampler2D u_depth;          // fresh pass-1 window depth
+#endif
 layout(binding = 2) uniform highp sampler2D u_sumAlphaColor;  // fresh pass 3: sum a C, sum a
 layout(binding = 3) uniform highp sampler2D u_transmittance;  // fresh pass 3: prod (1 - a)
 layout(binding = 4) uniform highp sampler2D u_correction;     // reprojection_behind.frag.glsl, STARNT_BEHIND_CORRECTION
@@ -25,7 +31,13 @@ out vec4 o_color;
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
+#ifdef STARNT_PACKED_NEAREST
+    float depth;
+    vec4 fresh = unpackNearest(texelFetch(u_packedNearest, p, 0), depth);
+#else
     vec4 fresh = texelFetch(u_nearest, p, 0);
+    float depth = texelFetch(u_depth, p, 0).r;
+#endif
     vec3 color = background();
     float transmittance = 1.0;
     if (fresh.a > 0.0) {
@@ -36,7 +48,7 @@ void main() {
             behind = closedFormBehind(fresh, texelFetch(u_sumAlphaColor, p, 0), texelFetch(u_transmittance, p, 0).r,
                                       background());
             vec2 c = (vec2(p) + 0.5) / vec2(u_size) * 2.0 - 1.0;
-            vec4 old = u_newToOld * vec4(c, texelFetch(u_depth, p, 0).r * 2.0 - 1.0, 1.0);
+            vec4 old = u_newToOld * vec4(c, depth * 2.0 - 1.0, 1.0);
             if (u_useCorrection && old.w > 0.0) {
                 vec3 ndc = old.xyz / old.w;
                 float reference = dot(u_sourceScale, vec4(ndc, 1.0));

@@ -8,7 +8,8 @@ TemporalFrames::TemporalFrames(const MethodOptions& options)
     : schedule_(options),
       clock_(gl::wallClockTimingNeeded()),
       mode_(options.neural.temporalMode),
-      skipEmptyPixels_(options.neural.skipEmptyPixels) {
+      skipEmptyPixels_(options.neural.skipEmptyPixels),
+      onePass_(options.neural.correctedOnePass) {
     if (!interpolates()) return;
     if (corrects()) corrected_ = std::make_unique<temporal::CorrectedFrames>();
     else reprojector_ = std::make_unique<temporal::Reprojector>();
@@ -53,7 +54,8 @@ void TemporalFrames::endRealFrame(GLuint compositeTexture, const TemporalPassTar
 }
 
 TemporalFrames::Passes TemporalFrames::interpolatedPasses() const {
-    return corrects() ? Passes::NearestAndSums : refreshes() ? Passes::Nearest : Passes::None;
+    if (corrects()) return onePass_ ? Passes::PackedNearestAndSums : Passes::NearestAndSums;
+    return refreshes() ? Passes::Nearest : Passes::None;
 }
 
 void TemporalFrames::interpolate(const glm::mat4& viewProj, const TemporalPassTargets& passes, const OpaqueScene& background,
@@ -63,8 +65,13 @@ void TemporalFrames::interpolate(const glm::mat4& viewProj, const TemporalPassTa
         gl::ScopedPass timing(timer, "reproject");
         if (corrects()) {
             // Corrected: the closed form behind the fresh nearest layer plus the kept correction.
-            corrected_->composite(viewProj, passes.nearest, passes.nearestDepth, passes.sumAlphaColor, passes.transmittance,
-                                  background, outputTexture);
+            if (passes.packedNearest) {
+                corrected_->compositePacked(viewProj, passes.packedNearest, passes.nearestDepth, passes.sumAlphaColor,
+                                            passes.transmittance, background, outputTexture);
+            } else {
+                corrected_->composite(viewProj, passes.nearest, passes.nearestDepth, passes.sumAlphaColor, passes.transmittance,
+                                      background, outputTexture);
+            }
         } else if (refreshes()) {
             // Refresh: the fresh nearest layer over what lay behind it, reprojected.
             reprojector_->reprojectRefresh(viewProj, passes.nearest, skipEmptyPixels_ ? passes.nearestDepth : 0, background,

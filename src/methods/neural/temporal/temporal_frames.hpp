@@ -31,6 +31,9 @@ struct TemporalPassTargets {
     GLuint nearestDepth = 0;   // pass 1: DEPTH_COMPONENT32F, 1 = far plane where nothing was drawn
     GLuint sumAlphaColor = 0;  // pass 3 at full resolution: sum a C, sum a (0 when it ran reduced)
     GLuint transmittance = 0;  // pass 3 at full resolution: prod (1 - a)
+    // Corrected frames in one pass: pass 3's nearest fragment (packed_nearest.glsl); nearestDepth
+    // then holds pass 3's cover depth (below 1 where a fragment was kept).
+    GLuint packedNearest = 0;
 };
 
 class TemporalFrames {
@@ -50,8 +53,9 @@ public:
     void endRealFrame(GLuint compositeTexture, const TemporalPassTargets& passes, const glm::mat4& viewProj, int width,
                       int height, const OpaqueScene& background = OpaqueScene(), bool premultipliedHistory = false);
     // The passes an interpolated frame renders at its own camera before interpolate(): none (warp),
-    // pass 1 (refresh), passes 1 and 3 (correct; pass 3 with its sums only).
-    enum class Passes { None, Nearest, NearestAndSums };
+    // pass 1 (refresh), passes 1 and 3 (correct with NeuralOptions::correctedOnePass off; pass 3
+    // with its sums only), pass 3 alone finding the nearest fragment too (correct, the default).
+    enum class Passes { None, Nearest, NearestAndSums, PackedNearestAndSums };
     Passes interpolatedPasses() const;
     // An interpolated frame at `viewProj` from the kept real frame and the passes
     // interpolatedPasses() named (`passes`, rendered at `viewProj` by the caller), into
@@ -102,6 +106,7 @@ private:
     bool lastInterpolated_ = false;
     NeuralOptions::TemporalMode mode_;
     bool skipEmptyPixels_ = true;  // NeuralOptions::skipEmptyPixels
+    bool onePass_ = true;          // NeuralOptions::correctedOnePass
 };
 
 }  // namespace starnt

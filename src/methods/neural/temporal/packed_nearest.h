@@ -1,0 +1,28 @@
+// The nearest fragment found by blending (corrected interpolated frames in one geometry pass;
+// docs/DESIGN.md, "Corrected frames in one geometry pass"): shared by packed_nearest.glsl and its
+// CPU reference temporal::packNearest (included from C++ and GLSL; keep it to #defines).
+//
+// Every fragment writes, into each channel of an RGBA32F target blended with GL_MIN, the bits
+//   0x40000000 | key << STARNT_PACKED_PAYLOAD_BITS | payload
+// with `key` its depth (nearer = smaller) and `payload` one of its r, g, b, a. Positive floats order
+// as their bits do, so MIN keeps, channel by channel, the payload of the nearest key. Bit 30 set and
+// bit 29 clear keep every value a normal float (exponent 0x80..0xBF: no denormal a blender could
+// flush, no infinity or NaN).
+#ifndef STARNT_PACKED_NEAREST_H
+#define STARNT_PACKED_NEAREST_H
+
+#define STARNT_PACKED_KEY_BITS 18
+#define STARNT_PACKED_PAYLOAD_BITS 11
+// key = (bits(1.0) - bits(w)) >> STARNT_PACKED_KEY_SHIFT with w = 1 - z (window depth z) and bits()
+// a float's bits: the float's own logarithmic spacing, no transcendental function. A perspective
+// projection makes w inversely proportional to the view distance, so the key's step is a fixed
+// fraction of the distance (2^-13, about 1.2e-4) from w = 1 down to w = 2^-24 (keys 0..24 * 2^13);
+// nearer than that to the far plane, the last key but one. The largest key is the empty pixel's
+// (the clear value), never a fragment's.
+#define STARNT_PACKED_KEY_SHIFT 10
+// Colour payload: x = sqrt(c) / (1 + sqrt(c)) in STARNT_PACKED_STEPS steps, decoded as
+// c = (x / (1 - x))^2: c = 1 at x = 1/2 (steps of at most 4e-3 below 1, finer in the darks), and up
+// to STARNT_MAX_SURFACE_COLOR (1024) above, in steps of a few %. Alpha: linear steps.
+#define STARNT_PACKED_STEPS 2047.0
+
+#endif
