@@ -22,8 +22,8 @@ void main() {
     outColor = color;
 #ifdef STARNT_CAPTURE_CORRECTION
     ivec2 t = ivec2(gl_FragCoord.xy);
-    outCorrection = keptCorrection(t, u_fullSize, u_sourceScale, color.rgb, texelFetch(u_nearest, t, 0),
-                                   texelFetch(u_alphaColor, t, 0), texelFetch(u_transmittance, t, 0).r,
-                                   texelFetch(u_captureDepth, t, 0).r, background());
+    // The layer and sums this pixel read already (full-resolution inputs: the texels themselves).
+    outCorrection = keptCorrection(t, u_fullSize, u_sourceScale, color.rgb, vec4(s.c1, s.a1), vec4(s.sumAlphaColor, s.sumAlpha),
+                                   s.transmittance, texelFetch(u_captureDepth, t, 0).r, background());
 #endif
 }
