@@ -35,10 +35,6 @@ void EmptyPixelSkip::bindCovered(GLuint colorTexture, GLuint pass1Depth, int wid
 }
 
 void EmptyPixelSkip::fillEmpty(const OpaqueScene& background, bool halfOutput, const gl::VertexArrayHandle& emptyVao) const {
-    if (second_) {
-        const GLenum first[2] = {GL_COLOR_ATTACHMENT0, GL_NONE};  // the background shader writes location 0 only
-        glDrawBuffers(2, first);
-    }
     glDepthFunc(GL_LEQUAL);
     glUseProgram(background_.id());
     background.bindBackground(background_);

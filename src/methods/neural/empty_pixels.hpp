@@ -32,7 +32,7 @@ public:
     // depth state under which the next draws shade only the covered pixels (no depth writes).
     // Throws starnt::Error if the framebuffer is incomplete.
     // `secondColor` (optional): a second target at draw buffer 1 that the composite writes too
-    // (the fused capture of corrected frames); fillEmpty leaves it untouched.
+    // (the fused capture of corrected frames); fillEmpty writes (0, 0, 0, -1) there, "hidden".
     void bindCovered(GLuint colorTexture, GLuint pass1Depth, int width, int height, GLuint secondColor = 0);
     // After the covered pixels were drawn: writes the background into the empty ones and restores
     // the default depth state (test off, function LESS, writes on) and the frame's depth range

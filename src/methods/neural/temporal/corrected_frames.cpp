@@ -54,10 +54,6 @@ CorrectedFrames::FusedTargets CorrectedFrames::beginFusedCapture(GLenum composit
         coverDepth_ = gl::Texture2D(GL_DEPTH_COMPONENT32F, width, height);
     }
     glCopyImageSubData(depth, GL_TEXTURE_2D, 0, 0, 0, 0, coverDepth_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width, height, 1);
-    const float hidden[4] = {0.0f, 0.0f, 0.0f, -1.0f};
-    drawIntoTexture(framebuffer_, correction_.id(), width, height);
-    glClearBufferfv(GL_COLOR, 0, hidden);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
     width_ = width;
     height_ = height;
     viewProj_ = viewProj;

@@ -26,9 +26,10 @@ public:
     // The same capture written by the real frame's own composite (infer_full.frag.glsl with
     // STARNT_CAPTURE_CORRECTION) instead of a pass of its own: beginFusedCapture copies pass 1's
     // `depth` for the composite's early empty-pixel test (the composite samples the original, see
-    // composite() below), clears the kept correction to "hidden" (alpha -1: where the composite
-    // does not shade, nothing is kept) and returns {correction texture, depth copy} to attach; the
-    // composite's second output writes what capture() would write at every shaded pixel.
+    // composite() below) and returns {correction texture, depth copy} to attach; the composite's
+    // second output writes what capture() would write at every shaded pixel, and the empty-pixel
+    // fill writes "hidden" (alpha -1) everywhere else (EmptyPixelSkip::fillEmpty), so every texel
+    // is written without a clear.
     // endFusedCapture keeps the frame. Same formats and rules as capture().
     struct FusedTargets {
         GLuint correction = 0, coverDepth = 0;
