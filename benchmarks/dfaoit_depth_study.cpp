@@ -1,7 +1,7 @@
 // Offline study: where DFAOIT's error lies against WBOIT's, by the pixel's fragment count N. Not a
 // test and not part of the library (docs/DESIGN.md, "DFAOIT's recipe").
 //
-//   starnt_dfaoit_depth_study [--width W] [--scenes a,b,...]
+//   starnt_dfaoit_depth_study [--width W] [--scenes a,b,...] [--dfaoit-weights FILE]
 //
 // For each suite scene (bench::suiteScenes(), default camera orbit 0/15) it captures every fragment
 // and composites each pixel on the CPU: exactly, with WBOIT (nn::compositeWboit), with the shipped
@@ -52,18 +52,8 @@ int main(int argc, char** argv) {
     int width = 640;
     std::string dfaoitWeights;
     std::vector<std::string> names = {"magic_stars", "chess", "tree", "hair", "hairball", "engine"};
-    for (int i = 1; i + 1 < argc; i += 2) {
-        const std::string key = argv[i], value = argv[i + 1];
-        if (key == "--width") width = std::atoi(value.c_str());
-        else if (key == "--scenes") names = study::splitList(value);
-        else if (key == "--dfaoit-weights") dfaoitWeights = value;
-        else {
-            std::fprintf(stderr, "dfaoit_depth_study: unknown option %s\n", key.c_str());
-            return 2;
-        }
-    }
-    if (width < 16 || width > 4096) {
-        std::fprintf(stderr, "dfaoit_depth_study: --width must be within 16..4096\n");
+    if (!study::parseStudyArgs(argc, argv, "dfaoit_depth_study", width, names,
+                               {{"--dfaoit-weights", [&](const std::string& v) { dfaoitWeights = v; }}})) {
         return 2;
     }
     const int height = width * 9 / 16;

@@ -38,19 +38,7 @@ void setPixel(Image& image, int x, int y, const glm::vec3& c) {
 int main(int argc, char** argv) {
     int width = 1280;
     std::vector<std::string> names = {"smoke", "hair", "hairball", "tree"};
-    for (int i = 1; i + 1 < argc; i += 2) {
-        const std::string key = argv[i], value = argv[i + 1];
-        if (key == "--width") width = std::atoi(value.c_str());
-        else if (key == "--scenes") names = study::splitList(value);
-        else {
-            std::fprintf(stderr, "rounding_study: unknown option %s\n", key.c_str());
-            return 2;
-        }
-    }
-    if (width < 16 || width > 4096) {
-        std::fprintf(stderr, "rounding_study: --width must be within 16..4096\n");
-        return 2;
-    }
+    if (!study::parseStudyArgs(argc, argv, "rounding_study", width, names)) return 2;
     const int height = width * 9 / 16;
     try {
         HeadlessGlContext context(GlApi::Desktop);

@@ -83,22 +83,11 @@ int main(int argc, char** argv) {
     std::vector<std::string> names = {"engine", "tree", "powerplant", "gearbox", "hair", "hairball", "smoke",
                                       "chess", "magic_stars"};
     std::vector<double> budgets = {2.5e-5, 1e-4, 4e-4};
-    for (int i = 1; i + 1 < argc; i += 2) {
-        const std::string key = argv[i], value = argv[i + 1];
-        if (key == "--width") width = std::atoi(value.c_str());
-        else if (key == "--scenes") names = study::splitList(value);
-        else if (key == "--budgets") {
-            budgets.clear();
-            for (const auto& b : study::splitList(value)) budgets.push_back(std::atof(b.c_str()));
-        } else {
-            std::fprintf(stderr, "per_tile_study: unknown option %s\n", key.c_str());
-            return 2;
-        }
-    }
-    if (width < 16 || width > 4096) {
-        std::fprintf(stderr, "per_tile_study: --width must be within 16..4096\n");
-        return 2;
-    }
+    const auto readBudgets = [&](const std::string& value) {
+        budgets.clear();
+        for (const auto& b : study::splitList(value)) budgets.push_back(std::atof(b.c_str()));
+    };
+    if (!study::parseStudyArgs(argc, argv, "per_tile_study", width, names, {{"--budgets", readBudgets}})) return 2;
     const int height = width * 9 / 16;
     try {
         HeadlessGlContext context(GlApi::Desktop);

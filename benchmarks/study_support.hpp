@@ -2,6 +2,10 @@
 // list options and one suite scene captured at the default camera (every fragment, A-buffer).
 #pragma once
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <map>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -23,6 +27,28 @@ inline std::vector<std::string> splitList(const std::string& text) {
         if (!item.empty()) out.push_back(item);
     }
     return out;
+}
+
+// The studies' command line: --width W (16..4096; the height is W * 9 / 16), --scenes a,b,... and
+// the study's own options (`extra`: option -> what to do with its value). On an unknown option or a
+// bad width it prints why, prefixed with `study`, and returns false.
+inline bool parseStudyArgs(int argc, char** argv, const char* study, int& width, std::vector<std::string>& names,
+                           const std::map<std::string, std::function<void(const std::string&)>>& extra = {}) {
+    for (int i = 1; i + 1 < argc; i += 2) {
+        const std::string key = argv[i], value = argv[i + 1];
+        if (key == "--width") width = std::atoi(value.c_str());
+        else if (key == "--scenes") names = splitList(value);
+        else if (const auto option = extra.find(key); option != extra.end()) option->second(value);
+        else {
+            std::fprintf(stderr, "%s: unknown option %s\n", study, key.c_str());
+            return false;
+        }
+    }
+    if (width < 16 || width > 4096) {
+        std::fprintf(stderr, "%s: --width must be within 16..4096\n", study);
+        return false;
+    }
+    return true;
 }
 
 struct CapturedScene {

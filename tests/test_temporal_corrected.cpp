@@ -82,6 +82,76 @@ MethodOptions correctedOptions() {
 
 }  // namespace
 
+// The GPU capture and composite against the CPU reference on random passes and a turning camera:
+// the interpolated frame from passes 1 and 3 (`packed` false) or from pass 3's packed nearest
+// fragment, which the CPU reference takes decoded.
+static void expectCorrectedFrameMatchesCpu(bool packed, int w, int h, unsigned seed) {
+    test::glContext();
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const RandomPasses real = randomPasses(w, h, rng), fresh = randomPasses(w, h, rng);
+    std::vector<glm::vec4> composite;  // a "network" output: anything over the nearest layer
+    for (const glm::vec4& n : real.nearest) {
+        composite.push_back(glm::vec4(n.a > 0.0f ? glm::vec3(u(rng), u(rng), u(rng)) : kBackground, 1.0f));
+    }
+    // What the fresh passes hold: pass 1's layer and depth, or the packed layer and the cover depth.
+    std::vector<glm::vec4> freshNearest = fresh.nearest;
+    std::vector<float> freshDepth = fresh.depth;
+    std::vector<glm::vec4> packedLayer;
+    if (packed) {
+        for (size_t i = 0; i < fresh.nearest.size(); ++i) {
+            const bool empty = fresh.nearest[i].a == 0.0f;
+            packedLayer.push_back(empty ? packedEmpty() : packNearest(fresh.depth[i], fresh.nearest[i]));
+            freshNearest[i] = unpackNearest(packedLayer[i], freshDepth[i]);
+        }
+    }
+    gl::Texture2D rc = uploadRgba(composite, w, h), rd = uploadDepth(real.depth, w, h), rn = uploadRgba(real.nearest, w, h),
+                  rs = uploadRgba(real.sums, w, h), rt = uploadRed(real.transmittance, w, h);
+    gl::Texture2D fn = uploadRgba(fresh.nearest, w, h), fd = uploadDepth(fresh.depth, w, h), fs = uploadRgba(fresh.sums, w, h),
+                  ft = uploadRed(fresh.transmittance, w, h), output(GL_RGBA32F, w, h);
+    gl::Texture2D fp = packed ? uploadRgba(packedLayer, w, h) : gl::Texture2D();
+    TemporalFrames temporal(correctedOptions());
+    const glm::mat4 oldVP = test::turnedViewProj(w, h, 0.0f), newVP = test::turnedViewProj(w, h, 1.0f);
+    ASSERT_TRUE(temporal.beginFrame(w, h));
+    temporal.endRealFrame(rc.id(), {rn.id(), rd.id(), rs.id(), rt.id()}, oldVP, w, h, OpaqueScene(kBackground));
+    ASSERT_FALSE(temporal.beginFrame(w, h));
+    TemporalPassTargets passes{fn.id(), fd.id(), fs.id(), ft.id()};
+    if (packed) passes = {.nearestDepth = fd.id(), .sumAlphaColor = fs.id(), .transmittance = ft.id(), .packedNearest = fp.id()};
+    temporal.interpolate(newVP, passes, OpaqueScene(kBackground), output.id());
+    const std::vector<glm::vec4> gpu = readRgba(output.id(), w, h);
+
+    CorrectionSource source{w, h, composite, real.depth, real.nearest, real.sums, real.transmittance};
+    const std::vector<glm::vec4> correction = correctionOnCpu(source, oldVP, kBackground);
+    size_t off = 0, corrected = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * size_t(w) + size_t(x);
+            const glm::vec3 want = correctedPixel(x, y, w, h, freshNearest[i], freshDepth[i], fresh.sums[i], fresh.transmittance[i],
+                                                  correction, oldVP, newVP, kBackground);
+            const glm::vec3 closedOnly = correctedPixel(x, y, w, h, freshNearest[i], freshDepth[i], fresh.sums[i],
+                                                        fresh.transmittance[i], {}, oldVP, newVP, kBackground);
+            corrected += glm::length(want - closedOnly) > 1e-3f;
+            bool near = true;
+            for (int ch = 0; ch < 3; ++ch) near = near && std::abs(gpu[i][ch] - want[ch]) <= 1e-4f;
+            off += !near;  // a tap on the edge of the same-surface test may go the other way in the shader
+            if (fresh.nearest[i].a == 0.0f) ASSERT_EQ(glm::vec3(gpu[i]), kBackground) << x << "," << y;
+        }
+    EXPECT_LE(off, size_t(w * h / 100)) << "pixels off the CPU reference";
+    EXPECT_GT(corrected, size_t(w * h / 2)) << "most pixels must take the kept correction";
+}
+
+TEST(TemporalCorrected, GpuMatchesCpuReference) {
+    expectCorrectedFrameMatchesCpu(false, 47, 33, 11);
+    // A real frame without the nearest layer cannot be kept for corrected frames.
+    TemporalFrames temporal(correctedOptions());
+    gl::Texture2D composite(GL_RGBA32F, 8, 8), depth(GL_DEPTH_COMPONENT32F, 8, 8);
+    ASSERT_TRUE(temporal.beginFrame(8, 8));
+    EXPECT_THROW(temporal.endRealFrame(composite.id(), {.nearestDepth = depth.id()}, glm::mat4(1.0f), 8, 8,
+                                       OpaqueScene(kBackground)),
+                 Error)
+        << "corrected frames need the nearest layer";
+}
+
 // The closed form behind the nearest layer: nothing behind -> the background; two layers -> the
 // second over the background; opaque nearest layers are the caller's to avoid.
 TEST(TemporalCorrected, ClosedFormBehindTheNearestLayer) {
@@ -95,49 +165,6 @@ TEST(TemporalCorrected, ClosedFormBehindTheNearestLayer) {
     for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(got[ch], want[ch], 1e-6f);
 }
 
-// The GPU capture and composite against the CPU reference on random passes and a turning camera.
-TEST(TemporalCorrected, GpuMatchesCpuReference) {
-    test::glContext();
-    const int w = 47, h = 33;
-    std::mt19937 rng(11);
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    const RandomPasses real = randomPasses(w, h, rng), fresh = randomPasses(w, h, rng);
-    std::vector<glm::vec4> composite;  // a "network" output: anything over the nearest layer
-    for (const glm::vec4& n : real.nearest) {
-        composite.push_back(glm::vec4(n.a > 0.0f ? glm::vec3(u(rng), u(rng), u(rng)) : kBackground, 1.0f));
-    }
-    gl::Texture2D rc = uploadRgba(composite, w, h), rd = uploadDepth(real.depth, w, h), rn = uploadRgba(real.nearest, w, h),
-                  rs = uploadRgba(real.sums, w, h), rt = uploadRed(real.transmittance, w, h);
-    gl::Texture2D fn = uploadRgba(fresh.nearest, w, h), fd = uploadDepth(fresh.depth, w, h), fs = uploadRgba(fresh.sums, w, h),
-                  ft = uploadRed(fresh.transmittance, w, h), output(GL_RGBA32F, w, h);
-    TemporalFrames temporal(correctedOptions());
-    const glm::mat4 oldVP = test::turnedViewProj(w, h, 0.0f), newVP = test::turnedViewProj(w, h, 1.0f);
-    ASSERT_TRUE(temporal.beginFrame(w, h));
-    EXPECT_THROW(temporal.endRealFrame(rc.id(), {.nearestDepth = rd.id()}, oldVP, w, h, OpaqueScene(kBackground)), Error) << "corrected frames need the nearest layer";
-    temporal.endRealFrame(rc.id(), {rn.id(), rd.id(), rs.id(), rt.id()}, oldVP, w, h, OpaqueScene(kBackground));
-    ASSERT_FALSE(temporal.beginFrame(w, h));
-    temporal.interpolate(newVP, {fn.id(), fd.id(), fs.id(), ft.id()}, OpaqueScene(kBackground), output.id());
-    const std::vector<glm::vec4> gpu = readRgba(output.id(), w, h);
-
-    CorrectionSource source{w, h, composite, real.depth, real.nearest, real.sums, real.transmittance};
-    const std::vector<glm::vec4> correction = correctionOnCpu(source, oldVP, kBackground);
-    size_t off = 0, corrected = 0;
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const size_t i = size_t(y) * size_t(w) + size_t(x);
-            const glm::vec3 want = correctedPixel(x, y, w, h, fresh.nearest[i], fresh.depth[i], fresh.sums[i], fresh.transmittance[i],
-                                                  correction, oldVP, newVP, kBackground);
-            const glm::vec3 closedOnly = correctedPixel(x, y, w, h, fresh.nearest[i], fresh.depth[i], fresh.sums[i],
-                                                        fresh.transmittance[i], {}, oldVP, newVP, kBackground);
-            corrected += glm::length(want - closedOnly) > 1e-3f;
-            bool near = true;
-            for (int ch = 0; ch < 3; ++ch) near = near && std::abs(gpu[i][ch] - want[ch]) <= 1e-4f;
-            off += !near;  // a tap on the edge of the same-surface test may go the other way in the shader
-            if (fresh.nearest[i].a == 0.0f) ASSERT_EQ(glm::vec3(gpu[i]), kBackground) << x << "," << y;
-        }
-    EXPECT_LE(off, size_t(w * h / 100)) << "pixels off the CPU reference";
-    EXPECT_GT(corrected, size_t(w * h / 2)) << "most pixels must take the kept correction";
-}
 
 // Corrected frames in one geometry pass: the nearest fragment found by MIN blending of packed
 // (depth key, payload) floats (packed_nearest.h). The fold of the packed fragments keeps the
@@ -230,54 +257,8 @@ TEST(PackedNearest, PassThreeFindsPassOnesFragment) {
 
 // The one-pass composite against the CPU reference fed with the decoded nearest fragment.
 TEST(TemporalCorrected, PackedCompositeMatchesCpuReference) {
-    test::glContext();
-    const int w = 41, h = 29;
-    std::mt19937 rng(12);
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    const RandomPasses real = randomPasses(w, h, rng), fresh = randomPasses(w, h, rng);
-    std::vector<glm::vec4> composite, packed;
-    std::vector<float> cover;
-    for (const glm::vec4& n : real.nearest) {
-        composite.push_back(glm::vec4(n.a > 0.0f ? glm::vec3(u(rng), u(rng), u(rng)) : kBackground, 1.0f));
-    }
-    for (size_t i = 0; i < fresh.nearest.size(); ++i) {
-        const bool empty = fresh.nearest[i].a == 0.0f;
-        packed.push_back(empty ? packedEmpty() : packNearest(fresh.depth[i], fresh.nearest[i]));
-        cover.push_back(empty ? 1.0f : fresh.depth[i]);
-    }
-    gl::Texture2D rc = uploadRgba(composite, w, h), rd = uploadDepth(real.depth, w, h), rn = uploadRgba(real.nearest, w, h),
-                  rs = uploadRgba(real.sums, w, h), rt = uploadRed(real.transmittance, w, h);
-    gl::Texture2D fp = uploadRgba(packed, w, h), fc = uploadDepth(cover, w, h), fs = uploadRgba(fresh.sums, w, h),
-                  ft = uploadRed(fresh.transmittance, w, h), output(GL_RGBA32F, w, h);
-    TemporalFrames temporal(correctedOptions());
-    EXPECT_EQ(temporal.interpolatedPasses(), TemporalFrames::Passes::PackedNearestAndSums);
-    const glm::mat4 oldVP = test::turnedViewProj(w, h, 0.0f), newVP = test::turnedViewProj(w, h, 1.0f);
-    ASSERT_TRUE(temporal.beginFrame(w, h));
-    temporal.endRealFrame(rc.id(), {rn.id(), rd.id(), rs.id(), rt.id()}, oldVP, w, h, OpaqueScene(kBackground));
-    ASSERT_FALSE(temporal.beginFrame(w, h));
-    temporal.interpolate(newVP, {.nearestDepth = fc.id(), .sumAlphaColor = fs.id(), .transmittance = ft.id(), .packedNearest = fp.id()},
-                         OpaqueScene(kBackground), output.id());
-    const std::vector<glm::vec4> gpu = readRgba(output.id(), w, h);
-    const std::vector<glm::vec4> correction =
-        correctionOnCpu({w, h, composite, real.depth, real.nearest, real.sums, real.transmittance}, oldVP, kBackground);
-    size_t off = 0, corrected = 0;
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const size_t i = size_t(y) * size_t(w) + size_t(x);
-            float z = 0.0f;
-            const glm::vec4 nearest = unpackNearest(packed[i], z);
-            const glm::vec3 want = correctedPixel(x, y, w, h, nearest, z, fresh.sums[i], fresh.transmittance[i], correction,
-                                                  oldVP, newVP, kBackground);
-            const glm::vec3 closedOnly = correctedPixel(x, y, w, h, nearest, z, fresh.sums[i], fresh.transmittance[i], {}, oldVP,
-                                                        newVP, kBackground);
-            corrected += glm::length(want - closedOnly) > 1e-3f;
-            bool near = true;
-            for (int ch = 0; ch < 3; ++ch) near = near && std::abs(gpu[i][ch] - want[ch]) <= 1e-4f;
-            off += !near;
-            if (fresh.nearest[i].a == 0.0f) ASSERT_EQ(glm::vec3(gpu[i]), kBackground) << x << "," << y;
-        }
-    EXPECT_LE(off, size_t(w * h / 100)) << "pixels off the CPU reference";
-    EXPECT_GT(corrected, size_t(w * h / 2)) << "most pixels must take the kept correction";
+    EXPECT_EQ(TemporalFrames(correctedOptions()).interpolatedPasses(), TemporalFrames::Passes::PackedNearestAndSums);
+    expectCorrectedFrameMatchesCpu(true, 41, 29, 12);
 }
 
 // One geometry pass or two: the same interpolated frames but for the packed nearest layer's steps,
