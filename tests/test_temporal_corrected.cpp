@@ -257,6 +257,7 @@ TEST(PackedNearest, PassThreeFindsPassOnesFragment) {
 
 // The one-pass composite against the CPU reference fed with the decoded nearest fragment.
 TEST(TemporalCorrected, PackedCompositeMatchesCpuReference) {
+    test::glContext();  // before anything that builds a program
     EXPECT_EQ(TemporalFrames(correctedOptions()).interpolatedPasses(), TemporalFrames::Passes::PackedNearestAndSums);
     expectCorrectedFrameMatchesCpu(true, 41, 29, 12);
 }
