@@ -78,7 +78,8 @@ struct NeuralOptions {
     // What an interpolated frame renders (docs/DESIGN.md, "Temporal reprojection"): Warp = the paper (the last real frame's
     // composite reprojected; no geometry pass); Refresh = pass 1 at the current camera, so the
     // nearest layer is exact, over what lay behind it in the last real frame, reprojected;
-    // Correct = passes 1 and 3 at the current camera, what lies behind the nearest layer in closed
+    // Correct = the nearest layer and pass 3's sums at the current camera (one geometry pass, see
+    // correctedOnePass), what lies behind the nearest layer in closed
     // form from those sums plus the network's correction of the last real frame, reprojected
     // (beyond the paper and docs/DESIGN.md, "Temporal reprojection"; docs/DESIGN.md, "Corrected frames").
     enum class TemporalMode { Warp, Refresh, Correct };

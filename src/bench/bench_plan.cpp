@@ -78,7 +78,7 @@ const std::vector<Variant>& allVariants() {
                         o.neural.scaleGuard = false;
                     }),
         accelerated(makeVariant("starnt-total", "starnt",
-                    "STAR-NT, tiles on + temporal K = 2, corrected frames (\"Total STAR\"; fresh passes 1 and 3, the network's correction kept)",
+                    "STAR-NT, tiles on + temporal K = 2, corrected frames (\"Total STAR\"; fresh nearest layer and sums in one geometry pass, the network's correction kept)",
                     [](MethodOptions& o) {
                         o.neural.spatial = true;
                         o.neural.temporalInterval = 2;

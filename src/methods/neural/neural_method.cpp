@@ -221,7 +221,7 @@ private:
     // reported is the peak).
     // With corrected frames the output has a texture of its own: their capture reads pass 3's sums
     // after the inference, the probe frames' tiles read pass 2's colour after it, and the corrected
-    // frames render passes 1 and 3 again while the output must stay.
+    // frames render their passes again while the output must stay.
     void chooseOutput(bool nearestFree) {
         const bool corrected = temporal_.interpolates() && temporal_.corrects();
         out_ = corrected ? NeuralPasses::OutputSlot{} : passes_.outputSlot(nearestFree);

@@ -1,7 +1,8 @@
 // Corrected interpolated frames on the GPU (`--temporal-mode correct`; correction_cpu.hpp
 // states the method and is its CPU reference): what a real frame keeps (one RGBA texture: the
 // network's correction of the closed form behind the nearest layer, and the texel's inverse view
-// depth), and the composite of an interpolated frame from its own pass 1 and pass 3.
+// depth), and the composite of an interpolated frame from its own passes (pass 3 alone with the
+// packed nearest layer, or passes 1 and 3).
 #pragma once
 #include <glm/glm.hpp>
 

@@ -1,5 +1,5 @@
 // A corrected interpolated frame (`--temporal-mode correct`; temporal::correctedPixel states the
-// rule and is its CPU reference): pass 1 and pass 3 rendered at the new camera, no pass 2, no
+// rule and is its CPU reference): pass 1 and pass 3 (or pass 3 alone, below) rendered at the new camera, no pass 2, no
 // inference, no search. What lies behind the fresh nearest layer is the closed form of the fresh
 // sums plus the network's correction of the last real frame, resampled where the fresh nearest
 // point lay in that frame: bilinearly over the texels whose kept nearest surface is the same one
