@@ -89,14 +89,19 @@ const nlohmann::json& field(const nlohmann::json& j, const char* name, const std
     return *it;
 }
 
+// "does not match the KIND inputs [...]" (and the shorter orders a file of the kind may have).
+std::string acceptedOrdersText(NetworkKind kind) {
+    const auto orders = acceptedInputOrders(kind);
+    return std::string("does not match the ") + kindName(kind) + " inputs " + nlohmann::json(orders[0]).dump() +
+           (orders.size() > 1 ? " (or their first " + std::to_string(orders[1].size()) + ")" : "");
+}
+
 }  // namespace
 
 void validateNetwork(const Network& net, const std::string& what) {
     const auto orders = acceptedInputOrders(net.kind);
     if (std::find(orders.begin(), orders.end(), net.inputNames) == orders.end()) {
-        std::string expected;
-        for (const auto& n : canonicalInputNames(net.kind)) expected += (expected.empty() ? "" : ",") + n;
-        fail(what, "input order does not match the " + std::string(kindName(net.kind)) + " inputs (expected " + expected + ")");
+        fail(what, "input order " + nlohmann::json(net.inputNames).dump() + " " + acceptedOrdersText(net.kind));
     }
     const std::vector<int> sizes = layerSizes(net.kind, static_cast<int>(net.inputNames.size()));
     const std::string kind = kindName(net.kind);
@@ -201,10 +206,7 @@ Network parseWeights(const std::string& text, const std::string& what, std::opti
         const auto orders = acceptedInputOrders(net.kind);
         const auto accepted = std::find_if(orders.begin(), orders.end(),
                                            [&](const auto& names) { return order == nlohmann::json(names); });
-        if (accepted == orders.end())
-            fail(what, "input_order " + order.dump() + " does not match the " + kindStr + " inputs " +
-                           nlohmann::json(canonicalInputNames(net.kind)).dump() +
-                           (orders.size() > 1 ? " (or their first " + std::to_string(orders[1].size()) + ")" : ""));
+        if (accepted == orders.end()) fail(what, "input_order " + order.dump() + " " + acceptedOrdersText(net.kind));
         net.inputNames = *accepted;
 
         const std::vector<int> sizes = layerSizes(net.kind, static_cast<int>(net.inputNames.size()));

@@ -46,7 +46,8 @@ glm::vec4 packNearest(float z, const glm::vec4& c) {
             packedBits(key, alpha)};
 }
 
-glm::vec4 packedEmpty() { return glm::vec4(packedBits(kPackedMaxKey, kPackedPayloadMask)); }
+static_assert(STARNT_PACKED_EMPTY_BITS == (0x40000000u | kPackedMaxKey << STARNT_PACKED_PAYLOAD_BITS | kPackedPayloadMask));
+glm::vec4 packedEmpty() { return glm::vec4(std::bit_cast<float>(STARNT_PACKED_EMPTY_BITS)); }
 
 glm::vec4 unpackNearest(const glm::vec4& packed, float& z) {
     const uint32_t alphaBits = std::bit_cast<uint32_t>(packed.a);

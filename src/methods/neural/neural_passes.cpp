@@ -1,8 +1,7 @@
 #include "methods/neural/neural_passes.hpp"
 
-#include <cstdint>
+#include <bit>
 #include <cstdio>
-#include <cstring>
 
 #include "methods/neural/temporal/packed_nearest.h"
 #include "starnt/error.hpp"
@@ -348,14 +347,8 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
     glEnable(GL_BLEND);
     glBlendFunci(0, GL_ONE, GL_ONE);                   // sum a C, sum a
     glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);  // prod (1 - a)
-    float empty[4];
-    {
-        // packedEmpty(): every channel 0x5FFFFFFF (packed_nearest.h).
-        const uint32_t bits = 0x40000000u | (((1u << STARNT_PACKED_KEY_BITS) - 1u) << STARNT_PACKED_PAYLOAD_BITS) |
-                              ((1u << STARNT_PACKED_PAYLOAD_BITS) - 1u);
-        std::memcpy(&empty[0], &bits, 4);
-        for (int i = 1; i < 4; ++i) empty[i] = empty[0];
-    }
+    const float emptyPixel = std::bit_cast<float>(STARNT_PACKED_EMPTY_BITS);
+    const float empty[4] = {emptyPixel, emptyPixel, emptyPixel, emptyPixel};
     glClearBufferfv(GL_COLOR, 2, empty);
     glBlendEquationi(2, GL_MIN);  // blend factors do not apply to MIN
     glUseProgram(pass3Packed_.id());

@@ -13,6 +13,8 @@
 
 #define STARNT_PACKED_KEY_BITS 18
 #define STARNT_PACKED_PAYLOAD_BITS 11
+// The clear value, in every channel: the largest key with every payload bit set (the empty pixel).
+#define STARNT_PACKED_EMPTY_BITS 0x5FFFFFFFu
 // key = (bits(1.0) - bits(w)) >> STARNT_PACKED_KEY_SHIFT with w = 1 - z (window depth z) and bits()
 // a float's bits: the float's own logarithmic spacing, no transcendental function. A perspective
 // projection makes w inversely proportional to the view distance, so the key's step is a fixed
