@@ -9,6 +9,7 @@
 
 
 #include "reference/correction_cpu.hpp"
+#include "methods/neural/temporal/reprojection_constants.h"
 #include "methods/common/opaque_scene.hpp"
 #include "methods/neural/neural_passes.hpp"
 #include "methods/neural/temporal/temporal_frames.hpp"
@@ -262,6 +263,161 @@ TEST(TemporalCorrected, PackedCompositeMatchesCpuReference) {
     expectCorrectedFrameMatchesCpu(true, 41, 29, 12);
 }
 
+// The tail-moment methods' closed form behind the nearest layer weighs by depth
+// (orderedClosedFormBehind): one fragment behind -> it over the background, exactly; two behind,
+// a red one near and a blue one far -> nearer the exact over-composite than the order-free mean.
+TEST(TemporalCorrected, OrderedClosedFormWeighsByDepth) {
+    const Fragment nearest{glm::vec3(0.2f, 0.4f, 0.6f), 0.5f, 0.5f};
+    const glm::vec4 layer(nearest.color, nearest.alpha);
+    auto behindOf = [&](const std::vector<Fragment>& behind, glm::vec3& exact, glm::vec3& mean) {
+        std::vector<Fragment> all = {nearest};
+        all.insert(all.end(), behind.begin(), behind.end());
+        glm::vec4 sums(0.0f);
+        float t = 1.0f;
+        for (const Fragment& f : all) sums += glm::vec4(f.color * f.alpha, f.alpha), t *= 1.0f - f.alpha;
+        exact = compositeOver(behind, kBackground);
+        mean = closedFormBehind(layer, sums, t, kBackground);
+        return orderedClosedFormBehind(layer, nearest.depth, sums, t, behindMomentsOf(all, 0.45f), kBackground);
+    };
+    glm::vec3 exact, mean;
+    glm::vec3 got = behindOf({{glm::vec3(0.9f, 0.1f, 0.3f), 0.25f, 0.7f}}, exact, mean);
+    for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(got[ch], exact[ch], 1e-4f);
+    got = behindOf({{glm::vec3(1.0f, 0.0f, 0.0f), 0.7f, 0.55f}, {glm::vec3(0.0f, 0.0f, 1.0f), 0.7f, 0.9f}}, exact, mean);
+    EXPECT_LT(glm::length(got - exact), 0.5f * glm::length(mean - exact))
+        << "ordered " << got.r << "," << got.b << " mean " << mean.r << "," << mean.b << " exact " << exact.r << "," << exact.b;
+    // No reference (nothing kept around the pixel): u = 0 everywhere, the order-free mean.
+    std::vector<Fragment> all = {nearest, {glm::vec3(1.0f, 0.0f, 0.0f), 0.7f, 0.55f}, {glm::vec3(0.0f, 0.0f, 1.0f), 0.7f, 0.9f}};
+    glm::vec4 sums(0.0f);
+    float t = 1.0f;
+    for (const Fragment& f : all) sums += glm::vec4(f.color * f.alpha, f.alpha), t *= 1.0f - f.alpha;
+    got = orderedClosedFormBehind(layer, nearest.depth, sums, t, behindMomentsOf(all, 1.0f), kBackground);
+    mean = closedFormBehind(layer, sums, t, kBackground);
+    for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(got[ch], mean[ch], 1e-5f);
+}
+
+// Pass 3 of an interpolated frame of a tail-moment method sums the moments behind the reference
+// depth: against the CPU sums of the captured fragments, on a built-in scene, one pass or two.
+TEST(TemporalCorrected, PassThreeSumsTheMomentsBehindTheReference) {
+    test::glContext();
+    const int w = 64, h = 48;
+    const test::TestScene scene(loadScene("builtin:tubes"), w, h, 30.0f, 20.0f, kBackground);
+    const FrameDesc frame = scene.frame();
+    const DrawCallback draw = scene.gpu->callback(frame.view, frame.projection, SurfaceOptions{});
+    const CapturedFrame fragments = scene.capture();
+    // The reference of a "real frame" one degree away would do as well; this one is the nearest
+    // fragment's depth of the same view (rows from the top in the capture).
+    std::vector<float> nearestDepth(size_t(w) * size_t(h), 1.0f);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (const Fragment& f : nn::preparedFragments(fragments.at(x, h - 1 - y)))
+                nearestDepth[size_t(y) * size_t(w) + size_t(x)] = std::min(nearestDepth[size_t(y) * size_t(w) + size_t(x)], f.depth);
+    const std::vector<float> reference = referenceDepthOnCpu(nearestDepth, w, h);
+    const int tilesX = (w + STARNT_ORDERED_REFERENCE_TILE - 1) / STARNT_ORDERED_REFERENCE_TILE;
+    const int tilesY = (h + STARNT_ORDERED_REFERENCE_TILE - 1) / STARNT_ORDERED_REFERENCE_TILE;
+    const gl::Texture2D referenceTexture = uploadRed(reference, tilesX, tilesY);
+    OpaqueScene opaque(kBackground);
+    opaque.begin(frame);
+    NeuralPasses passes(SceneGpu::surfaceShader(), opaque, false, NeuralOptions::Targets::Float32, false, true);
+    for (bool onePass : {true, false}) {
+        if (onePass) passes.runPackedNearestAndSums(frame, draw, referenceTexture.id());
+        else passes.runNearestAndSums(frame, draw, referenceTexture.id());
+        const std::vector<glm::vec4> first = readRgba(passes.behindMoment1(), w, h), second = readRgba(passes.behindMoment2(), w, h);
+        size_t behind = 0, off = 0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const size_t i = size_t(y) * size_t(w) + size_t(x);
+                const OrderedBehind want =
+                    behindMomentsOf(nn::preparedFragments(fragments.at(x, h - 1 - y)), referenceAt(reference, w, x, y));
+                behind += want.moment1.a > 0.0f;
+                bool near = true;
+                for (int k = 0; k < 4; ++k) {
+                    near = near && std::abs(first[i][k] - want.moment1[k]) <= 1e-4f + 2e-3f * std::abs(want.moment1[k]);
+                    near = near && std::abs(second[i][k] - want.moment2[k]) <= 1e-4f + 4e-3f * std::abs(want.moment2[k]);
+                }
+                off += !near;
+            }
+        EXPECT_GT(behind, size_t(200)) << "pixels with fragments behind the reference";
+        EXPECT_LE(off, size_t(w * h / 200)) << (onePass ? "one pass" : "two passes") << ": pixels off the CPU sums";
+    }
+}
+
+// The ordered composite (reference depth pass, moments, closed form) against the CPU reference on
+// random lists behind a flat nearest layer and a turning camera, one pass (the packed layer) or two.
+// An ordered frame kept by endRealFrame (no fused capture) keeps no correction: the closed form alone.
+static void expectOrderedFrameMatchesCpu(bool packed, int w, int h, unsigned seed) {
+    test::glContext();
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const RandomPasses real = randomPasses(w, h, rng);
+    const std::vector<float> reference = referenceDepthOnCpu(real.depth, w, h);
+    std::vector<glm::vec4> nearest, sums, first, second, packedLayer;
+    std::vector<float> depth, transmittance;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            std::vector<Fragment> list;
+            if (u(rng) > 0.15f) {
+                const float z1 = 0.75f + 0.1f * u(rng);
+                list.push_back({glm::vec3(u(rng), u(rng), u(rng)), 0.1f + 0.8f * u(rng), z1});
+                const int behind = int(u(rng) * 5.0f);
+                for (int k = 0; k < behind; ++k) {
+                    list.push_back({glm::vec3(u(rng), u(rng), u(rng)), 0.05f + 0.9f * u(rng), z1 + (1.0f - z1) * u(rng)});
+                }
+            }
+            glm::vec4 s(0.0f);
+            float t = 1.0f;
+            for (const Fragment& f : list) s += glm::vec4(f.color * f.alpha, f.alpha), t *= 1.0f - f.alpha;
+            const OrderedBehind m = behindMomentsOf(list, referenceAt(reference, w, x, y));
+            nearest.push_back(list.empty() ? glm::vec4(0.0f) : glm::vec4(list[0].color, list[0].alpha));
+            depth.push_back(list.empty() ? 1.0f : list[0].depth);
+            packedLayer.push_back(list.empty() ? packedEmpty() : packNearest(depth.back(), nearest.back()));
+            sums.push_back(s);
+            transmittance.push_back(t);
+            first.push_back(m.moment1);
+            second.push_back(m.moment2);
+        }
+    std::vector<glm::vec4> composite(real.nearest.size(), glm::vec4(0.5f, 0.5f, 0.5f, 1.0f));
+    gl::Texture2D rc = uploadRgba(composite, w, h), rd = uploadDepth(real.depth, w, h), rn = uploadRgba(real.nearest, w, h);
+    gl::Texture2D fn = uploadRgba(nearest, w, h), fd = uploadDepth(depth, w, h), fs = uploadRgba(sums, w, h),
+                  ft = uploadRed(transmittance, w, h), m1 = uploadRgba(first, w, h), m2 = uploadRgba(second, w, h),
+                  fp = uploadRgba(packedLayer, w, h), output(GL_RGBA32F, w, h);
+    MethodOptions options = correctedOptions();
+    options.neural.correctedOnePass = packed;
+    TemporalFrames temporal(options, true);
+    const glm::mat4 oldVP = test::turnedViewProj(w, h, 0.0f), newVP = test::turnedViewProj(w, h, 1.0f);
+    ASSERT_TRUE(temporal.beginFrame(w, h));
+    EXPECT_EQ(temporal.behindReference(), 0u) << "no reference before a kept frame";
+    temporal.endRealFrame(rc.id(), {rn.id(), rd.id(), fs.id(), ft.id()}, oldVP, w, h, OpaqueScene(kBackground));
+    EXPECT_NE(temporal.behindReference(), 0u);
+    ASSERT_FALSE(temporal.beginFrame(w, h));
+    TemporalPassTargets passes{fn.id(), fd.id(), fs.id(), ft.id()};
+    if (packed) passes = {.nearestDepth = fd.id(), .sumAlphaColor = fs.id(), .transmittance = ft.id(), .packedNearest = fp.id()};
+    passes.behindMoment1 = m1.id();
+    passes.behindMoment2 = m2.id();
+    temporal.interpolate(newVP, passes, OpaqueScene(kBackground), output.id());
+    const std::vector<glm::vec4> gpu = readRgba(output.id(), w, h);
+    size_t off = 0, ordered = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * size_t(w) + size_t(x);
+            float z = depth[i];
+            const glm::vec4 layer = packed ? unpackNearest(packedLayer[i], z) : nearest[i];
+            const OrderedBehind m{first[i], second[i], referenceAt(reference, w, x, y)};
+            const glm::vec3 want = correctedPixel(x, y, w, h, layer, z, sums[i], transmittance[i], {}, oldVP, newVP, kBackground, &m);
+            const glm::vec3 plain = correctedPixel(x, y, w, h, layer, z, sums[i], transmittance[i], {}, oldVP, newVP, kBackground);
+            ordered += glm::length(want - plain) > 1e-3f;
+            bool near = true;
+            for (int ch = 0; ch < 3; ++ch) near = near && std::abs(gpu[i][ch] - want[ch]) <= 1e-3f;
+            off += !near;  // the closed form's switches (spread thresholds) may flip on the last bits
+        }
+    EXPECT_LE(off, size_t(w * h / 100)) << "pixels off the CPU reference";
+    EXPECT_GT(ordered, size_t(w * h / 4)) << "the depth order must change most pixels with several fragments behind";
+}
+
+TEST(TemporalCorrected, OrderedCompositeMatchesCpuReference) {
+    expectOrderedFrameMatchesCpu(false, 47, 33, 21);
+    expectOrderedFrameMatchesCpu(true, 41, 29, 22);
+}
+
 // One geometry pass or two: the same interpolated frames but for the packed nearest layer's steps,
 // for a method with tail moments (the packed target is its first moment target) and one without.
 TEST(TemporalCorrected, OnePassGivesTheTwoPassFrames) {
@@ -328,18 +484,33 @@ TEST(TemporalCorrected, WithoutSumsTheClosedFormAloneAndResetsAreReal) {
 }
 
 // A still camera: an interpolated frame is the real one up to the rounding of the kept correction
-// and of the 16-bit output (the closed form cancels: B_cf + (B_net - B_cf)).
-// For the tail-moment methods too, whose corrected frames run pass 3 without the moments (the
-// closed form needs sum a C, sum a and the transmittance only): the same sums as the real frame's.
+// and of the 16-bit output (the closed form cancels: B_cf + (B_net - B_cf)). Not so for the
+// tail-moment methods: their real frame keeps the network's correction of hybrid-moments' composite,
+// which reads the second layer and the tail's own moments, and their interpolated frame adds it to
+// the ordered closed form behind the nearest layer (ordered_behind.glsl), which has neither; at a
+// still camera they differ by what hybrid-moments' composite and that closed form differ by.
 TEST(TemporalCorrected, StillCameraGivesTheRealFrame) {
     test::TestScene c(makeBuiltinScene("tubes", 3), 96, 64, 30.0f, 15.0f, kBackground);
     for (const char* method : {"starnt", "starnt-d", "hybrid-moments", "recommended"}) {
         const auto frames = renderSequence(c, correctedOptions(), {0.0f, 0.0f, 0.0f, 0.0f}, method);
         float largest = 0.0f;
+        double sum = 0.0;
         for (size_t i = 0; i < frames[0].size(); ++i)
-            for (int ch = 0; ch < 3; ++ch) largest = std::max(largest, std::abs(frames[1][i][ch] - frames[0][i][ch]));
-        // A few 16-bit steps and the steps of the packed nearest layer (packed_nearest.h) at most.
-        EXPECT_LE(largest, 4.0f / 1024.0f) << method;
+            for (int ch = 0; ch < 3; ++ch) {
+                const float d = std::abs(frames[1][i][ch] - frames[0][i][ch]);
+                largest = std::max(largest, d);
+                sum += d;
+            }
+        const double mean = sum / double(3 * frames[0].size());
+        std::printf("%s: still camera, interpolated - real: largest %.4f, mean %.6f\n", method, largest, mean);
+        if (std::string(method) == "starnt") {
+            // A few 16-bit steps and the steps of the packed nearest layer (packed_nearest.h) at most.
+            EXPECT_LE(largest, 4.0f / 1024.0f) << method;
+        } else {
+            // Measured on llvmpipe (tubes, 96x64): largest 0.133, mean 0.0020 (two 10-bit steps).
+            EXPECT_LE(mean, 4.0 / 1024.0) << method;
+            EXPECT_GT(largest, 0.0f) << method << ": the ordered closed form is not hybrid-moments' composite";
+        }
         EXPECT_EQ(frames[2], frames[0]) << method << ": the next real frame";
     }
 }
@@ -405,10 +576,11 @@ TEST(TemporalCorrected, StillCameraNeverDropsTheSurfaces) {
 }
 
 // The real frame's composite writes the kept correction itself (fusedCorrectionCapture, the
-// default) or a pass of its own does: the interpolated frames are the same either way.
+// default) or a pass of its own does: the interpolated frames are the same either way. (The
+// tail-moment methods keep a correction from their own composite only: CorrectedFrames::capture.)
 TEST(TemporalCorrected, FusedCaptureEqualsTheCapturePass) {
     test::TestScene c(makeBuiltinScene("random", 5), 120, 80, 25.0f, 10.0f, kBackground);
-    for (const char* method : {"starnt", "starnt-d"}) {
+    for (const char* method : {"starnt", "hybrid"}) {
         MethodOptions fused = correctedOptions(), pass = correctedOptions();
         pass.neural.fusedCorrectionCapture = false;
         const auto a = renderSequence(c, fused, {0.0f, 1.5f, 3.0f, 4.5f}, method);

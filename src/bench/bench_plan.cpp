@@ -67,8 +67,9 @@ const std::vector<Variant>& allVariants() {
                                 [](MethodOptions& o) { o.neural.spatial = true; }),
                     "starnt-residual-full", "tiles"),
         accelerated(makeVariant("recommended", "recommended",
-                                "the recommended configuration: starnt-d's tail, temporal K = 2 with corrected frames"),
-                    "starnt-d", "K = 2 corrected"),
+                                "the recommended configuration: starnt-d's tail, temporal K = " +
+                                    std::to_string(kRecommendedTemporalInterval) + " with corrected frames"),
+                    "starnt-d", "K = " + std::to_string(kRecommendedTemporalInterval) + " corrected"),
         makeVariant("starnt-paper", "starnt",
                     "STAR-NT as the paper: tiles on the composite, continuous scales, no guard",
                     [](MethodOptions& o) {

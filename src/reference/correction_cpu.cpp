@@ -8,6 +8,8 @@
 #include "methods/neural/temporal/packed_nearest.h"
 #include "methods/neural/temporal/reprojection_constants.h"
 #include "methods/neural/temporal/reprojection_math.hpp"
+#include "methods/hybrid_moments/tail_moments_constants.h"
+#include "starnt/tools/nn.hpp"
 
 namespace starnt::temporal {
 
@@ -66,6 +68,71 @@ glm::vec4 unpackNearest(const glm::vec4& packed, float& z) {
 
 glm::vec4 blendNearest(const glm::vec4& a, const glm::vec4& b) { return glm::min(a, b); }
 
+float keyedDepth(float z) {
+    const uint32_t middle = 1u << (STARNT_PACKED_KEY_SHIFT - 1);
+    return 1.0f - std::bit_cast<float>(kPackedOne - (packedDepthKey(z) << STARNT_PACKED_KEY_SHIFT) - middle);
+}
+
+float depthBehindReference(float z, float reference) {
+    if (!(reference < 1.0f)) return 0.0f;
+    return std::log(1.0f + std::max(keyedDepth(z) - reference, 0.0f) /
+                               (float(STARNT_TAIL_MOMENT_DEPTH_SCALE) * (1.0f - reference)));
+}
+
+std::vector<float> referenceDepthOnCpu(const std::vector<float>& depth, int width, int height) {
+    constexpr int tile = STARNT_ORDERED_REFERENCE_TILE;
+    const int tilesX = (width + tile - 1) / tile, tilesY = (height + tile - 1) / tile;
+    std::vector<float> tiles(size_t(tilesX) * size_t(tilesY), 1.0f), out(tiles.size(), 1.0f);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            float& t = tiles[size_t(y / tile) * size_t(tilesX) + size_t(x / tile)];
+            t = std::min(t, depth[size_t(y) * size_t(width) + size_t(x)]);
+        }
+    for (int y = 0; y < tilesY; ++y)
+        for (int x = 0; x < tilesX; ++x)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int sx = std::clamp(x + dx, 0, tilesX - 1), sy = std::clamp(y + dy, 0, tilesY - 1);
+                    float& o = out[size_t(y) * size_t(tilesX) + size_t(x)];
+                    o = std::min(o, tiles[size_t(sy) * size_t(tilesX) + size_t(sx)]);
+                }
+    return out;
+}
+
+float referenceAt(const std::vector<float>& reference, int width, int x, int y) {
+    constexpr int tile = STARNT_ORDERED_REFERENCE_TILE;
+    const int tilesX = (width + tile - 1) / tile;
+    return reference[size_t(y / tile) * size_t(tilesX) + size_t(x / tile)];
+}
+
+OrderedBehind behindMomentsOf(const std::vector<Fragment>& fragments, float reference) {
+    glm::dvec4 first(0.0), second(0.0);
+    for (const Fragment& f : fragments) {
+        const float u = depthBehindReference(f.depth, reference);
+        const glm::vec4 term = glm::vec4(f.color * f.alpha, f.alpha) * u;  // the shader's float operations
+        first += glm::dvec4(term);
+        second += glm::dvec4(term * u);
+    }
+    return {glm::vec4(first), glm::vec4(second), reference};
+}
+
+glm::vec3 orderedClosedFormBehind(const glm::vec4& nearest, float depth, const glm::vec4& sums, float transmittance,
+                                  const OrderedBehind& ordered, const glm::vec3& background) {
+    const float behindT = glm::clamp(transmittance / (1.0f - nearest.a), 0.0f, 1.0f);
+    const float behindAlpha = sums.a - nearest.a;
+    if (!(behindAlpha > float(STARNT_TEMPORAL_MIN_BEHIND_ALPHA))) return background;
+    const float u = depthBehindReference(depth, ordered.reference);
+    const glm::vec4 front(glm::vec3(nearest) * nearest.a, nearest.a);
+    const glm::vec4 first = ordered.moment1 - front * u, second = ordered.moment2 - front * (u * u);
+    nn::TailMoments m;
+    m.alphaColorU = glm::vec3(first);
+    m.alphaU = first.a;
+    m.alphaColorU2 = glm::vec3(second);
+    m.alphaU2 = second.a;
+    const glm::vec3 color = nn::momentWeightedColor(glm::vec3(sums) - glm::vec3(front), behindAlpha, m, behindT);
+    return (1.0f - behindT) * color + behindT * background;
+}
+
 glm::vec3 closedFormBehind(const glm::vec4& nearest, const glm::vec4& sums, float transmittance, const glm::vec3& background) {
     const float behindT = glm::clamp(transmittance / (1.0f - nearest.a), 0.0f, 1.0f);
     const float behindAlpha = sums.a - nearest.a;
@@ -98,12 +165,13 @@ std::vector<glm::vec4> correctionOnCpu(const CorrectionSource& real, const glm::
 
 glm::vec3 correctedPixel(int x, int y, int width, int height, const glm::vec4& nearest, float depth, const glm::vec4& sums,
                          float transmittance, const std::vector<glm::vec4>& correction, const glm::mat4& oldViewProj,
-                         const glm::mat4& newViewProj, const glm::vec3& background) {
+                         const glm::mat4& newViewProj, const glm::vec3& background, const OrderedBehind* ordered) {
     if (!(nearest.a > 0.0f)) return background;
     const float open = 1.0f - nearest.a;
     glm::vec3 behind = background;
     if (open > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE)) {
-        behind = closedFormBehind(nearest, sums, transmittance, background);
+        behind = ordered ? orderedClosedFormBehind(nearest, depth, sums, transmittance, *ordered, background)
+                         : closedFormBehind(nearest, sums, transmittance, background);
         const CorrectionMatrices m = makeCorrectionMatrices(oldViewProj, newViewProj);
         const glm::vec2 c = (glm::vec2(float(x), float(y)) + 0.5f) / glm::vec2(float(width), float(height)) * 2.0f - 1.0f;
         const glm::vec4 old = m.newToOld * glm::vec4(c, depth * 2.0f - 1.0f, 1.0f);

@@ -20,6 +20,7 @@
 #include <glm/glm.hpp>
 
 #include "methods/neural/temporal/reprojection_math.hpp"
+#include "starnt/tools/fragments.hpp"
 
 namespace starnt::temporal {
 
@@ -52,11 +53,36 @@ glm::vec4 packedEmpty();
 glm::vec4 unpackNearest(const glm::vec4& packed, float& z);
 glm::vec4 blendNearest(const glm::vec4& a, const glm::vec4& b);
 
+// Corrected frames of the tail-moment methods (ordered_behind.glsl, the same float operations):
+// keyedDepth, the middle of z's packed key interval; depthBehindReference, u = ln(1 + max(z' - r, 0)
+// / (s (1 - r))) with z' = keyedDepth(z) (0 when r = 1); referenceDepthOnCpu, the reference depth of
+// a real frame's pass-1 `depth` (one value per STARNT_ORDERED_REFERENCE_TILE pixels squared: the
+// nearest over the tile and its eight neighbours; reference_depth.frag.glsl), referenceAt its value
+// at pixel (x, y).
+float keyedDepth(float z);
+float depthBehindReference(float z, float reference);
+std::vector<float> referenceDepthOnCpu(const std::vector<float>& depth, int width, int height);
+float referenceAt(const std::vector<float>& reference, int width, int x, int y);
+// What an interpolated pixel's pass 3 sums behind the reference depth: (sum a C u, sum a u),
+// (sum a C u^2, sum a u^2) over every fragment.
+struct OrderedBehind {
+    glm::vec4 moment1{0.0f}, moment2{0.0f};
+    float reference = 1.0f;
+};
+OrderedBehind behindMomentsOf(const std::vector<Fragment>& fragments, float reference);
+// What lies behind the nearest layer (C1, a1 at window depth `depth`) weighted by depth: the
+// nearest fragment's terms taken out of the moments, then nn::momentWeightedColor over the rest
+// (their alpha sum sum a - a1, transmittance T / (1 - a1)), under 1 - T / (1 - a1), the background
+// the rest; the background where sum a - a1 <= STARNT_TEMPORAL_MIN_BEHIND_ALPHA.
+glm::vec3 orderedClosedFormBehind(const glm::vec4& nearest, float depth, const glm::vec4& sums, float transmittance,
+                                  const OrderedBehind& ordered, const glm::vec3& background);
+
 // One interpolated pixel (x, y): `nearest`, `depth`, `sums`, `transmittance` of the fresh passes at
 // that pixel; `correction` the kept texels of a frame rendered with `oldViewProj` (empty: the frame
-// was kept without a correction, the closed form alone).
+// was kept without a correction, the closed form alone). `ordered`: the tail-moment methods' closed
+// form (orderedClosedFormBehind) with this pixel's moments instead of closedFormBehind.
 glm::vec3 correctedPixel(int x, int y, int width, int height, const glm::vec4& nearest, float depth, const glm::vec4& sums,
                          float transmittance, const std::vector<glm::vec4>& correction, const glm::mat4& oldViewProj,
-                         const glm::mat4& newViewProj, const glm::vec3& background);
+                         const glm::mat4& newViewProj, const glm::vec3& background, const OrderedBehind* ordered = nullptr);
 
 }  // namespace starnt::temporal

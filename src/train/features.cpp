@@ -243,17 +243,12 @@ void exponentialMoments(float tau, float integrals[3]) {
 }
 }  // namespace
 
-glm::vec3 momentWeightedTailColor(const PixelSums& s, const TailMoments& m) {
-    const glm::vec3 alphaColor = tailAlphaColor(s);
-    const float alpha = s.sumAlpha - s.a1 - s.a2;
-    if (!(alpha > kTailAlphaEpsilon)) return glm::vec3(0.0f);
+glm::vec3 momentWeightedColor(const glm::vec3& alphaColor, float alpha, const TailMoments& m, float tTail) {
     const glm::vec3 plain = glm::max(alphaColor / alpha, glm::vec3(0.0f));
     const float mean = m.alphaU / alpha;
     const float spread = std::sqrt(std::max(m.alphaU2 / alpha - mean * mean, 0.0f));
     if (!(spread > float(STARNT_TAIL_MOMENT_PLAIN_BELOW) * mean)) return plain;
     const bool quadratic = spread > float(STARNT_TAIL_MOMENT_LINEAR_BELOW) * mean;
-    const float t2 = twoLayerTransmittance(s);
-    const float tTail = t2 > kTransmittanceEpsilon ? std::clamp(s.transmittance / t2, 0.0f, 1.0f) : 0.0f;
     const float maxDepth = float(STARNT_TAIL_MOMENT_MAX_OPTICAL_DEPTH);
     const float tau = tTail > 0.0f ? std::min(-std::log(tTail), maxDepth) : maxDepth;
     float integral[3];
@@ -270,8 +265,16 @@ glm::vec3 momentWeightedTailColor(const PixelSums& s, const TailMoments& m) {
     const glm::vec3 firstFromLo = m.alphaColorU - lo * alphaColor;
     const glm::vec3 x1 = firstFromLo / width;
     const glm::vec3 x2 = ((m.alphaColorU2 - lo * m.alphaColorU) - lo * firstFromLo) / (width * width);
-    // sum a w(x) = A_tail c0 exactly (the x-moments of the alphas are 1/2 and 1/3 by construction).
+    // sum a w(x) = alpha c0 exactly (the x-moments of the alphas are 1/2 and 1/3 by construction).
     return glm::max((b0 * alphaColor + b1 * x1 + b2 * x2) / (c0 * alpha), glm::vec3(0.0f));
+}
+
+glm::vec3 momentWeightedTailColor(const PixelSums& s, const TailMoments& m) {
+    const float alpha = s.sumAlpha - s.a1 - s.a2;
+    if (!(alpha > kTailAlphaEpsilon)) return glm::vec3(0.0f);
+    const float t2 = twoLayerTransmittance(s);
+    const float tTail = t2 > kTransmittanceEpsilon ? std::clamp(s.transmittance / t2, 0.0f, 1.0f) : 0.0f;
+    return momentWeightedColor(tailAlphaColor(s), alpha, m, tTail);
 }
 
 glm::vec3 compositeHybridMoments(const PixelSums& s, const TailMoments& m, glm::vec3 background) {

@@ -23,7 +23,14 @@ void main() {
 #ifdef STARNT_CAPTURE_CORRECTION
     ivec2 t = ivec2(gl_FragCoord.xy);
     // The layer and sums this pixel read already (full-resolution inputs: the texels themselves).
-    outCorrection = keptCorrection(t, u_fullSize, u_sourceScale, color.rgb, vec4(s.c1, s.a1), vec4(s.sumAlphaColor, s.sumAlpha),
-                                   s.transmittance, texelFetch(u_captureDepth, t, 0).r, background());
+#ifdef STARNT_ORDERED_CLOSED_FORM
+    // The tail-moment methods: against hybrid-moments' composite (their interpolated frames weigh
+    // what lies behind the nearest layer by depth too: ordered_behind.glsl).
+    vec3 closedForm = orderedClosedFormBehindNearest(s, background());
+#else
+    vec3 closedForm = closedFormBehind(vec4(s.c1, s.a1), vec4(s.sumAlphaColor, s.sumAlpha), s.transmittance, background());
+#endif
+    outCorrection = keptCorrection(t, u_fullSize, u_sourceScale, color.rgb, vec4(s.c1, s.a1), closedForm,
+                                   texelFetch(u_captureDepth, t, 0).r);
 #endif
 }

@@ -42,7 +42,7 @@ public:
           // Only DFAOIT's inputs read the unweighted colour sum of pass 3 (docs/DESIGN.md, "Pipeline and formats").
           passes_(surface, opaque_, config.kind == nn::NetworkKind::DFAOIT, options_.neural.targets,
                   narrowLayersApply(config, options_, spatial_, corners_), config.tailMoments),
-          temporal_(options_) {
+          temporal_(options_, config.tailMoments) {
         if (spatial_ || corners_) tiles_ = std::make_unique<tiles::GpuTiles>();
         if (temporal_.interpolates() && temporal_.corrects()) {
             if (options_.neural.correctedOnePass) passes_.preparePackedNearestAndSums();
@@ -155,8 +155,12 @@ public:
             // Interpolated: the passes the temporal mode asks for, fresh at this camera, then the
             // temporal frames' composite (no inference, no tiles).
             switch (temporal_.interpolatedPasses()) {
-                case TemporalFrames::Passes::NearestAndSums: passes_.runNearestAndSums(frame, draw); break;
-                case TemporalFrames::Passes::PackedNearestAndSums: passes_.runPackedNearestAndSums(frame, draw); break;
+                case TemporalFrames::Passes::NearestAndSums:
+                    passes_.runNearestAndSums(frame, draw, temporal_.behindReference());
+                    break;
+                case TemporalFrames::Passes::PackedNearestAndSums:
+                    passes_.runPackedNearestAndSums(frame, draw, temporal_.behindReference());
+                    break;
                 case TemporalFrames::Passes::Nearest: passes_.runNearest(frame, draw); break;
                 case TemporalFrames::Passes::None: break;
             }
@@ -164,6 +168,8 @@ public:
             if (temporal_.interpolatedPasses() == TemporalFrames::Passes::PackedNearestAndSums) {
                 targets.packedNearest = passes_.packedNearest();
             }
+            targets.behindMoment1 = passes_.behindMoment1();
+            targets.behindMoment2 = passes_.behindMoment2();
             temporal_.interpolate(viewProjection, targets, opaque_, out_.texture, frame.timing);
             return;
         }

@@ -181,7 +181,8 @@ void NeuralPasses::resize(int width, int height) {
     } else {
         pass3Fb_ = gl::makeFramebuffer({&alphaColor_, &colorCount_, &transmittance_});
     }
-    sumsFb_ = gl::makeFramebuffer({&alphaColor_, &transmittance_});
+    sumsFb_ = tailMoments_ ? gl::makeFramebuffer({&alphaColor_, &transmittance_, &tailMoment1_, &tailMoment2_})
+                           : gl::makeFramebuffer({&alphaColor_, &transmittance_});
     packedFb_.reset();  // runPackedNearestAndSums makes it again around the new targets
     nearestOnlyFb_ = gl::makeFramebuffer({&nearest_});
     secondOnlyFb_ = gl::makeFramebuffer({&second_});
@@ -297,16 +298,17 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
 void NeuralPasses::prepareNearestAndSums() {
     if (!pass3Sums_.id()) {
         pass3Sums_ = buildSurfaceProgram(surface_, "neural_pass3_sums", "methods/neural/pass3_accumulate.frag.glsl",
-                                         "#define STARNT_SUMS_ONLY\n");
+                                         std::string("#define STARNT_SUMS_ONLY\n") + behindMomentsDefine());
     }
 }
 
-void NeuralPasses::runNearestAndSums(const FrameDesc& frame, const DrawCallback& draw) {
+void NeuralPasses::runNearestAndSums(const FrameDesc& frame, const DrawCallback& draw, GLuint reference) {
     runNearest(frame, draw);
     prepareNearestAndSums();
     pass3Size_ = {width_, height_};
     gl::ScopedPass timing(frame.timing, "pass3");
     beginSumAndProduct(sumsFb_.id(), width_, height_, opaque_, GL_ONE_MINUS_SRC_ALPHA);  // sum a C, sum a; prod (1 - a)
+    if (tailMoments_) beginBehindMoments(2, reference);
     MethodBase::runGeometryPass("pass3", pass3Sums_, frame, draw);
     opaque_.endDepthTest(sumsFb_.id());
     resetPassState();
@@ -315,23 +317,36 @@ void NeuralPasses::runNearestAndSums(const FrameDesc& frame, const DrawCallback&
 void NeuralPasses::preparePackedNearestAndSums() {
     if (!pass3Packed_.id()) {
         pass3Packed_ = buildSurfaceProgram(surface_, "neural_pass3_packed", "methods/neural/pass3_accumulate.frag.glsl",
-                                           "#define STARNT_SUMS_ONLY\n#define STARNT_PACKED_NEAREST\n");
+                                           std::string("#define STARNT_SUMS_ONLY\n#define STARNT_PACKED_NEAREST\n") +
+                                               behindMomentsDefine());
     }
 }
 
-void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCallback& draw) {
+void NeuralPasses::beginBehindMoments(GLuint firstTarget, GLuint reference) {
+    const float zero[4] = {0, 0, 0, 0};
+    for (GLuint target : {firstTarget, firstTarget + 1}) {
+        glClearBufferfv(GL_COLOR, GLint(target), zero);
+        glBlendFunci(target, GL_ONE, GL_ONE);
+    }
+    gl::bindTexture(0, reference);  // pass3_accumulate.frag.glsl's u_reference
+}
+
+void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCallback& draw, GLuint reference) {
     resize(frame.width, frame.height);
     preparePackedNearestAndSums();
-    if (!tailMoments_ && (packedNearest_.width() != width_ || packedNearest_.height() != height_)) {
+    if (packedNearest_.width() != width_ || packedNearest_.height() != height_) {
         packedNearest_ = gl::Texture2D(GL_RGBA32F, width_, height_);
         packedFb_.reset();
     }
     if (!packedFb_.id()) {
-        const gl::Texture2D& packed = tailMoments_ ? tailMoment1_ : packedNearest_;
         // Pass 1's depth target, free in an interpolated frame, records which pixels any fragment
         // covered (depth test ALWAYS: the last fragment's depth, < 1 where anything is) for the
         // composite's early empty-pixel test; so the opaque clip runs in the shader, as in pass 1.
-        packedFb_ = gl::makeFramebuffer({&alphaColor_, &transmittance_, &packed}, &nearestDepth_);
+        // The tail-moment methods sum their moments behind the nearest layer into their own
+        // moment targets, free in an interpolated frame.
+        packedFb_ = tailMoments_ ? gl::makeFramebuffer({&alphaColor_, &transmittance_, &packedNearest_, &tailMoment1_, &tailMoment2_},
+                                                       &nearestDepth_)
+                                 : gl::makeFramebuffer({&alphaColor_, &transmittance_, &packedNearest_}, &nearestDepth_);
     }
     pass3Size_ = {width_, height_};
     resetPassState();
@@ -351,6 +366,7 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
     const float empty[4] = {emptyPixel, emptyPixel, emptyPixel, emptyPixel};
     glClearBufferfv(GL_COLOR, 2, empty);
     glBlendEquationi(2, GL_MIN);  // blend factors do not apply to MIN
+    if (tailMoments_) beginBehindMoments(3, reference);
     glUseProgram(pass3Packed_.id());
     opaque_.clipInShader(pass3Packed_, width_, height_, width_, height_);
     MethodBase::runGeometryPass("pass3", pass3Packed_, frame, draw);

@@ -113,17 +113,24 @@ public:
     void runNearest(const FrameDesc& frame, const DrawCallback& draw);
     // Pass 1 and pass 3, both at full resolution (alphaColor() and transmittance() hold the sums
     // over every fragment), for corrected interpolated frames (no pass 2, no tail resolve).
-    void runNearestAndSums(const FrameDesc& frame, const DrawCallback& draw);
+    // The tail-moment methods sum their moments behind `reference` too (ordered_behind.glsl:
+    // behindMoment1(), behindMoment2(); `reference` the corrected frames' reference depth,
+    // CorrectedFrames::reference()).
+    void runNearestAndSums(const FrameDesc& frame, const DrawCallback& draw, GLuint reference = 0);
     // Compiles runNearestAndSums' pass 3 now rather than in the first frame that needs it.
     void prepareNearestAndSums();
     // Pass 3 alone at full resolution, finding the nearest fragment by blending as well: the sums
     // as runNearestAndSums leaves them and packedNearest() (packed_nearest.glsl), for corrected
-    // interpolated frames in one geometry pass. The packed target is the first tail-moment target
-    // where the method has one (a real frame's inference has read it by then), else one of its own;
+    // interpolated frames in one geometry pass (a target of its own, allocated on first need);
     // nearestDepth() then holds a depth below 1 exactly where a fragment was kept (not the nearest).
-    void runPackedNearestAndSums(const FrameDesc& frame, const DrawCallback& draw);
+    // The moments behind `reference` as runNearestAndSums.
+    void runPackedNearestAndSums(const FrameDesc& frame, const DrawCallback& draw, GLuint reference = 0);
     void preparePackedNearestAndSums();
-    GLuint packedNearest() const { return tailMoments_ ? tailMoment1_.id() : packedNearest_.id(); }
+    GLuint packedNearest() const { return packedNearest_.id(); }
+    // The moments an interpolated frame of a tail-moment method summed behind its reference (the
+    // tail-moment targets, which its real frames' inference has read by then); 0 for the others.
+    GLuint behindMoment1() const { return tailMoments_ ? tailMoment1_.id() : 0; }
+    GLuint behindMoment2() const { return tailMoments_ ? tailMoment2_.id() : 0; }
     // Binds the pass outputs to the NeuralInputUnit units and sets the upsample uniforms of
     // `program` (which includes neural_inputs.glsl).
     void bindInputs(const gl::Program& program) const;
@@ -159,6 +166,10 @@ public:
 
 private:
     void runSums(const FrameDesc& frame, const DrawCallback& draw, Size2 pass3Size);  // pass 3
+    // Interpolated frames' moments behind the reference: clears and blends targets firstTarget and
+    // firstTarget + 1 of the bound framebuffer, binds `reference`.
+    void beginBehindMoments(GLuint firstTarget, GLuint reference);
+    const char* behindMomentsDefine() const { return tailMoments_ ? "#define STARNT_BEHIND_MOMENTS\n" : ""; }
     OpaqueScene& opaque_;
     gl::Program pass1_;
     gl::Program pass2_;
@@ -183,7 +194,7 @@ private:
     gl::FramebufferHandle sumsFb_;
     // runPackedNearestAndSums' pass 3 and its targets: the sums and the packed nearest fragment.
     gl::Program pass3Packed_;
-    gl::Texture2D packedNearest_;  // methods without tail moments only, allocated on first need
+    gl::Texture2D packedNearest_;  // allocated on first need
     gl::FramebufferHandle packedFb_;
     gl::FramebufferHandle nearestOnlyFb_, secondOnlyFb_, alphaColorOnlyFb_;  // output slots
 };

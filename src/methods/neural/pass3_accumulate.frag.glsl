@@ -13,12 +13,28 @@
 //   reads nothing else): target 0 as above, target 1 the transmittance; no count, no moments.
 //   and with STARNT_PACKED_NEAREST (corrected frames in one geometry pass, no pass 1):
 //   target 2 (RGBA32F, blend equation GL_MIN):        the nearest fragment (packed_nearest.glsl)
+//   and with STARNT_BEHIND_MOMENTS (corrected frames of the tail-moment methods), over every
+//   fragment, u its depth behind the reference depth (ordered_behind.glsl), in the next two targets
+//   (3 and 4 after the packed layer, else 2 and 3):
+//   (RGBA32F, blend ONE/ONE):                          sum a_i C_i u_i, sum a_i u_i
+//   (RGBA32F, blend ONE/ONE):                          sum a_i C_i u_i^2, sum a_i u_i^2
 layout(location = 0) out vec4 outAlphaColor;
 #ifdef STARNT_SUMS_ONLY
 layout(location = 1) out vec4 outTransmittance;
 #ifdef STARNT_PACKED_NEAREST
 #include "methods/neural/temporal/packed_nearest.glsl"
 layout(location = 2) out vec4 outPackedNearest;
+#define STARNT_BEHIND_MOMENT1_LOCATION 3
+#define STARNT_BEHIND_MOMENT2_LOCATION 4
+#else
+#define STARNT_BEHIND_MOMENT1_LOCATION 2
+#define STARNT_BEHIND_MOMENT2_LOCATION 3
+#endif
+#ifdef STARNT_BEHIND_MOMENTS
+#include "methods/neural/temporal/ordered_behind.glsl"
+layout(location = STARNT_BEHIND_MOMENT1_LOCATION) out vec4 outBehindMoment1;
+layout(location = STARNT_BEHIND_MOMENT2_LOCATION) out vec4 outBehindMoment2;
+layout(binding = 0) uniform highp sampler2D u_reference;  // reference_depth.frag.glsl, one texel a tile
 #endif
 #else
 layout(location = 1) out vec4 outColorCount;
@@ -43,6 +59,12 @@ void main() {
     outTransmittance = vec4(0.0, 0.0, 0.0, s.a);
 #ifdef STARNT_PACKED_NEAREST
     outPackedNearest = packNearest(gl_FragCoord.z, s);
+#endif
+#ifdef STARNT_BEHIND_MOMENTS
+    float behind = depthBehindReference(gl_FragCoord.z,
+                                        texelFetch(u_reference, ivec2(gl_FragCoord.xy) / STARNT_ORDERED_REFERENCE_TILE, 0).r);
+    outBehindMoment1 = vec4(s.rgb * s.a, s.a) * behind;
+    outBehindMoment2 = outBehindMoment1 * behind;
 #endif
 #ifdef STARNT_TAIL_MOMENTS
     float second = texelFetch(u_secondDepth, ivec2(gl_FragCoord.xy), 0).r;

@@ -4,16 +4,50 @@
 
 #include "methods/neural/temporal/reprojection_math.hpp"
 #include "methods/neural/temporal/temporal_passes.hpp"
+#include "methods/neural/temporal/reprojection_constants.h"
 #include "starnt/error.hpp"
 
 namespace starnt::temporal {
 
-CorrectedFrames::CorrectedFrames()
-    : capture_(buildTemporalPass("correction_capture", "reprojection_behind.frag.glsl", "#define STARNT_BEHIND_CORRECTION 1\n")),
-      composite_(buildTemporalPass("correction_composite", "correction_composite.frag.glsl")),
+namespace {
+const char* orderedDefine(bool ordered) { return ordered ? "#define STARNT_ORDERED_BEHIND\n" : ""; }
+}  // namespace
+
+CorrectedFrames::CorrectedFrames(bool ordered)
+    : ordered_(ordered),
+      capture_(buildTemporalPass("correction_capture", "reprojection_behind.frag.glsl", "#define STARNT_BEHIND_CORRECTION 1\n")),
+      composite_(buildTemporalPass("correction_composite", "correction_composite.frag.glsl", orderedDefine(ordered))),
       compositePacked_(buildTemporalPass("correction_composite_packed", "correction_composite.frag.glsl",
-                                         "#define STARNT_PACKED_NEAREST\n")),
-      emptyVao_(gl::makeEmptyVertexArray()) {}
+                                         std::string("#define STARNT_PACKED_NEAREST\n") + orderedDefine(ordered))),
+      emptyVao_(gl::makeEmptyVertexArray()) {
+    if (ordered) {
+        referenceTilesPass_ = buildTemporalPass("corrected_reference_tiles", "reference_depth.frag.glsl");
+        referenceAroundPass_ = buildTemporalPass("corrected_reference", "reference_depth.frag.glsl", "#define STARNT_REFERENCE_AROUND\n");
+    }
+}
+
+void CorrectedFrames::keepReference(GLuint depth, int width, int height) {
+    const int tilesX = (width + STARNT_ORDERED_REFERENCE_TILE - 1) / STARNT_ORDERED_REFERENCE_TILE;
+    const int tilesY = (height + STARNT_ORDERED_REFERENCE_TILE - 1) / STARNT_ORDERED_REFERENCE_TILE;
+    if (reference_.width() != tilesX || reference_.height() != tilesY) {
+        referenceTiles_ = gl::Texture2D(GL_R32F, tilesX, tilesY);
+        reference_ = gl::Texture2D(GL_R32F, tilesX, tilesY);
+    }
+    const struct {
+        const gl::Program& program;
+        GLuint source, target;
+        int sourceWidth, sourceHeight;
+    } steps[] = {{referenceTilesPass_, depth, referenceTiles_.id(), width, height},
+                 {referenceAroundPass_, referenceTiles_.id(), reference_.id(), tilesX, tilesY}};
+    for (const auto& step : steps) {
+        drawIntoTexture(framebuffer_, step.target, tilesX, tilesY);
+        glUseProgram(step.program.id());
+        glUniform2i(step.program.uniform("u_sourceSize"), step.sourceWidth, step.sourceHeight);
+        gl::bindTexture(0, step.source);
+        gl::drawFullscreenTriangle(emptyVao_);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
 
 void CorrectedFrames::capture(GLuint composite, GLuint depth, GLuint nearest, GLuint sumAlphaColor, GLuint transmittance,
                               int width, int height, const glm::mat4& viewProj, const OpaqueScene& background) {
@@ -24,7 +58,10 @@ void CorrectedFrames::capture(GLuint composite, GLuint depth, GLuint nearest, GL
     height_ = height;
     viewProj_ = viewProj;
     hasFrame_ = true;
-    hasCorrection_ = sumAlphaColor != 0 && transmittance != 0;
+    // Ordered frames take their correction against hybrid-moments' composite, which only the
+    // method's own composite computes (the fused capture): this pass keeps none for them.
+    hasCorrection_ = !ordered_ && sumAlphaColor != 0 && transmittance != 0;
+    if (ordered_) keepReference(depth, width, height);
     if (!hasCorrection_) return;
     if (correction_.width() != width || correction_.height() != height || correction_.format() != format) {
         correction_ = gl::Texture2D(format, width, height);
@@ -62,12 +99,14 @@ CorrectedFrames::FusedTargets CorrectedFrames::beginFusedCapture(GLenum composit
 }
 
 void CorrectedFrames::endFusedCapture() {
+    if (ordered_) keepReference(coverDepth_.id(), width_, height_);  // the copy of pass 1's depth
     hasFrame_ = true;
     hasCorrection_ = true;
 }
 
 void CorrectedFrames::composite(const glm::mat4& newViewProj, GLuint nearest, GLuint depth, GLuint sumAlphaColor,
-                                GLuint transmittance, const OpaqueScene& background, GLuint output) {
+                                GLuint transmittance, const OpaqueScene& background, GLuint output, GLuint behindMoment1,
+                                GLuint behindMoment2) {
     if (!hasFrame_) throw Error("internal: a corrected frame before any real frame was captured");
     const bool halfOutput = gl::textureInternalFormat(output) == GL_RGBA16F;  // before any binding (ES)
     if (gl::textureInternalFormat(depth) != GL_DEPTH_COMPONENT32F) {
@@ -79,8 +118,7 @@ void CorrectedFrames::composite(const glm::mat4& newViewProj, GLuint nearest, GL
     glCopyImageSubData(depth, GL_TEXTURE_2D, 0, 0, 0, 0, coverDepth_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width_, height_, 1);
     emptyPixels_.bindCovered(output, coverDepth_.id(), width_, height_);
     setCompositeUniforms(composite_, newViewProj, background, halfOutput);
-    const GLuint inputs[] = {nearest, depth, sumAlphaColor, transmittance, correction_.id()};
-    for (GLuint unit = 0; unit < 5; ++unit) gl::bindTexture(unit, inputs[unit]);
+    bindComposite(nearest, depth, sumAlphaColor, transmittance, behindMoment1, behindMoment2);
     gl::drawFullscreenTriangle(emptyVao_);
     emptyPixels_.fillEmpty(background, halfOutput, emptyVao_);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -88,7 +126,7 @@ void CorrectedFrames::composite(const glm::mat4& newViewProj, GLuint nearest, GL
 
 void CorrectedFrames::compositePacked(const glm::mat4& newViewProj, GLuint packedNearest, GLuint coverDepth,
                                       GLuint sumAlphaColor, GLuint transmittance, const OpaqueScene& background,
-                                      GLuint output) {
+                                      GLuint output, GLuint behindMoment1, GLuint behindMoment2) {
     if (!hasFrame_) throw Error("internal: a corrected frame before any real frame was captured");
     if (gl::textureInternalFormat(packedNearest) != GL_RGBA32F) {
         throw Error("internal: the packed nearest fragment must be an RGBA32F texture");
@@ -96,12 +134,23 @@ void CorrectedFrames::compositePacked(const glm::mat4& newViewProj, GLuint packe
     const bool halfOutput = gl::textureInternalFormat(output) == GL_RGBA16F;  // before any binding (ES)
     emptyPixels_.bindCovered(output, coverDepth, width_, height_);
     setCompositeUniforms(compositePacked_, newViewProj, background, halfOutput);
-    // correction_composite.frag.glsl's units with STARNT_PACKED_NEAREST: 0 packed, 2 and 3 the sums, 4 the correction.
-    const GLuint inputs[] = {packedNearest, 0, sumAlphaColor, transmittance, correction_.id()};
-    for (GLuint unit = 0; unit < 5; ++unit) gl::bindTexture(unit, inputs[unit]);
+    bindComposite(packedNearest, 0, sumAlphaColor, transmittance, behindMoment1, behindMoment2);
     gl::drawFullscreenTriangle(emptyVao_);
     emptyPixels_.fillEmpty(background, halfOutput, emptyVao_);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void CorrectedFrames::bindComposite(GLuint nearestOrPacked, GLuint depth, GLuint sumAlphaColor,
+                                    GLuint transmittance, GLuint behindMoment1, GLuint behindMoment2) {
+    if (ordered_ && (!behindMoment1 || !behindMoment2)) {
+        throw Error("internal: ordered corrected frames need pass 3's moments behind the reference depth");
+    }
+    // correction_composite.frag.glsl's units: 0 pass 1's layer (or the packed layer), 1 its depth
+    // (none with the packed layer), 2 and 3 the sums, 4 the correction; ordered: 5 and 6 the
+    // moments, 7 the reference depth.
+    const GLuint inputs[] = {nearestOrPacked, depth, sumAlphaColor, transmittance, correction_.id(),
+                             behindMoment1, behindMoment2, ordered_ ? reference_.id() : 0u};
+    for (GLuint unit = 0; unit < 8; ++unit) gl::bindTexture(unit, inputs[unit]);
 }
 
 void CorrectedFrames::setCompositeUniforms(const gl::Program& program, const glm::mat4& newViewProj,

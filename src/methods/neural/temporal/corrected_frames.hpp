@@ -15,7 +15,11 @@ namespace starnt::temporal {
 
 class CorrectedFrames {
 public:
-    CorrectedFrames();  // builds the programs; needs a current GL context
+    // Builds the programs; needs a current GL context. `ordered`: the tail-moment methods, whose
+    // interpolated frames weigh what lies behind the nearest layer by depth (ordered_behind.glsl):
+    // every kept frame then keeps a reference depth too (reference()), and the composites read the
+    // moments pass 3 summed behind it.
+    explicit CorrectedFrames(bool ordered = false);
 
     // After a real frame: `composite` its output (RGBA16F or RGBA32F; the kept texture takes the same
     // format), `depth` its pass-1 depth (DEPTH_COMPONENT32F), `nearest` its pass-1 colour + alpha,
@@ -48,23 +52,38 @@ public:
     // covered are shaded (empty_pixels.hpp), the background goes elsewhere; as the composite samples
     // pass 1's depth, the early test runs against a copy of it (a texture both sampled and attached
     // would be a rendering feedback loop, GL 4.5 section 9.3.1).
+    // `behindMoment1`, `behindMoment2`: ordered only, pass 3's moments behind reference().
     void composite(const glm::mat4& newViewProj, GLuint nearest, GLuint depth, GLuint sumAlphaColor, GLuint transmittance,
-                   const OpaqueScene& background, GLuint output);
+                   const OpaqueScene& background, GLuint output, GLuint behindMoment1 = 0, GLuint behindMoment2 = 0);
     // The same from pass 3 alone: `packedNearest` holds the nearest fragment it found by blending
     // (packed_nearest.glsl), `coverDepth` (DEPTH_COMPONENT32F) a depth below 1 where pass 3 kept a
     // fragment, which the early empty-pixel test runs against (the composite does not sample it).
     void compositePacked(const glm::mat4& newViewProj, GLuint packedNearest, GLuint coverDepth, GLuint sumAlphaColor,
-                         GLuint transmittance, const OpaqueScene& background, GLuint output);
+                         GLuint transmittance, const OpaqueScene& background, GLuint output, GLuint behindMoment1 = 0,
+                         GLuint behindMoment2 = 0);
+    // Ordered only: the kept frame's reference depth (R32F, one texel per
+    // STARNT_ORDERED_REFERENCE_TILE pixels squared; reference_depth.frag.glsl), which an
+    // interpolated frame's pass 3 reads; 0 before the first kept frame or when not ordered.
+    GLuint reference() const { return hasFrame_ ? reference_.id() : 0; }
+    bool ordered() const { return ordered_; }
 
     void reset() { hasFrame_ = false; }
-    size_t gpuMemoryBytes() const { return correction_.bytes() + coverDepth_.bytes(); }
+    size_t gpuMemoryBytes() const { return correction_.bytes() + coverDepth_.bytes() + referenceTiles_.bytes() + reference_.bytes(); }
     void addMemoryTargets(OitMethod::MemoryTargets& out) const {
         out.emplace_back("history_correction", correction_.bytes());
         out.emplace_back("corrected_cover_depth", coverDepth_.bytes());
+        if (ordered_) out.emplace_back("corrected_reference_depth", referenceTiles_.bytes() + reference_.bytes());
     }
 
 private:
+    // Ordered only: the reference depth from a real frame's pass-1 `depth`.
+    void keepReference(GLuint depth, int width, int height);
+    void bindComposite(GLuint nearestOrPacked, GLuint depth, GLuint sumAlphaColor,
+                       GLuint transmittance, GLuint behindMoment1, GLuint behindMoment2);
+    bool ordered_ = false;
     gl::Program capture_, composite_, compositePacked_;
+    gl::Program referenceTilesPass_, referenceAroundPass_;  // ordered only
+    gl::Texture2D referenceTiles_, reference_;
     void setCompositeUniforms(const gl::Program& program, const glm::mat4& newViewProj, const OpaqueScene& background,
                               bool halfOutput) const;
     gl::VertexArrayHandle emptyVao_;

@@ -6,6 +6,8 @@
 // (inverse view depth within STARNT_TEMPORAL_SAME_SURFACE). Where none is (the surface was hidden
 // or off screen), the closed form alone. With STARNT_PACKED_NEAREST (one geometry pass, no pass 1):
 // the nearest fragment and its depth come from pass 3's MIN-blended target (packed_nearest.glsl).
+// With STARNT_ORDERED_BEHIND (the tail-moment methods) the closed form weighs what lies behind the
+// nearest layer by depth (ordered_behind.glsl), from pass 3's moments.
 #include "methods/neural/temporal/reprojection_constants.h"
 #include "methods/neural/temporal/closed_form_behind.glsl"
 #include "methods/neural/half_targets.glsl"
@@ -20,6 +22,13 @@ layout(binding = 1) uniform highp sampler2D u_depth;          // fresh pass-1 wi
 layout(binding = 2) uniform highp sampler2D u_sumAlphaColor;  // fresh pass 3: sum a C, sum a
 layout(binding = 3) uniform highp sampler2D u_transmittance;  // fresh pass 3: prod (1 - a)
 layout(binding = 4) uniform highp sampler2D u_correction;     // reprojection_behind.frag.glsl, STARNT_BEHIND_CORRECTION
+#ifdef STARNT_ORDERED_BEHIND
+// The tail-moment methods: what lies behind the nearest layer weighted by depth (ordered_behind.glsl).
+#include "methods/neural/temporal/ordered_behind.glsl"
+layout(binding = 5) uniform highp sampler2D u_behindMoment1;  // fresh pass 3: sum a C u, sum a u
+layout(binding = 6) uniform highp sampler2D u_behindMoment2;  // fresh pass 3: sum a C u^2, sum a u^2
+layout(binding = 7) uniform highp sampler2D u_reference;      // reference_depth.frag.glsl, one texel a tile
+#endif
 uniform ivec2 u_size;
 uniform mat4 u_newToOld;        // oldViewProj * inverse(newViewProj)
 uniform vec4 u_sourceScale;     // row 3 of inverse(oldViewProj)
@@ -45,8 +54,13 @@ void main() {
         transmittance = texelFetch(u_transmittance, p, 0).r;
         vec3 behind = background();
         if (open > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE)) {
-            behind = closedFormBehind(fresh, texelFetch(u_sumAlphaColor, p, 0), texelFetch(u_transmittance, p, 0).r,
-                                      background());
+#ifdef STARNT_ORDERED_BEHIND
+            behind = orderedClosedFormBehind(fresh, depth, texelFetch(u_sumAlphaColor, p, 0), transmittance,
+                                             texelFetch(u_behindMoment1, p, 0), texelFetch(u_behindMoment2, p, 0),
+                                             texelFetch(u_reference, p / STARNT_ORDERED_REFERENCE_TILE, 0).r, background());
+#else
+            behind = closedFormBehind(fresh, texelFetch(u_sumAlphaColor, p, 0), transmittance, background());
+#endif
             vec2 c = (vec2(p) + 0.5) / vec2(u_size) * 2.0 - 1.0;
             vec4 old = u_newToOld * vec4(c, depth * 2.0 - 1.0, 1.0);
             if (u_useCorrection && old.w > 0.0) {

@@ -1,5 +1,7 @@
 // The nearest fragment found by MIN blending (packed_nearest.h states the layout; CPU reference
 // temporal::packNearest / unpackNearest, the same float and integer operations).
+#ifndef STARNT_PACKED_NEAREST_GLSL
+#define STARNT_PACKED_NEAREST_GLSL
 #include "methods/neural/temporal/packed_nearest.h"
 
 const uint kPackedMaxKey = (1u << STARNT_PACKED_KEY_BITS) - 1u;  // the empty pixel's
@@ -26,6 +28,13 @@ float packedBits(uint key, uint payload) {
     return uintBitsToFloat(0x40000000u | (key << STARNT_PACKED_PAYLOAD_BITS) | payload);
 }
 
+// The window depth z stands for in the packed layer: the middle of its key's depth interval (what
+// unpackNearest returns for the fragment).
+float keyedDepth(float z) {
+    return 1.0 - uintBitsToFloat(kPackedOne - (packedDepthKey(z) << STARNT_PACKED_KEY_SHIFT) -
+                                 (1u << (STARNT_PACKED_KEY_SHIFT - 1)));
+}
+
 // What a fragment at window depth z with colour and alpha `c` blends in.
 vec4 packNearest(float z, vec4 c) {
     uint key = packedDepthKey(z);
@@ -49,3 +58,4 @@ vec4 unpackNearest(vec4 encoded, out float z) {
     return vec4(unpackedColour(payload.r), unpackedColour(payload.g), unpackedColour(payload.b),
                 float(payload.a) / float(STARNT_PACKED_STEPS));
 }
+#endif

@@ -25,8 +25,8 @@ void main() {
     ivec2 t = ivec2(gl_FragCoord.xy);
     vec4 n = texelFetch(u_keptNearest, t, 0);
 #ifdef STARNT_BEHIND_CORRECTION
-    o_behind = keptCorrection(t, u_size, u_sourceScale, texelFetch(u_color, t, 0).rgb, n, texelFetch(u_sumAlphaColor, t, 0),
-                              texelFetch(u_transmittance, t, 0).r, texelFetch(u_depth, t, 0).r, background());
+    vec3 closedForm = closedFormBehind(n, texelFetch(u_sumAlphaColor, t, 0), texelFetch(u_transmittance, t, 0).r, background());
+    o_behind = keptCorrection(t, u_size, u_sourceScale, texelFetch(u_color, t, 0).rgb, n, closedForm, texelFetch(u_depth, t, 0).r);
 #else
     float open = 1.0 - n.a;
     if (!(open > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE))) {

@@ -24,4 +24,9 @@
 // layer there is nothing there to average; the background stands in for the mean colour.
 #define STARNT_TEMPORAL_MIN_BEHIND_ALPHA 1e-4
 
+// Corrected frames of the tail-moment methods (ordered_behind.glsl): the reference depth is the
+// nearest depth the last real frame's pass 1 kept over this many pixels squared and the tiles
+// around (so over at least this many pixels in every direction).
+#define STARNT_ORDERED_REFERENCE_TILE 16
+
 #endif

@@ -4,14 +4,14 @@
 
 namespace starnt {
 
-TemporalFrames::TemporalFrames(const MethodOptions& options)
+TemporalFrames::TemporalFrames(const MethodOptions& options, bool orderedBehind)
     : schedule_(options),
       clock_(gl::wallClockTimingNeeded()),
       mode_(options.neural.temporalMode),
       skipEmptyPixels_(options.neural.skipEmptyPixels),
       onePass_(options.neural.correctedOnePass) {
     if (!interpolates()) return;
-    if (corrects()) corrected_ = std::make_unique<temporal::CorrectedFrames>();
+    if (corrects()) corrected_ = std::make_unique<temporal::CorrectedFrames>(orderedBehind);
     else reprojector_ = std::make_unique<temporal::Reprojector>();
 }
 
@@ -67,10 +67,11 @@ void TemporalFrames::interpolate(const glm::mat4& viewProj, const TemporalPassTa
             // Corrected: the closed form behind the fresh nearest layer plus the kept correction.
             if (passes.packedNearest) {
                 corrected_->compositePacked(viewProj, passes.packedNearest, passes.nearestDepth, passes.sumAlphaColor,
-                                            passes.transmittance, background, outputTexture);
+                                            passes.transmittance, background, outputTexture, passes.behindMoment1,
+                                            passes.behindMoment2);
             } else {
                 corrected_->composite(viewProj, passes.nearest, passes.nearestDepth, passes.sumAlphaColor, passes.transmittance,
-                                      background, outputTexture);
+                                      background, outputTexture, passes.behindMoment1, passes.behindMoment2);
             }
         } else if (refreshes()) {
             // Refresh: the fresh nearest layer over what lay behind it, reprojected.

@@ -34,13 +34,18 @@ struct TemporalPassTargets {
     // Corrected frames in one pass: pass 3's nearest fragment (packed_nearest.glsl); nearestDepth
     // then holds pass 3's cover depth (below 1 where a fragment was kept).
     GLuint packedNearest = 0;
+    // Corrected frames of the tail-moment methods: pass 3's moments behind the reference depth
+    // (ordered_behind.glsl).
+    GLuint behindMoment1 = 0, behindMoment2 = 0;
 };
 
 class TemporalFrames {
 public:
     // Throws starnt::Error for an interval outside 1..4 or a bad target rate. Needs a current GL
     // context (builds the reprojection programs; picks the timing source from the renderer).
-    explicit TemporalFrames(const MethodOptions& options);
+    // `orderedBehind`: the method has tail moments, and its corrected frames weigh what lies behind
+    // the nearest layer by depth (CorrectedFrames' `ordered`).
+    explicit TemporalFrames(const MethodOptions& options, bool orderedBehind = false);
 
     // Starts a frame of the given size; true = render it for real. Always true for the first frame,
     // after reset(), and when the size differs from the kept real frame's.
@@ -70,6 +75,9 @@ public:
                                                              const glm::mat4& viewProj);
     void endRealFrameFused();
     NeuralOptions::TemporalMode mode() const { return mode_; }
+    // Ordered corrected frames: the depth an interpolated frame's pass 3 takes its moments behind
+    // (CorrectedFrames::reference()); 0 otherwise.
+    GLuint behindReference() const { return corrected_ ? corrected_->reference() : 0; }
     // Interpolated frames render pass 1 fresh (refresh, correct) and pass 3 too (correct).
     bool refreshes() const { return mode_ == NeuralOptions::TemporalMode::Refresh; }
     bool corrects() const { return mode_ == NeuralOptions::TemporalMode::Correct; }

@@ -1,0 +1,38 @@
+// Corrected frames of the tail-moment methods (hybrid-moments, starnt-d; docs/DESIGN.md, "Corrected
+// frames: depth order behind the nearest layer"; CPU reference temporal::orderedClosedFormBehind,
+// the same float operations): what lies behind the nearest layer weighted by where its opacity lies
+// in depth, as hybrid-moments weighs its tail, instead of the order-free mean of closed_form_behind.glsl.
+// Pass 3 sums, over every fragment, depth moments in u = ln(1 + max(z - r, 0) / (s (1 - r))), the
+// tail moments' logarithmic depth (tail_moments_constants.h) taken behind a reference depth r that
+// the last real frame gives (CorrectedFrames: the nearest depth over the pixels around, so at or
+// before the fresh nearest layer where the view moved less than that neighbourhood); the composite
+// takes the nearest fragment's terms out. z is the middle of its packed key's interval
+// (packed_nearest.glsl: keyedDepth) in both, so that the nearest fragment's terms cancel exactly
+// whether it comes from the packed layer or from pass 1.
+#ifndef STARNT_ORDERED_BEHIND_GLSL
+#define STARNT_ORDERED_BEHIND_GLSL
+#include "methods/neural/temporal/reprojection_constants.h"
+#include "methods/neural/temporal/packed_nearest.glsl"
+#include "methods/hybrid_moments/moment_weighted_color.glsl"
+
+// u of a fragment at window depth z behind the reference r (0 where no reference: r = 1).
+float depthBehindReference(float z, float reference) {
+    if (!(reference < 1.0)) return 0.0;
+    return log(1.0 + max(keyedDepth(z) - reference, 0.0) /
+                         (float(STARNT_TAIL_MOMENT_DEPTH_SCALE) * (1.0 - reference)));
+}
+
+// `nearest` = C1, a1 (a1 < 1 - STARNT_TEMPORAL_MIN_TRANSMITTANCE) at window depth `depth`, `sums` =
+// (sum a C, sum a), `t` = prod (1 - a), `m1`, `m2` = (sum a C u, sum a u), (sum a C u^2, sum a u^2),
+// all over every fragment.
+vec3 orderedClosedFormBehind(vec4 nearest, float depth, vec4 sums, float t, vec4 m1, vec4 m2, float reference,
+                             vec3 background) {
+    float behindT = clamp(t / (1.0 - nearest.a), 0.0, 1.0);
+    float behindAlpha = sums.a - nearest.a;
+    if (!(behindAlpha > float(STARNT_TEMPORAL_MIN_BEHIND_ALPHA))) return background;
+    float u = depthBehindReference(depth, reference);
+    vec4 front = vec4(nearest.rgb * nearest.a, nearest.a);
+    vec3 color = momentWeightedColor(sums.rgb - front.rgb, behindAlpha, m1 - front * u, m2 - front * (u * u), behindT);
+    return (1.0 - behindT) * color + behindT * background;
+}
+#endif
