@@ -83,11 +83,14 @@ std::vector<float> referenceDepthOnCpu(const std::vector<float>& depth, int widt
     constexpr int tile = STARNT_ORDERED_REFERENCE_TILE;
     const int tilesX = (width + tile - 1) / tile, tilesY = (height + tile - 1) / tile;
     std::vector<float> tiles(size_t(tilesX) * size_t(tilesY), 1.0f), out(tiles.size(), 1.0f);
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            float& t = tiles[size_t(y / tile) * size_t(tilesX) + size_t(x / tile)];
-            t = std::min(t, depth[size_t(y) * size_t(width) + size_t(x)]);
-        }
+    for (int ty = 0; ty < tilesY; ++ty)
+        for (int tx = 0; tx < tilesX; ++tx)
+            for (int y = 0; y < tile; y += STARNT_ORDERED_REFERENCE_STRIDE)
+                for (int x = 0; x < tile; x += STARNT_ORDERED_REFERENCE_STRIDE) {
+                    const int sx = std::min(tx * tile + x, width - 1), sy = std::min(ty * tile + y, height - 1);
+                    float& t = tiles[size_t(ty) * size_t(tilesX) + size_t(tx)];
+                    t = std::min(t, depth[size_t(sy) * size_t(width) + size_t(sx)]);
+                }
     for (int y = 0; y < tilesY; ++y)
         for (int x = 0; x < tilesX; ++x)
             for (int dy = -1; dy <= 1; ++dy)
@@ -116,21 +119,31 @@ OrderedBehind behindMomentsOf(const std::vector<Fragment>& fragments, float refe
     return {glm::vec4(first), glm::vec4(second), reference};
 }
 
-glm::vec3 orderedClosedFormBehind(const glm::vec4& nearest, float depth, const glm::vec4& sums, float transmittance,
-                                  const OrderedBehind& ordered, const glm::vec3& background) {
+glm::vec3 orderedClosedFormBehindFromMoments(const glm::vec4& nearest, const glm::vec4& sums, float transmittance,
+                                             const glm::vec4& moment1, const glm::vec4& moment2, const glm::vec3& background) {
     const float behindT = glm::clamp(transmittance / (1.0f - nearest.a), 0.0f, 1.0f);
     const float behindAlpha = sums.a - nearest.a;
     if (!(behindAlpha > float(STARNT_TEMPORAL_MIN_BEHIND_ALPHA))) return background;
-    const float u = depthBehindReference(depth, ordered.reference);
-    const glm::vec4 front(glm::vec3(nearest) * nearest.a, nearest.a);
-    const glm::vec4 first = ordered.moment1 - front * u, second = ordered.moment2 - front * (u * u);
     nn::TailMoments m;
-    m.alphaColorU = glm::vec3(first);
-    m.alphaU = first.a;
-    m.alphaColorU2 = glm::vec3(second);
-    m.alphaU2 = second.a;
-    const glm::vec3 color = nn::momentWeightedColor(glm::vec3(sums) - glm::vec3(front), behindAlpha, m, behindT);
+    m.alphaColorU = glm::vec3(moment1);
+    m.alphaU = moment1.a;
+    m.alphaColorU2 = glm::vec3(moment2);
+    m.alphaU2 = moment2.a;
+    const glm::vec3 alphaColor = glm::vec3(sums) - glm::vec3(nearest) * nearest.a;
+    const float mean = moment1.a / behindAlpha;
+    const bool spread =
+        moment2.a / behindAlpha - mean * mean > float(STARNT_ORDERED_ALPHA_ROUNDING) / behindAlpha * mean * mean;
+    const glm::vec3 color = spread ? nn::momentWeightedColor(alphaColor, behindAlpha, m, behindT)
+                                   : glm::max(alphaColor / behindAlpha, glm::vec3(0.0f));
     return (1.0f - behindT) * color + behindT * background;
+}
+
+glm::vec3 orderedClosedFormBehind(const glm::vec4& nearest, float depth, const glm::vec4& sums, float transmittance,
+                                  const OrderedBehind& ordered, const glm::vec3& background) {
+    const float u = depthBehindReference(depth, ordered.reference);
+    const glm::vec4 first = ordered.moment1 - u * sums;
+    return orderedClosedFormBehindFromMoments(nearest, sums, transmittance, first, ordered.moment2 - u * (ordered.moment1 + first),
+                                              background);
 }
 
 glm::vec3 closedFormBehind(const glm::vec4& nearest, const glm::vec4& sums, float transmittance, const glm::vec3& background) {

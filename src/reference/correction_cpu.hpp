@@ -57,8 +57,8 @@ glm::vec4 blendNearest(const glm::vec4& a, const glm::vec4& b);
 // keyedDepth, the middle of z's packed key interval; depthBehindReference, u = ln(1 + max(z' - r, 0)
 // / (s (1 - r))) with z' = keyedDepth(z) (0 when r = 1); referenceDepthOnCpu, the reference depth of
 // a real frame's pass-1 `depth` (one value per STARNT_ORDERED_REFERENCE_TILE pixels squared: the
-// nearest over the tile and its eight neighbours; reference_depth.frag.glsl), referenceAt its value
-// at pixel (x, y).
+// nearest over the tile's every STARNT_ORDERED_REFERENCE_STRIDE-th pixel and its eight neighbour
+// tiles'; reference_depth.frag.glsl), referenceAt its value at pixel (x, y).
 float keyedDepth(float z);
 float depthBehindReference(float z, float reference);
 std::vector<float> referenceDepthOnCpu(const std::vector<float>& depth, int width, int height);
@@ -71,11 +71,17 @@ struct OrderedBehind {
 };
 OrderedBehind behindMomentsOf(const std::vector<Fragment>& fragments, float reference);
 // What lies behind the nearest layer (C1, a1 at window depth `depth`) weighted by depth: the
-// nearest fragment's terms taken out of the moments, then nn::momentWeightedColor over the rest
-// (their alpha sum sum a - a1, transmittance T / (1 - a1)), under 1 - T / (1 - a1), the background
-// the rest; the background where sum a - a1 <= STARNT_TEMPORAL_MIN_BEHIND_ALPHA.
+// moments recentred at the nearest fragment's u1 (its own terms then vanish), then
+// nn::momentWeightedColor over the rest (their alpha sum sum a - a1, transmittance T / (1 - a1);
+// the plain mean where their spread is within what a1's rounding in sum a - a1 makes,
+// STARNT_ORDERED_ALPHA_ROUNDING), under 1 - T / (1 - a1), the background the rest; the background
+// where sum a - a1 <= STARNT_TEMPORAL_MIN_BEHIND_ALPHA.
 glm::vec3 orderedClosedFormBehind(const glm::vec4& nearest, float depth, const glm::vec4& sums, float transmittance,
                                   const OrderedBehind& ordered, const glm::vec3& background);
+// The same from moments over the fragments behind the nearest one only, in v = u - u1 (what a real
+// frame at a still camera sums: pass 1 tells which), nothing to recentre.
+glm::vec3 orderedClosedFormBehindFromMoments(const glm::vec4& nearest, const glm::vec4& sums, float transmittance,
+                                             const glm::vec4& moment1, const glm::vec4& moment2, const glm::vec3& background);
 
 // One interpolated pixel (x, y): `nearest`, `depth`, `sums`, `transmittance` of the fresh passes at
 // that pixel; `correction` the kept texels of a frame rendered with `oldViewProj` (empty: the frame

@@ -12,6 +12,16 @@ layout(location = 0) out vec4 outColor;
 layout(location = 1) out vec4 outCorrection;
 layout(binding = STARNT_UNIT_NEAREST_DEPTH) uniform highp sampler2D u_captureDepth;
 uniform vec4 u_sourceScale;
+#ifdef STARNT_CAPTURE_ORDERED
+// The tail-moment methods: pass 3 summed the moments behind pass 1's fragment and the reference
+// depth the interpolated frames will use, so the correction is taken against the ordered closed
+// form they compute (ordered_behind.glsl) and a still camera gives the real frame back. Every
+// texture unit below the engine's is taken: image units 0 and 1, which only the tiles and the
+// A-buffer use, neither in these methods.
+#include "methods/neural/temporal/ordered_behind.glsl"
+layout(binding = 0, rgba32f) uniform readonly highp image2D u_behindMoment1;
+layout(binding = 1, rgba32f) uniform readonly highp image2D u_behindMoment2;
+#endif
 #endif
 
 void main() {
@@ -23,9 +33,12 @@ void main() {
 #ifdef STARNT_CAPTURE_CORRECTION
     ivec2 t = ivec2(gl_FragCoord.xy);
     // The layer and sums this pixel read already (full-resolution inputs: the texels themselves).
-#ifdef STARNT_ORDERED_CLOSED_FORM
-    // The tail-moment methods: against hybrid-moments' composite (their interpolated frames weigh
-    // what lies behind the nearest layer by depth too: ordered_behind.glsl).
+#if defined(STARNT_CAPTURE_ORDERED)
+    vec3 closedForm = orderedClosedFormBehindFromMoments(vec4(s.c1, s.a1), vec4(s.sumAlphaColor, s.sumAlpha), s.transmittance,
+                                                         imageLoad(u_behindMoment1, t), imageLoad(u_behindMoment2, t), background());
+#elif defined(STARNT_ORDERED_CLOSED_FORM)
+    // The tail-moment methods where pass 3 could not sum those moments (fewer than 7 draw buffers):
+    // against hybrid-moments' composite, the nearest to the ordered closed form they have.
     vec3 closedForm = orderedClosedFormBehindNearest(s, background());
 #else
     vec3 closedForm = closedFormBehind(vec4(s.c1, s.a1), vec4(s.sumAlphaColor, s.sumAlpha), s.transmittance, background());

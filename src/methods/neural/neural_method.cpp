@@ -48,6 +48,10 @@ public:
             if (options_.neural.correctedOnePass) passes_.preparePackedNearestAndSums();
             else passes_.prepareNearestAndSums();
             if (options_.neural.fusedCorrectionCapture && !corners_) inference("infer_full_capture", true);
+            if (config_.tailMoments && fusedCaptureApplies()) {
+                passes_.prepareRealBehindMoments();
+                inference("infer_full_capture_ordered", true);
+            }
         }
         // Compile up front what the frames will need, so no frame pays for a shader compile: the
         // full-resolution variant for the first frame (no tile history) and fixed 100 % scales,
@@ -206,9 +210,20 @@ private:
     void renderReal(const FrameDesc& frame, const DrawCallback& draw) {
         chooseScales();
         const Size2 full{frame.width, frame.height};
+        // The tail-moment methods' corrected frames: pass 3 also sums the moments the interpolated
+        // frames will, behind a reference depth made from this frame's pass 1, and the fused capture
+        // takes the correction against the closed form they make (docs/DESIGN.md, "Corrected frames:
+        // depth order behind the nearest layer").
+        std::function<GLuint()> behindReference;
+        if (config_.tailMoments && fusedCaptureApplies()) {
+            behindReference = [&] {
+                gl::ScopedPass timing(frame.timing, "reference_depth");
+                return temporal_.prepareReference(passes_.nearestDepth().id(), frame.width, frame.height);
+            };
+        }
         passes_.run(frame, draw, NeuralPasses::kDefaultPeelEpsilon,
                     {tiles::scaledSize(full.width, scale2_), tiles::scaledSize(full.height, scale2_)},
-                    {tiles::scaledSize(full.width, scale3_), tiles::scaledSize(full.height, scale3_)});
+                    {tiles::scaledSize(full.width, scale3_), tiles::scaledSize(full.height, scale3_)}, behindReference);
         // With the guard, the tiles only look at probe frames: on a reduced frame the image behind
         // the nearest layer is an interpolation, smoother than the scene, so measuring it would
         // lower the levels and the scales further with every frame.
@@ -295,14 +310,19 @@ private:
     }
 
     gl::Program buildInference(std::string stage, bool fullResolutionInputs) const {
-        const bool capture = stage == "infer_full_capture";  // infer_full with the fused capture
+        // infer_full with the fused capture (corrected frames), against the ordered closed form
+        // (the tail-moment methods).
+        const bool ordered = stage == "infer_full_capture_ordered";
+        const bool capture = ordered || stage == "infer_full_capture";
         if (capture) stage = "infer_full";
         const std::string defines = std::string(fullResolutionInputs ? "#define STARNT_INPUTS_FULL_RESOLUTION\n" : "") +
                                     (capture ? "#define STARNT_CAPTURE_CORRECTION\n" : "") +
+                                    (ordered ? "#define STARNT_CAPTURE_ORDERED\n" : "") +
                                     (joint() ? "#define STARNT_UPSAMPLE_JOINT\n" : "") + passes_.countLayoutDefine() + passes_.targetsDefine() +
                                     passes_.layerDefine() +
                                     neuralEpsilonDefines() + nn::generateInferenceGlsl(network_);
-        return buildFullscreenProgram(config_.name + "_" + stage + (capture ? "_capture" : "") + (fullResolutionInputs ? "" : "_upsampled"),
+        return buildFullscreenProgram(config_.name + "_" + stage + (capture ? "_capture" : "") + (ordered ? "_ordered" : "") +
+                                          (fullResolutionInputs ? "" : "_upsampled"),
                                       {config_.compositeShader, "methods/neural/" + stage + ".frag.glsl"}, defines);
     }
 
@@ -346,6 +366,12 @@ private:
 
     bool joint() const { return options_.neural.upsample == NeuralOptions::Upsample::Joint; }
 
+    // The real frame's composite captures the corrected frames' correction itself (beside corner
+    // inference and reduced passes, which the caller checks per frame).
+    bool fusedCaptureApplies() const {
+        return temporal_.interpolates() && temporal_.corrects() && skipEmpty() && options_.neural.fusedCorrectionCapture;
+    }
+
     void setCommonUniforms(const gl::Program& program, const FrameDesc& frame) const {
         glUseProgram(program.id());
         passes_.bindInputs(program);
@@ -367,14 +393,19 @@ private:
         const Size2 full{width_, height_};
         const bool fullResolution = passes_.pass2Size() == full && passes_.pass3Size() == full;
         // Corrected frames keep this frame's correction: written by the composite itself where it can.
-        fusedCaptured_ = !cornersUsed_ && temporal_.interpolates() && temporal_.corrects() && skipEmpty() && fullResolution &&
-                         options_.neural.fusedCorrectionCapture;
+        fusedCaptured_ = !cornersUsed_ && fusedCaptureApplies() && fullResolution;
         if (fusedCaptured_) {
             const auto targets = temporal_.beginFusedCapture(gl::textureInternalFormat(out_.texture), passes_.nearestDepth().id(),
                                                             width_, height_, frame.projection * frame.view);
             emptyPixels_.bindCovered(out_.texture, targets.coverDepth, width_, height_, targets.correction);
-            const gl::Program& program = inference("infer_full_capture", true);
+            const bool ordered = passes_.behindMomentsSummed();
+            const gl::Program& program = inference(ordered ? "infer_full_capture_ordered" : "infer_full_capture", true);
             setCommonUniforms(program, frame);
+            if (ordered) {
+                // infer_full.frag.glsl's u_behindMoment1, u_behindMoment2
+                glBindImageTexture(0, passes_.realBehindMoment1(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+                glBindImageTexture(1, passes_.realBehindMoment2(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+            }
             glUniform4fv(program.uniform("u_sourceScale"), 1, &targets.sourceScale[0]);
             drawFullscreen();
             finishOutput(frame);

@@ -184,6 +184,7 @@ void NeuralPasses::resize(int width, int height) {
     sumsFb_ = tailMoments_ ? gl::makeFramebuffer({&alphaColor_, &transmittance_, &tailMoment1_, &tailMoment2_})
                            : gl::makeFramebuffer({&alphaColor_, &transmittance_});
     packedFb_.reset();  // runPackedNearestAndSums makes it again around the new targets
+    pass3BehindFb_.reset();
     nearestOnlyFb_ = gl::makeFramebuffer({&nearest_});
     secondOnlyFb_ = gl::makeFramebuffer({&second_});
     alphaColorOnlyFb_ = gl::makeFramebuffer({&alphaColor_});
@@ -200,13 +201,14 @@ void NeuralPasses::addMemoryTargets(OitMethod::MemoryTargets& out) const {
                            {"layer_alphas", layerAlpha_.bytes()},
                            {"pass3_tail_moments", tailMoment1_.bytes() + tailMoment2_.bytes()},
                            {"corrected_packed_nearest", packedNearest_.bytes()},
+                           {"corrected_behind_moments", realBehind2_.bytes()},
                            {"pass3_resolve_copies_es", esResolveCopies_.bytes()}});
 }
 
 size_t NeuralPasses::gpuMemoryBytes() const {
     return nearest_.bytes() + nearestDepth_.bytes() + second_.bytes() + secondDepth_.bytes() +
            alphaColor_.bytes() + colorCount_.bytes() + transmittance_.bytes() + layerAlpha_.bytes() +
-           tailMoment1_.bytes() + tailMoment2_.bytes() + packedNearest_.bytes() + esResolveCopies_.bytes();
+           tailMoment1_.bytes() + tailMoment2_.bytes() + packedNearest_.bytes() + realBehind2_.bytes() + esResolveCopies_.bytes();
 }
 
 void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) {
@@ -232,7 +234,7 @@ void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) 
 }
 
 void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float peelEpsilon, Size2 pass2Size,
-                       Size2 pass3Size) {
+                       Size2 pass3Size, const std::function<GLuint()>& behindReference) {
     runNearest(frame, draw);
     const Size2 full{width_, height_};
     pass2Size_ = pass2Size;
@@ -258,7 +260,7 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
         MethodBase::runGeometryPass("pass2", pass2_, frame, draw);
         resetPassState();
     }
-    runSums(frame, draw, pass3Size);
+    runSums(frame, draw, pass3Size, behindReference && tailMoments_ && pass3Size == full ? behindReference() : 0);
     if (reduced2 || !(pass3Size == full)) {
         gl::ScopedPass timing(frame.timing, "tail_resolve");
         resolveTails({&tailResolve_, nearest_.id(), second_.id(), alphaColor_.id(), colorCount_.id(), transmittance_.id(),
@@ -268,16 +270,51 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
     glViewport(0, 0, width_, height_);
 }
 
-void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Size2 pass3Size) {
+void NeuralPasses::prepareRealBehindMoments() {
+    if (!pass3Behind_.id()) {
+        pass3Behind_ = buildSurfaceProgram(surface_, "neural_pass3_behind", "methods/neural/pass3_accumulate.frag.glsl",
+                                           std::string(colorSums_ ? "" : "#define STARNT_COUNT_ONLY\n") +
+                                               tailMomentsDefine(tailMoments_) + behindMomentsDefine());
+    }
+}
+
+void NeuralPasses::allocatePackedNearest() {
+    if (packedNearest_.width() != width_ || packedNearest_.height() != height_) {
+        packedNearest_ = gl::Texture2D(GL_RGBA32F, width_, height_);
+        packedFb_.reset();
+        pass3BehindFb_.reset();
+    }
+}
+
+void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Size2 pass3Size, GLuint behindReference) {
     const Size2 full{width_, height_};
     const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1};
     gl::ScopedPass timing(frame.timing, "pass3");
     useReducedRectangle(pass3Size, full);
-    glBindFramebuffer(GL_FRAMEBUFFER, pass3Fb_.id());
+    GLint drawBuffers = 0;
+    if (behindReference) glGetIntegerv(GL_MAX_DRAW_BUFFERS, &drawBuffers);
+    behindSummed_ = behindReference != 0 && drawBuffers >= 7;
+    GLuint framebuffer = pass3Fb_.id();
+    const gl::Program* program = &pass3_;
+    if (behindSummed_) {
+        prepareRealBehindMoments();
+        allocatePackedNearest();
+        if (realBehind2_.width() != width_ || realBehind2_.height() != height_) {
+            realBehind2_ = gl::Texture2D(GL_RGBA32F, width_, height_);
+            pass3BehindFb_.reset();
+        }
+        if (!pass3BehindFb_.id()) {
+            pass3BehindFb_ = gl::makeFramebuffer(
+                {&alphaColor_, &colorCount_, &transmittance_, &tailMoment1_, &tailMoment2_, &packedNearest_, &realBehind2_});
+        }
+        framebuffer = pass3BehindFb_.id();
+        program = &pass3Behind_;
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     glClearBufferfv(GL_COLOR, 0, zero);
     glClearBufferfv(GL_COLOR, 1, zero);
     glClearBufferfv(GL_COLOR, 2, one);
-    opaque_.beginDepthTest(pass3Fb_.id(), pass3Size.width, pass3Size.height, full.width, full.height);
+    opaque_.beginDepthTest(framebuffer, pass3Size.width, pass3Size.height, full.width, full.height);
     glEnable(GL_BLEND);
     // Per-target blend functions: core in GL 4.0 and GLES 3.2 (EXT_draw_buffers_indexed on 3.1).
     glBlendFunci(0, GL_ONE, GL_ONE);
@@ -290,8 +327,12 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
         glBlendFunci(4, GL_ONE, GL_ONE);
         gl::bindTexture(0, secondDepth_.id());  // z2 (tail moments run at full resolution only)
     }
-    MethodBase::runGeometryPass("pass3", pass3_, frame, draw);
-    opaque_.endDepthTest(pass3Fb_.id());
+    if (behindSummed_) {
+        beginBehindMoments(5, behindReference);
+        gl::bindTexture(2, nearestDepth_.id());  // pass3_accumulate.frag.glsl's u_nearestDepth
+    }
+    MethodBase::runGeometryPass("pass3", *program, frame, draw);
+    opaque_.endDepthTest(framebuffer);
     resetPassState();
 }
 
@@ -328,16 +369,13 @@ void NeuralPasses::beginBehindMoments(GLuint firstTarget, GLuint reference) {
         glClearBufferfv(GL_COLOR, GLint(target), zero);
         glBlendFunci(target, GL_ONE, GL_ONE);
     }
-    gl::bindTexture(0, reference);  // pass3_accumulate.frag.glsl's u_reference
+    gl::bindTexture(1, reference);  // pass3_accumulate.frag.glsl's u_reference
 }
 
 void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCallback& draw, GLuint reference) {
     resize(frame.width, frame.height);
     preparePackedNearestAndSums();
-    if (packedNearest_.width() != width_ || packedNearest_.height() != height_) {
-        packedNearest_ = gl::Texture2D(GL_RGBA32F, width_, height_);
-        packedFb_.reset();
-    }
+    allocatePackedNearest();
     if (!packedFb_.id()) {
         // Pass 1's depth target, free in an interpolated frame, records which pixels any fragment
         // covered (depth test ALWAYS: the last fragment's depth, < 1 where anything is) for the

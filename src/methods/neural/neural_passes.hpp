@@ -29,6 +29,7 @@
 // run them at full resolution every 8th to 32nd real frame, so the full size is the peak anyway, and
 // reallocating at every probe would only churn.
 #pragma once
+#include <functional>
 #include <string>
 
 #include "methods/common/method_base.hpp"
@@ -108,7 +109,17 @@ public:
 
     void resize(int width, int height);
     // Renders the three passes; pass2Size / pass3Size are the reduced sizes (the full size for s = 1).
-    void run(const FrameDesc& frame, const DrawCallback& draw, float peelEpsilon, Size2 pass2Size, Size2 pass3Size);
+    // `behindReference`, the tail-moment methods' real frames with corrected frames
+    // (CorrectedFrames::prepareReference): called after pass 2; a non-zero reference makes pass 3
+    // (at full resolution) also sum the moments behind pass 1's fragment and that reference
+    // (ordered_behind.glsl; realBehindMoment1/2(), behindMomentsSummed()), for the capture of an
+    // ordered correction. Needs 7 draw buffers; with fewer it sums none.
+    void run(const FrameDesc& frame, const DrawCallback& draw, float peelEpsilon, Size2 pass2Size, Size2 pass3Size,
+             const std::function<GLuint()>& behindReference = {});
+    void prepareRealBehindMoments();
+    bool behindMomentsSummed() const { return behindSummed_; }
+    GLuint realBehindMoment1() const { return packedNearest_.id(); }
+    GLuint realBehindMoment2() const { return realBehind2_.id(); }
     // Pass 1 alone (nearest() and nearestDepth()), for refresh frames.
     void runNearest(const FrameDesc& frame, const DrawCallback& draw);
     // Pass 1 and pass 3, both at full resolution (alphaColor() and transmittance() hold the sums
@@ -165,7 +176,7 @@ public:
     Size2 pass3Size() const { return pass3Size_; }
 
 private:
-    void runSums(const FrameDesc& frame, const DrawCallback& draw, Size2 pass3Size);  // pass 3
+    void runSums(const FrameDesc& frame, const DrawCallback& draw, Size2 pass3Size, GLuint behindReference = 0);  // pass 3
     // Interpolated frames' moments behind the reference: clears and blends targets firstTarget and
     // firstTarget + 1 of the bound framebuffer, binds `reference`.
     void beginBehindMoments(GLuint firstTarget, GLuint reference);
@@ -195,6 +206,12 @@ private:
     // runPackedNearestAndSums' pass 3 and its targets: the sums and the packed nearest fragment.
     gl::Program pass3Packed_;
     gl::Texture2D packedNearest_;  // allocated on first need
+    // A real frame's moments behind pass 1's fragment (the first in packedNearest_, free then).
+    gl::Program pass3Behind_;
+    gl::Texture2D realBehind2_;
+    gl::FramebufferHandle pass3BehindFb_;
+    bool behindSummed_ = false;
+    void allocatePackedNearest();
     gl::FramebufferHandle packedFb_;
     gl::FramebufferHandle nearestOnlyFb_, secondOnlyFb_, alphaColorOnlyFb_;  // output slots
 };

@@ -13,9 +13,11 @@
 //   reads nothing else): target 0 as above, target 1 the transmittance; no count, no moments.
 //   and with STARNT_PACKED_NEAREST (corrected frames in one geometry pass, no pass 1):
 //   target 2 (RGBA32F, blend equation GL_MIN):        the nearest fragment (packed_nearest.glsl)
-//   and with STARNT_BEHIND_MOMENTS (corrected frames of the tail-moment methods), over every
-//   fragment, u its depth behind the reference depth (ordered_behind.glsl), in the next two targets
-//   (3 and 4 after the packed layer, else 2 and 3):
+//   and with STARNT_BEHIND_MOMENTS (corrected frames of the tail-moment methods), u a fragment's
+//   depth behind the reference depth (ordered_behind.glsl), in the next two targets (interpolated
+//   frames: 3 and 4 after the packed layer, else 2 and 3, over every fragment; their real frames,
+//   with the tail moments: 5 and 6, over the fragments behind pass 1's, whose depth it reads,
+//   STARNT_BEHIND_NEAREST_KNOWN, with u - u1 for u, u1 pass 1's fragment's):
 //   (RGBA32F, blend ONE/ONE):                          sum a_i C_i u_i, sum a_i u_i
 //   (RGBA32F, blend ONE/ONE):                          sum a_i C_i u_i^2, sum a_i u_i^2
 layout(location = 0) out vec4 outAlphaColor;
@@ -30,15 +32,21 @@ layout(location = 2) out vec4 outPackedNearest;
 #define STARNT_BEHIND_MOMENT1_LOCATION 2
 #define STARNT_BEHIND_MOMENT2_LOCATION 3
 #endif
+#else
+layout(location = 1) out vec4 outColorCount;
+layout(location = 2) out vec4 outTransmittance;
+#define STARNT_BEHIND_MOMENT1_LOCATION 5
+#define STARNT_BEHIND_MOMENT2_LOCATION 6
+#define STARNT_BEHIND_NEAREST_KNOWN
+#endif
 #ifdef STARNT_BEHIND_MOMENTS
 #include "methods/neural/temporal/ordered_behind.glsl"
 layout(location = STARNT_BEHIND_MOMENT1_LOCATION) out vec4 outBehindMoment1;
 layout(location = STARNT_BEHIND_MOMENT2_LOCATION) out vec4 outBehindMoment2;
-layout(binding = 0) uniform highp sampler2D u_reference;  // reference_depth.frag.glsl, one texel a tile
+layout(binding = 1) uniform highp sampler2D u_reference;  // reference_depth.frag.glsl, one texel a tile
+#ifdef STARNT_BEHIND_NEAREST_KNOWN
+layout(binding = 2) uniform highp sampler2D u_nearestDepth;  // pass 1's depth
 #endif
-#else
-layout(location = 1) out vec4 outColorCount;
-layout(location = 2) out vec4 outTransmittance;
 #endif
 #ifdef STARNT_TAIL_MOMENTS
 layout(location = 3) out vec4 outTailMoment1;
@@ -63,6 +71,15 @@ void main() {
 #ifdef STARNT_BEHIND_MOMENTS
     float behind = depthBehindReference(gl_FragCoord.z,
                                         texelFetch(u_reference, ivec2(gl_FragCoord.xy) / STARNT_ORDERED_REFERENCE_TILE, 0).r);
+#ifdef STARNT_BEHIND_NEAREST_KNOWN
+    // Behind the nearest fragment (pass 2's rule, without its epsilon), from its depth on:
+    // orderedClosedFormBehindFromMoments' v = u - u1.
+    float nearestDepth = texelFetch(u_nearestDepth, ivec2(gl_FragCoord.xy), 0).r;
+    behind = gl_FragCoord.z > nearestDepth
+                 ? behind - depthBehindReference(nearestDepth, texelFetch(u_reference, ivec2(gl_FragCoord.xy) /
+                                                                                         STARNT_ORDERED_REFERENCE_TILE, 0).r)
+                 : 0.0;
+#endif
     outBehindMoment1 = vec4(s.rgb * s.a, s.a) * behind;
     outBehindMoment2 = outBehindMoment1 * behind;
 #endif

@@ -61,7 +61,8 @@ void CorrectedFrames::capture(GLuint composite, GLuint depth, GLuint nearest, GL
     // Ordered frames take their correction against hybrid-moments' composite, which only the
     // method's own composite computes (the fused capture): this pass keeps none for them.
     hasCorrection_ = !ordered_ && sumAlphaColor != 0 && transmittance != 0;
-    if (ordered_) keepReference(depth, width, height);
+    if (ordered_ && !referenceFresh_) keepReference(depth, width, height);
+    referenceFresh_ = false;
     if (!hasCorrection_) return;
     if (correction_.width() != width || correction_.height() != height || correction_.format() != format) {
         correction_ = gl::Texture2D(format, width, height);
@@ -98,8 +99,16 @@ CorrectedFrames::FusedTargets CorrectedFrames::beginFusedCapture(GLenum composit
     return {correction_.id(), coverDepth_.id(), makeCorrectionMatrices(viewProj, viewProj).sourceScale};
 }
 
+GLuint CorrectedFrames::prepareReference(GLuint depth, int width, int height) {
+    if (!ordered_) return 0;
+    keepReference(depth, width, height);
+    referenceFresh_ = true;
+    return reference_.id();
+}
+
 void CorrectedFrames::endFusedCapture() {
-    if (ordered_) keepReference(coverDepth_.id(), width_, height_);  // the copy of pass 1's depth
+    if (ordered_ && !referenceFresh_) keepReference(coverDepth_.id(), width_, height_);  // the copy of pass 1's depth
+    referenceFresh_ = false;
     hasFrame_ = true;
     hasCorrection_ = true;
 }

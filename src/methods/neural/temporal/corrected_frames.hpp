@@ -65,9 +65,16 @@ public:
     // STARNT_ORDERED_REFERENCE_TILE pixels squared; reference_depth.frag.glsl), which an
     // interpolated frame's pass 3 reads; 0 before the first kept frame or when not ordered.
     GLuint reference() const { return hasFrame_ ? reference_.id() : 0; }
+    // Ordered only: the reference depth from this real frame's pass-1 `depth`, now (before its pass 3
+    // sums the moments behind it, for infer_full's STARNT_CAPTURE_ORDERED); the capture then keeps
+    // it instead of making it again. Returns it.
+    GLuint prepareReference(GLuint depth, int width, int height);
     bool ordered() const { return ordered_; }
 
-    void reset() { hasFrame_ = false; }
+    void reset() {
+        hasFrame_ = false;
+        referenceFresh_ = false;
+    }
     size_t gpuMemoryBytes() const { return correction_.bytes() + coverDepth_.bytes() + referenceTiles_.bytes() + reference_.bytes(); }
     void addMemoryTargets(OitMethod::MemoryTargets& out) const {
         out.emplace_back("history_correction", correction_.bytes());
@@ -81,6 +88,7 @@ private:
     void bindComposite(GLuint nearestOrPacked, GLuint depth, GLuint sumAlphaColor,
                        GLuint transmittance, GLuint behindMoment1, GLuint behindMoment2);
     bool ordered_ = false;
+    bool referenceFresh_ = false;  // prepareReference ran in this real frame
     gl::Program capture_, composite_, compositePacked_;
     gl::Program referenceTilesPass_, referenceAroundPass_;  // ordered only
     gl::Texture2D referenceTiles_, reference_;

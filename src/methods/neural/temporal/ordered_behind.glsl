@@ -22,17 +22,31 @@ float depthBehindReference(float z, float reference) {
                          (float(STARNT_TAIL_MOMENT_DEPTH_SCALE) * (1.0 - reference)));
 }
 
-// `nearest` = C1, a1 (a1 < 1 - STARNT_TEMPORAL_MIN_TRANSMITTANCE) at window depth `depth`, `sums` =
-// (sum a C, sum a), `t` = prod (1 - a), `m1`, `m2` = (sum a C u, sum a u), (sum a C u^2, sum a u^2),
-// all over every fragment.
-vec3 orderedClosedFormBehind(vec4 nearest, float depth, vec4 sums, float t, vec4 m1, vec4 m2, float reference,
-                             vec3 background) {
+// `nearest` = C1, a1 (a1 < 1 - STARNT_TEMPORAL_MIN_TRANSMITTANCE), `sums` = (sum a C, sum a), `t` =
+// prod (1 - a), all over every fragment; `m1`, `m2` = (sum a C v, sum a v), (sum a C v^2, sum a v^2)
+// with v = u - u1 the depth behind the nearest fragment's (whose own terms are then 0): a real
+// frame sums them so over the fragments behind pass 1's, an interpolated frame gets them by
+// recentring its sums (orderedClosedFormBehind). Centred so, a rounding of a1 in sum a - a1 moves
+// the spread by the mean's distance behind the nearest fragment, not by the reference's.
+vec3 orderedClosedFormBehindFromMoments(vec4 nearest, vec4 sums, float t, vec4 m1, vec4 m2, vec3 background) {
     float behindT = clamp(t / (1.0 - nearest.a), 0.0, 1.0);
     float behindAlpha = sums.a - nearest.a;
     if (!(behindAlpha > float(STARNT_TEMPORAL_MIN_BEHIND_ALPHA))) return background;
-    float u = depthBehindReference(depth, reference);
-    vec4 front = vec4(nearest.rgb * nearest.a, nearest.a);
-    vec3 color = momentWeightedColor(sums.rgb - front.rgb, behindAlpha, m1 - front * u, m2 - front * (u * u), behindT);
+    vec3 alphaColor = sums.rgb - nearest.rgb * nearest.a;
+    // sum a - a1 carries a1's rounding (the layer's 16-bit or 11-bit alpha), which alone makes one
+    // fragment behind look spread over |mean| sqrt(error / (sum a - a1)): below that, the plain mean.
+    float mean = m1.a / behindAlpha;
+    bool spread = m2.a / behindAlpha - mean * mean > float(STARNT_ORDERED_ALPHA_ROUNDING) / behindAlpha * mean * mean;
+    vec3 color = spread ? momentWeightedColor(alphaColor, behindAlpha, m1, m2, behindT) : max(alphaColor / behindAlpha, vec3(0.0));
     return (1.0 - behindT) * color + behindT * background;
+}
+
+// The same from an interpolated frame's pass 3: `m1`, `m2` in u over every fragment, recentred at
+// u1, the nearest fragment's (at window depth `depth`), with the sums over every fragment.
+vec3 orderedClosedFormBehind(vec4 nearest, float depth, vec4 sums, float t, vec4 m1, vec4 m2, float reference,
+                             vec3 background) {
+    float u = depthBehindReference(depth, reference);
+    vec4 first = m1 - u * sums;
+    return orderedClosedFormBehindFromMoments(nearest, sums, t, first, m2 - u * (m1 + first), background);
 }
 #endif

@@ -1,7 +1,8 @@
 // The reference depth of the ordered closed form behind the nearest layer (ordered_behind.glsl; CPU
 // reference temporal::referenceDepthOnCpu), one texel per tile of STARNT_ORDERED_REFERENCE_TILE
-// pixels squared: the nearest depth a real frame's pass 1 kept over the tile (first pass, from that
-// depth), then over the tile and its eight neighbours (STARNT_REFERENCE_AROUND, from the first).
+// pixels squared: the nearest depth a real frame's pass 1 kept over the tile, at every
+// STARNT_ORDERED_REFERENCE_STRIDE-th pixel of its rows and columns (first pass, from that depth),
+// then over the tile and its eight neighbours (STARNT_REFERENCE_AROUND, from the first).
 #include "methods/neural/temporal/reprojection_constants.h"
 
 layout(binding = 0) uniform highp sampler2D u_source;
@@ -20,8 +21,8 @@ void main() {
     }
 #else
     ivec2 base = t * STARNT_ORDERED_REFERENCE_TILE;
-    for (int y = 0; y < STARNT_ORDERED_REFERENCE_TILE; ++y) {
-        for (int x = 0; x < STARNT_ORDERED_REFERENCE_TILE; ++x) {
+    for (int y = 0; y < STARNT_ORDERED_REFERENCE_TILE; y += STARNT_ORDERED_REFERENCE_STRIDE) {
+        for (int x = 0; x < STARNT_ORDERED_REFERENCE_TILE; x += STARNT_ORDERED_REFERENCE_STRIDE) {
             nearest = min(nearest, texelFetch(u_source, min(base + ivec2(x, y), u_sourceSize - 1), 0).r);
         }
     }

@@ -78,6 +78,10 @@ public:
     // Ordered corrected frames: the depth an interpolated frame's pass 3 takes its moments behind
     // (CorrectedFrames::reference()); 0 otherwise.
     GLuint behindReference() const { return corrected_ ? corrected_->reference() : 0; }
+    // Ordered corrected frames, in a real frame: CorrectedFrames::prepareReference.
+    GLuint prepareReference(GLuint depth, int width, int height) {
+        return corrected_ ? corrected_->prepareReference(depth, width, height) : 0;
+    }
     // Interpolated frames render pass 1 fresh (refresh, correct) and pass 3 too (correct).
     bool refreshes() const { return mode_ == NeuralOptions::TemporalMode::Refresh; }
     bool corrects() const { return mode_ == NeuralOptions::TemporalMode::Correct; }
