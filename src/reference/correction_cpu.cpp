@@ -29,6 +29,11 @@ uint32_t packedColour(float c) {
     return uint32_t(std::floor(r / (1.0f + r) * float(STARNT_PACKED_STEPS) + 0.5f));
 }
 
+// The window depth a key stands for: the middle of its depth interval.
+float depthOfKey(uint32_t key) {
+    return 1.0f - std::bit_cast<float>(kPackedOne - (key << STARNT_PACKED_KEY_SHIFT) - (1u << (STARNT_PACKED_KEY_SHIFT - 1)));
+}
+
 float unpackedColour(uint32_t p) {
     const float x = float(p) / float(STARNT_PACKED_STEPS);
     const float r = x / (1.0f - x);
@@ -58,8 +63,7 @@ glm::vec4 unpackNearest(const glm::vec4& packed, float& z) {
         z = 1.0f;
         return glm::vec4(0.0f);
     }
-    const uint32_t middle = 1u << (STARNT_PACKED_KEY_SHIFT - 1);
-    z = 1.0f - std::bit_cast<float>(kPackedOne - (key << STARNT_PACKED_KEY_SHIFT) - middle);
+    z = depthOfKey(key);
     glm::vec4 out;
     for (int c = 0; c < 3; ++c) out[c] = unpackedColour(std::bit_cast<uint32_t>(packed[c]) & kPackedPayloadMask);
     out.a = float(alphaBits & kPackedPayloadMask) / float(STARNT_PACKED_STEPS);
@@ -68,10 +72,7 @@ glm::vec4 unpackNearest(const glm::vec4& packed, float& z) {
 
 glm::vec4 blendNearest(const glm::vec4& a, const glm::vec4& b) { return glm::min(a, b); }
 
-float keyedDepth(float z) {
-    const uint32_t middle = 1u << (STARNT_PACKED_KEY_SHIFT - 1);
-    return 1.0f - std::bit_cast<float>(kPackedOne - (packedDepthKey(z) << STARNT_PACKED_KEY_SHIFT) - middle);
-}
+float keyedDepth(float z) { return depthOfKey(packedDepthKey(z)); }
 
 float depthBehindReference(float z, float reference) {
     if (!(reference < 1.0f)) return 0.0f;

@@ -11,9 +11,10 @@ vec3 momentWeightedTailColor(PixelSums s, ivec2 p) {
                                tailTransmittance(s));
 }
 
-// What hybrid-moments puts behind the nearest layer, (C - a1 C1) / (1 - a1) of its composite: the
-// closed form a real frame's kept correction is taken against (correction_capture.glsl), so that
-// corrected frames keep only what the network adds to the depth-ordered closed form. Needs 1 - a1 > 0.
+// What hybrid-moments puts behind the nearest layer, (C - a1 C1) / (1 - a1) of its composite: what a
+// real frame's kept correction is taken against (correction_capture.glsl) where its pass 3 could not
+// sum the ordered closed form's moments (fewer than 7 draw buffers; infer_full.frag.glsl). Needs
+// 1 - a1 > 0.
 #define STARNT_ORDERED_CLOSED_FORM 1
 vec3 orderedClosedFormBehindNearest(PixelSums s, vec3 background) {
     vec3 composite = threeLayerComposite(s, (1.0 - tailTransmittance(s)) * momentWeightedTailColor(s, ivec2(gl_FragCoord.xy)),

@@ -47,10 +47,12 @@ public:
         if (temporal_.interpolates() && temporal_.corrects()) {
             if (options_.neural.correctedOnePass) passes_.preparePackedNearestAndSums();
             else passes_.prepareNearestAndSums();
-            if (options_.neural.fusedCorrectionCapture && !corners_) inference("infer_full_capture", true);
             if (config_.tailMoments && fusedCaptureApplies()) {
+                // (the plain capture only where pass 3 lacks the draw buffers: built on first need)
                 passes_.prepareRealBehindMoments();
                 inference("infer_full_capture_ordered", true);
+            } else if (options_.neural.fusedCorrectionCapture && !corners_) {
+                inference("infer_full_capture", true);
             }
         }
         // Compile up front what the frames will need, so no frame pays for a shader compile: the

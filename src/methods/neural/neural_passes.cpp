@@ -122,7 +122,11 @@ NeuralPasses::NeuralPasses(const SurfaceShader& surface, OpaqueScene& opaque, bo
       targets_(targets),
       narrowLayers_(narrowLayersUsed(targets, narrowLayers)),
       tailMoments_(tailMoments),
-      surface_(surface) {}
+      surface_(surface) {
+    GLint drawBuffers = 0;
+    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &drawBuffers);
+    behindMomentsFit_ = drawBuffers >= 7;  // a real frame's pass 3 with the moments behind (runSums)
+}
 
 // The compact layout's transmittance, prod (1 - a) blended over up to hundreds of fragments. In a
 // 16-bit float target every blended multiply loses up to a step of 2^-11 relative, and llvmpipe
@@ -291,9 +295,7 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
     const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1};
     gl::ScopedPass timing(frame.timing, "pass3");
     useReducedRectangle(pass3Size, full);
-    GLint drawBuffers = 0;
-    if (behindReference) glGetIntegerv(GL_MAX_DRAW_BUFFERS, &drawBuffers);
-    behindSummed_ = behindReference != 0 && drawBuffers >= 7;
+    behindSummed_ = behindReference != 0 && behindMomentsFit_;
     GLuint framebuffer = pass3Fb_.id();
     const gl::Program* program = &pass3_;
     if (behindSummed_) {

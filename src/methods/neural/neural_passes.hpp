@@ -211,6 +211,7 @@ private:
     gl::Texture2D realBehind2_;
     gl::FramebufferHandle pass3BehindFb_;
     bool behindSummed_ = false;
+    bool behindMomentsFit_ = false;  // the context has the 7 draw buffers that pass 3 needs
     void allocatePackedNearest();
     gl::FramebufferHandle packedFb_;
     gl::FramebufferHandle nearestOnlyFb_, secondOnlyFb_, alphaColorOnlyFb_;  // output slots

@@ -58,8 +58,8 @@ void CorrectedFrames::capture(GLuint composite, GLuint depth, GLuint nearest, GL
     height_ = height;
     viewProj_ = viewProj;
     hasFrame_ = true;
-    // Ordered frames take their correction against hybrid-moments' composite, which only the
-    // method's own composite computes (the fused capture): this pass keeps none for them.
+    // Ordered frames take their correction against the ordered closed form, whose moments only the
+    // method's own pass 3 and composite have (the fused capture): this pass keeps none for them.
     hasCorrection_ = !ordered_ && sumAlphaColor != 0 && transmittance != 0;
     if (ordered_ && !referenceFresh_) keepReference(depth, width, height);
     referenceFresh_ = false;

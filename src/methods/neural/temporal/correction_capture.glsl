@@ -1,7 +1,8 @@
 // What a real frame keeps for corrected frames at texel t (temporal::correctionOnCpu): D = B - B_cf,
 // what lay behind the nearest layer, B = (C - a1 C1) / (1 - a1), minus `closedForm`, what the
 // closed form of the same frame puts there (closedFormBehind of its pass-3 sums; for the tail-moment
-// methods hybrid-moments' composite, tail_moments.glsl: orderedClosedFormBehindNearest), with the texel's inverse old view depth (row 3 of inverse(viewProj),
+// methods the ordered closed form, ordered_behind.glsl, or where pass 3 could not sum its moments
+// hybrid-moments' composite, tail_moments.glsl), with the texel's inverse old view depth (row 3 of inverse(viewProj),
 // `sourceScale`) in alpha for the same-surface test of the interpolated frames. Alpha -1: the
 // nearest layer hid what lay behind. Used by the capture pass (reprojection_behind.frag.glsl with
 // STARNT_BEHIND_CORRECTION) and by the composite's fused capture (infer_full.frag.glsl with

@@ -6,8 +6,8 @@
 // tail moments' logarithmic depth (tail_moments_constants.h) taken behind a reference depth r that
 // the last real frame gives (CorrectedFrames: the nearest depth over the pixels around, so at or
 // before the fresh nearest layer where the view moved less than that neighbourhood); the composite
-// takes the nearest fragment's terms out. z is the middle of its packed key's interval
-// (packed_nearest.glsl: keyedDepth) in both, so that the nearest fragment's terms cancel exactly
+// recentres them at the nearest fragment's u1. z is the middle of its packed key's interval
+// (packed_nearest.glsl: keyedDepth) in both, so that the nearest fragment's terms vanish exactly
 // whether it comes from the packed layer or from pass 1.
 #ifndef STARNT_ORDERED_BEHIND_GLSL
 #define STARNT_ORDERED_BEHIND_GLSL

@@ -28,12 +28,13 @@ float packedBits(uint key, uint payload) {
     return uintBitsToFloat(0x40000000u | (key << STARNT_PACKED_PAYLOAD_BITS) | payload);
 }
 
-// The window depth z stands for in the packed layer: the middle of its key's depth interval (what
-// unpackNearest returns for the fragment).
-float keyedDepth(float z) {
-    return 1.0 - uintBitsToFloat(kPackedOne - (packedDepthKey(z) << STARNT_PACKED_KEY_SHIFT) -
-                                 (1u << (STARNT_PACKED_KEY_SHIFT - 1)));
+// The window depth a key stands for: the middle of its depth interval.
+float depthOfKey(uint key) {
+    return 1.0 - uintBitsToFloat(kPackedOne - (key << STARNT_PACKED_KEY_SHIFT) - (1u << (STARNT_PACKED_KEY_SHIFT - 1)));
 }
+
+// The window depth z stands for in the packed layer (what unpackNearest returns for the fragment).
+float keyedDepth(float z) { return depthOfKey(packedDepthKey(z)); }
 
 // What a fragment at window depth z with colour and alpha `c` blends in.
 vec4 packNearest(float z, vec4 c) {
@@ -52,8 +53,7 @@ vec4 unpackNearest(vec4 encoded, out float z) {
         z = 1.0;
         return vec4(0.0);
     }
-    uint middle = 1u << (STARNT_PACKED_KEY_SHIFT - 1);
-    z = 1.0 - uintBitsToFloat(kPackedOne - (key << STARNT_PACKED_KEY_SHIFT) - middle);
+    z = depthOfKey(key);
     uvec4 payload = bits & uvec4(kPackedPayloadMask);
     return vec4(unpackedColour(payload.r), unpackedColour(payload.g), unpackedColour(payload.b),
                 float(payload.a) / float(STARNT_PACKED_STEPS));
