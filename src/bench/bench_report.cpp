@@ -196,7 +196,7 @@ std::optional<double> realFrameMean(const CaseResult& c, const char* key) {
     return n ? std::optional(sum / n) : std::nullopt;
 }
 
-// Issue 13: what the tiles chose and what it saved in work, which does not depend on the machine.
+// What the tiles chose and what it saved in work, which does not depend on the machine.
 void scalesAndWorkTables(std::ostringstream& md, const Results& r) {
     md << "## Fragments shaded per frame (millions, all geometry passes)\n\n"
           "Fragment-shader invocations (GL_ARB_pipeline_statistics_query), mean per timed frame: the work a GPU "
@@ -306,7 +306,7 @@ void qualityTables(std::ostringstream& md, const Results& r) {
         [](const CaseResult& c) { return c.flipReductionVsWboit; }, [](double v) { return fixed(v, 1) + "%"; });
 }
 
-// Issue 15: the same three passes with the tail in closed form (hybrid) against the networks
+// What the network adds: the same three passes with the tail in closed form (hybrid) against the networks
 // (starnt-full, and starnt-residual-full, hybrid-moments, starnt-d where they ran), all at full
 // resolution, scene by scene.
 void networkAddsTable(std::ostringstream& md, const Results& r) {

@@ -280,14 +280,12 @@ private:
 }  // namespace
 
 RenderJob sizedJob(int width, int height, int frames, int warmupFrames, const glm::vec3& background, float alphaCutoff) {
-    RenderJob job;
-    job.width = width;
-    job.height = height;
-    job.frames = frames;
-    job.warmupFrames = warmupFrames;
-    job.background = background;
-    job.alphaCutoff = alphaCutoff;
-    return job;
+    return RenderJob{.width = width,
+                     .height = height,
+                     .background = background,
+                     .alphaCutoff = alphaCutoff,
+                     .frames = frames,
+                     .warmupFrames = warmupFrames};
 }
 
 RenderOutput renderScene(const SceneGpu& scene, const RenderJob& job) { return SceneRun(scene, job).run(); }

@@ -84,6 +84,19 @@ Material blendMaterial(bool unlit) {
     return m;
 }
 
+// The shape of tubes, smoke, random and curtains: one mesh of `count` seeded random items under one
+// double-sided blend material; appendItem(rng, mesh, i) adds item i, drawing from rng in order.
+template <class AppendItem>
+Scene oneMeshScene(uint32_t seed, bool unlit, int count, AppendItem&& appendItem) {
+    SceneRng rng(seed);
+    Scene s;
+    s.materials.push_back(blendMaterial(unlit));
+    Mesh mesh;
+    for (int i = 0; i < count; ++i) appendItem(rng, mesh, i);
+    s.meshes.push_back(std::move(mesh));
+    return s;
+}
+
 glm::vec3 anyPerpendicular(const glm::vec3& t) {
     const glm::vec3 a = std::fabs(t.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
     return glm::normalize(glm::cross(t, a));
@@ -108,13 +121,9 @@ void appendFacingSquare(Mesh& mesh, const glm::vec3& centre, float h, const glm:
 }
 
 Scene makeTubes(uint32_t seed) {
-    constexpr int kTubes = 150, kControl = 7, kSegments = 48, kSides = 6;
-    constexpr float kRadius = 0.012f, kSphere = 0.85f;
-    SceneRng rng(seed);
-    Scene s;
-    s.materials.push_back(blendMaterial(false));
-    Mesh mesh;
-    for (int tube = 0; tube < kTubes; ++tube) {
+    static constexpr int kTubes = 150, kControl = 7, kSegments = 48, kSides = 6;
+    static constexpr float kRadius = 0.012f, kSphere = 0.85f;
+    return oneMeshScene(seed, false, kTubes, [](SceneRng& rng, Mesh& mesh, int) {
         std::vector<glm::vec3> ctrl(kControl);
         for (glm::vec3& c : ctrl) c = rng.inBall(kSphere);
         const glm::vec3 rgb = randomColor(rng, 0.3f);
@@ -153,26 +162,18 @@ Scene makeTubes(uint32_t seed) {
                 const uint32_t c = a + kSides, d = b + kSides;
                 mesh.indices.insert(mesh.indices.end(), {a, b, c, b, d, c});
             }
-    }
-    s.meshes.push_back(std::move(mesh));
-    return s;
+    });
 }
 
 Scene makeSmoke(uint32_t seed) {
     constexpr int kParticles = 1200;
-    SceneRng rng(seed);
-    Scene s;
-    s.materials.push_back(blendMaterial(true));
-    Mesh mesh;
-    for (int p = 0; p < kParticles; ++p) {
+    return oneMeshScene(seed, true, kParticles, [](SceneRng& rng, Mesh& mesh, int) {
         const glm::vec3 centre = rng.inBox({-0.7f, -0.7f, -0.6f}, {0.7f, 0.7f, 0.6f});
         const float h = rng.range(0.04f, 0.12f);
         const float grey = rng.range(0.55f, 0.95f);
         const glm::vec3 tint = randomColor(rng, 0.85f);
         appendFacingSquare(mesh, centre, h, glm::vec4(grey * tint, rng.range(0.05f, 0.4f)));
-    }
-    s.meshes.push_back(std::move(mesh));
-    return s;
+    });
 }
 
 Scene makePanes() {
@@ -193,11 +194,7 @@ Scene makePanes() {
 
 Scene makeRandom(uint32_t seed) {
     constexpr int kTriangles = 60;
-    SceneRng rng(seed);
-    Scene s;
-    s.materials.push_back(blendMaterial(true));
-    Mesh mesh;
-    for (int t = 0; t < kTriangles; ++t) {
+    return oneMeshScene(seed, true, kTriangles, [](SceneRng& rng, Mesh& mesh, int) {
         // A roughly equilateral triangle (circumradius 0.6-0.95, jittered angles) around a centre
         // near the middle, each vertex at its own depth, clamped to the box.
         const glm::vec3 centre = rng.inBox({-0.55f, -0.55f, -0.5f}, {0.55f, 0.55f, 0.5f});
@@ -217,19 +214,14 @@ Scene makeRandom(uint32_t seed) {
             mesh.colors.push_back(color);
         }
         mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2});
-    }
-    s.meshes.push_back(std::move(mesh));
-    return s;
+    });
 }
 
 Scene makeCurtains(uint32_t seed) {
-    constexpr int kSheets = 6;
-    SceneRng rng(seed);
-    Scene s;
-    s.materials.push_back(blendMaterial(false));
-    Mesh mesh;
-    const float hue0 = rng.uniform();
-    for (int sheet = 0; sheet < kSheets; ++sheet) {
+    static constexpr int kSheets = 6;
+    float hue0 = 0.0f;  // drawn first, before sheet 0's own numbers
+    return oneMeshScene(seed, false, kSheets, [&hue0](SceneRng& rng, Mesh& mesh, int sheet) {
+        if (sheet == 0) hue0 = rng.uniform();
         const bool pleated = sheet % 2 == 1;
         const float width = rng.range(1.1f, 1.5f);
         const float height = rng.range(1.3f, 1.6f);
@@ -258,9 +250,7 @@ Scene makeCurtains(uint32_t seed) {
             appendQuad(mesh, {centre + a, centre + b, centre + b + up, centre + a + up},
                        glm::normalize(glm::cross(b - a, up)), color);
         }
-    }
-    s.meshes.push_back(std::move(mesh));
-    return s;
+    });
 }
 
 // An axis-aligned box's six faces, outward normals, one colour.

@@ -21,6 +21,49 @@ uniform float u_overestimation;
 vec2 cmul(vec2 a, vec2 b) { return vec2(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x); }
 vec2 cconj(vec2 a) { return vec2(a.x, -a.y); }
 vec2 cdiv(vec2 a, vec2 b) { return cmul(a, cconj(b)) / dot(b, b); }
+// Both moment kinds run one algorithm (mboitFractionInFront below) over their own scalar: complex
+// numbers as vec2 for trigonometric moments, float for power moments.
+#define MBOIT_SCALAR vec2
+#define MBOIT_B_COUNT (MBOIT_ORDER + 1)
+#define MBOIT_ONE vec2(1.0, 0.0)
+#define mboitMul(a, b) cmul(a, b)
+#define mboitDiv(a, b) cdiv(a, b)
+#define mboitConj(a) cconj(a)
+#define mboitReal(a) (a).x
+#define mboitFromReal(a) vec2(a, 0.0)
+#define mboitNorm2(a) dot(a, a)
+#else
+#define MBOIT_SCALAR float
+#define MBOIT_B_COUNT (2 * MBOIT_ORDER + 1)
+#define MBOIT_ONE 1.0
+#define mboitMul(a, b) ((a) * (b))
+#define mboitDiv(a, b) ((a) / (b))
+#define mboitConj(a) (a)
+#define mboitReal(a) (a)
+#define mboitFromReal(a) (a)
+#define mboitNorm2(a) ((a) * (a))
+#endif
+
+// Step 2's solve once M = L D L^H is factored (L unit lower triangular, row-major (n + 1)^2), for
+// both moment kinds: forward substitution, the diagonal, back substitution.
+void mboitSolve(MBOIT_SCALAR L[(MBOIT_ORDER + 1) * (MBOIT_ORDER + 1)], float D[MBOIT_ORDER + 1], MBOIT_SCALAR x0,
+                out MBOIT_SCALAR q[MBOIT_ORDER + 1]) {
+    const int n = MBOIT_ORDER;
+    for (int i = 0; i <= n; ++i) q[i] = MBOIT_SCALAR(0.0);  // written before read; zeroed for the compiler
+    MBOIT_SCALAR xk = MBOIT_ONE;
+    for (int j = 0; j <= n; ++j) {
+        MBOIT_SCALAR y = xk;
+        for (int k = 0; k < j; ++k) y -= mboitMul(L[j * (n + 1) + k], q[k]);
+        q[j] = y;
+        xk = mboitMul(xk, x0);
+    }
+    for (int j = 0; j <= n; ++j) q[j] /= D[j];
+    for (int j = n; j >= 0; --j) {
+        for (int k = j + 1; k <= n; ++k) q[j] -= mboitMul(mboitConj(L[k * (n + 1) + j]), q[k]);
+    }
+}
+
+#if MBOIT_TRIG
 vec2 csqrt(vec2 z) {
     float r = length(z);
     float re = sqrt(max(0.5 * (r + z.x), 0.0));
@@ -64,66 +107,31 @@ void mboitRoots(vec2 c[MBOIT_ORDER + 1], out vec2 roots[MBOIT_ORDER]) {
 #endif
 }
 
-float mboitFractionInFront(float b0, vec2 moments[MBOIT_COUNT], float z) {
-    const int n = MBOIT_ORDER;
-    vec2 b[n + 1];
+// Step 1: b_0 = 1, then b_k for k = 1..n.
+void mboitNormalise(float b0, vec2 moments[MBOIT_COUNT], out vec2 b[MBOIT_B_COUNT]) {
     b[0] = vec2(1.0, 0.0);
-    for (int k = 1; k <= n; ++k) b[k] = moments[k - 1] * ((1.0 - u_momentBias) / b0);
-    // LDL^H of the Hermitian Toeplitz matrix M_jk = b_{j-k}.
-    vec2 L[(n + 1) * (n + 1)];
-    // Every entry read is written first (column k before row j > k reads it); zeroed so that the
-    // compiler can see that too (Mesa warns, and debug contexts turn the warning into an error).
-    for (int i = 0; i < (n + 1) * (n + 1); ++i) L[i] = vec2(0.0);
-    float D[n + 1];
-    for (int j = 0; j <= n; ++j) {
-        float dj = 1.0;
-        for (int k = 0; k < j; ++k) dj -= dot(L[j * (n + 1) + k], L[j * (n + 1) + k]) * D[k];
-        D[j] = dj;
-        for (int i = j + 1; i <= n; ++i) {
-            vec2 lij = b[i - j];
-            for (int k = 0; k < j; ++k) lij -= cmul(L[i * (n + 1) + k], cconj(L[j * (n + 1) + k])) * D[k];
-            L[i * (n + 1) + j] = lij / dj;
-        }
-    }
+    for (int k = 1; k <= MBOIT_ORDER; ++k) b[k] = moments[k - 1] * ((1.0 - u_momentBias) / b0);
+}
+// M_ij (i >= j) of the Hermitian Toeplitz matrix.
+#define MBOIT_MATRIX(b, i, j) b[(i) - (j)]
+// x0 on the unit circle at the depth's phase.
+vec2 mboitPoint(float z) {
     float phase = mboitPhase(z);
-    vec2 x0 = vec2(cos(phase), sin(phase));
-    vec2 q[n + 1];
-    for (int i = 0; i <= n; ++i) q[i] = vec2(0.0);  // written before read; zeroed for the compiler
-    vec2 xk = vec2(1.0, 0.0);
-    for (int j = 0; j <= n; ++j) {
-        vec2 y = xk;
-        for (int k = 0; k < j; ++k) y -= cmul(L[j * (n + 1) + k], q[k]);
-        q[j] = y;
-        xk = cmul(xk, x0);
-    }
-    for (int j = 0; j <= n; ++j) q[j] /= D[j];
-    for (int j = n; j >= 0; --j) {
-        for (int k = j + 1; k <= n; ++k) q[j] -= cmul(cconj(L[k * (n + 1) + j]), q[k]);
-    }
-    vec2 kernel[n + 1];
-    for (int k = 0; k <= n; ++k) kernel[k] = cconj(q[k]);
-    vec2 roots[n];
-    mboitRoots(kernel, roots);
-    // Support points and the indicator of "in front of x0".
-    vec2 x[n + 1];
-    float f[n + 1];
-    x[0] = x0;
-    f[0] = u_overestimation;
+    return vec2(cos(phase), sin(phase));
+}
+// Support point x_i from a kernel root (projected onto the circle) and its indicator f_i: 1 in front
+// of z, 0 behind, a linear ramp across the wrapping zone.
+float mboitSupport(vec2 root, float z, out vec2 x) {
+    float len = length(root);
+    x = len > 0.0 ? root / len : vec2(1.0, 0.0);
+    float angle = atan(x.y, x.x);
+    if (angle < 0.0) angle += 2.0 * MBOIT_PI;
     float zoneStart = 2.0 * MBOIT_PI - u_wrapAngle;
-    for (int i = 1; i <= n; ++i) {
-        vec2 r = roots[i - 1];
-        float len = length(r);
-        x[i] = len > 0.0 ? r / len : vec2(1.0, 0.0);
-        float angle = atan(x[i].y, x[i].x);
-        if (angle < 0.0) angle += 2.0 * MBOIT_PI;
-        f[i] = angle > zoneStart ? (angle - zoneStart) / u_wrapAngle : (angle < phase ? 1.0 : 0.0);
-    }
-    // Newton divided differences, then the monomial coefficients of the interpolating polynomial.
-    vec2 d[n + 1];
-    for (int i = 0; i <= n; ++i) d[i] = vec2(f[i], 0.0);
-    for (int j = 1; j <= n; ++j) {
-        for (int i = n; i >= j; --i) d[i] = cdiv(d[i] - d[i - 1], x[i] - x[i - j]);
-    }
+    return angle > zoneStart ? (angle - zoneStart) / u_wrapAngle : (angle < mboitPhase(z) ? 1.0 : 0.0);
+}
+// sum_k p_k b_k (real part) for the polynomial p in Newton form (divided differences d, points x).
+float mboitPolynomialSum(vec2 d[MBOIT_ORDER + 1], vec2 x[MBOIT_ORDER + 1], vec2 b[MBOIT_B_COUNT]) {
+    const int n = MBOIT_ORDER;
     // Monomial coefficients (lowest first, real and imaginary parts) of the Newton form:
     // p <- p * (x - x_i) + d_i. (Whole-vector updates, as in the power case below: an in-place loop
     // over a coefficient array gave wrong results on Mesa llvmpipe.)
@@ -160,54 +168,22 @@ void mboitRoots(float c[MBOIT_ORDER + 1], out float roots[MBOIT_ORDER]) {
 #endif
 }
 
-float mboitFractionInFront(float b0, float moments[MBOIT_COUNT], float z) {
-    const int n = MBOIT_ORDER;
-    float b[2 * n + 1];
+// Step 1: b_0 = 1, then b_k for k = 1..2n.
+void mboitNormalise(float b0, float moments[MBOIT_COUNT], out float b[MBOIT_B_COUNT]) {
     b[0] = 1.0;
-    for (int k = 1; k <= 2 * n; ++k) b[k] = mix(moments[k - 1] / b0, u_biasVector[k - 1], u_momentBias);
-    // LDL^T of the Hankel matrix M_jk = b_{j+k}.
-    float L[(n + 1) * (n + 1)];
-    for (int i = 0; i < (n + 1) * (n + 1); ++i) L[i] = 0.0;  // as above: written before read
-    float D[n + 1];
-    for (int j = 0; j <= n; ++j) {
-        float dj = b[2 * j];
-        for (int k = 0; k < j; ++k) dj -= L[j * (n + 1) + k] * L[j * (n + 1) + k] * D[k];
-        D[j] = dj;
-        for (int i = j + 1; i <= n; ++i) {
-            float lij = b[i + j];
-            for (int k = 0; k < j; ++k) lij -= L[i * (n + 1) + k] * L[j * (n + 1) + k] * D[k];
-            L[i * (n + 1) + j] = lij / dj;
-        }
-    }
-    float q[n + 1];
-    for (int i = 0; i <= n; ++i) q[i] = 0.0;  // written before read; zeroed for the compiler
-    float zk = 1.0;
-    for (int j = 0; j <= n; ++j) {
-        float y = zk;
-        for (int k = 0; k < j; ++k) y -= L[j * (n + 1) + k] * q[k];
-        q[j] = y;
-        zk *= z;
-    }
-    for (int j = 0; j <= n; ++j) q[j] /= D[j];
-    for (int j = n; j >= 0; --j) {
-        for (int k = j + 1; k <= n; ++k) q[j] -= L[k * (n + 1) + j] * q[k];
-    }
-    float roots[n];
-    mboitRoots(q, roots);
-
-    float x[n + 1];
-    float f[n + 1];
-    x[0] = z;
-    f[0] = u_overestimation;
-    for (int i = 1; i <= n; ++i) {
-        x[i] = roots[i - 1];
-        f[i] = x[i] < z ? 1.0 : 0.0;
-    }
-    float d[n + 1];
-    for (int i = 0; i <= n; ++i) d[i] = f[i];
-    for (int j = 1; j <= n; ++j) {
-        for (int i = n; i >= j; --i) d[i] = (d[i] - d[i - 1]) / (x[i] - x[i - j]);
-    }
+    for (int k = 1; k <= 2 * MBOIT_ORDER; ++k) b[k] = mix(moments[k - 1] / b0, u_biasVector[k - 1], u_momentBias);
+}
+// M_ij of the Hankel matrix.
+#define MBOIT_MATRIX(b, i, j) b[(i) + (j)]
+float mboitPoint(float z) { return z; }
+// Support point x_i (a kernel root) and its indicator f_i: 1 in front of z, 0 behind.
+float mboitSupport(float root, float z, out float x) {
+    x = root;
+    return x < z ? 1.0 : 0.0;
+}
+// sum_k p_k b_k for the polynomial p in Newton form (divided differences d, points x).
+float mboitPolynomialSum(float d[MBOIT_ORDER + 1], float x[MBOIT_ORDER + 1], float b[MBOIT_B_COUNT]) {
+    const int n = MBOIT_ORDER;
     // Monomial coefficients (lowest first) of the Newton form: p <- p * (x - x_i) + d_i. (A whole-
     // vector update: the in-place loop over a float array, p[k] = p[k-1] - p[k] * x_i for k = n..1,
     // gave wrong coefficients on Mesa llvmpipe (LLVM 15) while its C++ transcription is right.)
@@ -218,6 +194,49 @@ float mboitFractionInFront(float b0, float moments[MBOIT_COUNT], float z) {
     return sum;
 }
 #endif
+
+// Steps 2-4 for both kinds, with the kind's hooks above (mboitNormalise, MBOIT_MATRIX, mboitPoint,
+// mboitSupport, mboitPolynomialSum).
+float mboitFractionInFront(float b0, MBOIT_SCALAR moments[MBOIT_COUNT], float z) {
+    const int n = MBOIT_ORDER;
+    MBOIT_SCALAR b[MBOIT_B_COUNT];
+    mboitNormalise(b0, moments, b);
+    // L D L^H = M.
+    MBOIT_SCALAR L[(n + 1) * (n + 1)];
+    // Every entry read is written first (column k before row j > k reads it); zeroed so that the
+    // compiler can see that too (Mesa warns, and debug contexts turn the warning into an error).
+    for (int i = 0; i < (n + 1) * (n + 1); ++i) L[i] = MBOIT_SCALAR(0.0);
+    float D[n + 1];
+    for (int j = 0; j <= n; ++j) {
+        float dj = mboitReal(MBOIT_MATRIX(b, j, j));
+        for (int k = 0; k < j; ++k) dj -= mboitNorm2(L[j * (n + 1) + k]) * D[k];
+        D[j] = dj;
+        for (int i = j + 1; i <= n; ++i) {
+            MBOIT_SCALAR lij = MBOIT_MATRIX(b, i, j);
+            for (int k = 0; k < j; ++k) lij -= mboitMul(L[i * (n + 1) + k], mboitConj(L[j * (n + 1) + k])) * D[k];
+            L[i * (n + 1) + j] = lij / dj;
+        }
+    }
+    MBOIT_SCALAR x0 = mboitPoint(z);
+    MBOIT_SCALAR q[n + 1];
+    mboitSolve(L, D, x0, q);
+    // The kernel polynomial sum_k conj(q_k) x^k, its roots, the support points.
+    for (int k = 0; k <= n; ++k) q[k] = mboitConj(q[k]);
+    MBOIT_SCALAR roots[n];
+    mboitRoots(q, roots);
+    MBOIT_SCALAR x[n + 1];
+    float f[n + 1];
+    x[0] = x0;
+    f[0] = u_overestimation;
+    for (int i = 1; i <= n; ++i) f[i] = mboitSupport(roots[i - 1], z, x[i]);
+    // Newton divided differences of the interpolating polynomial.
+    MBOIT_SCALAR d[n + 1];
+    for (int i = 0; i <= n; ++i) d[i] = mboitFromReal(f[i]);
+    for (int j = 1; j <= n; ++j) {
+        for (int i = n; i >= j; --i) d[i] = mboitDiv(d[i] - d[i - 1], x[i] - x[i - j]);
+    }
+    return mboitPolynomialSum(d, x, b);
+}
 
 // Transmittance in front of the fragment at window depth `windowZ` of this pixel.
 layout(binding = 0) uniform sampler2D u_b0;

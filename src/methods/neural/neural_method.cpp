@@ -271,7 +271,7 @@ private:
     }
 
     // After the composite: the background into the pixels it skipped.
-    void finishOutput(const FrameDesc& frame) const {
+    void finishOutput() const {
         if (skipEmpty()) {
             emptyPixels_.fillEmpty(opaque_, options_.neural.targets == NeuralOptions::Targets::Compact, fullscreenVao_);
         }
@@ -410,14 +410,14 @@ private:
             }
             glUniform4fv(program.uniform("u_sourceScale"), 1, &targets.sourceScale[0]);
             drawFullscreen();
-            finishOutput(frame);
+            finishOutput();
             return;
         }
         if (!cornersUsed_) {
             bindOutput();
             setCommonUniforms(inference("infer_full", fullResolution), frame);
             drawFullscreen();
-            finishOutput(frame);
+            finishOutput();
             return;
         }
         if (cornerNetwork_.width() != width_ || cornerNetwork_.height() != height_) {
@@ -434,7 +434,7 @@ private:
         setCommonUniforms(inference("infer_fill", fullResolution), frame);
         gl::bindTexture(kUnitCornerNetwork, cornerNetwork_.id());
         drawFullscreen();
-        finishOutput(frame);
+        finishOutput();
     }
 
     NeuralMethodConfig config_;

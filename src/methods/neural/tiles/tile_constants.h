@@ -49,7 +49,7 @@
 // Each probe in a row whose guard kept both passes at full resolution doubles the interval, up to
 // STARNT_SCALE_PROBE_INTERVAL << STARNT_SCALE_PROBE_BACKOFF real frames (32); a probe that finds a
 // reduction, or a reset, returns it to 8. A probe costs a full-resolution frame plus the tiles and
-// the guard (22-43 ms on llvmpipe at 1280x720, issue-13 bench): every 8th frame that made the
+// the guard (22-43 ms on llvmpipe at 1280x720, 13-scene bench; docs/DESIGN.md, "Scale guard, tile signal and scale rules"): every 8th frame that made the
 // default starnt 9-20 % slower than starnt-full on scenes where it never reduces.
 #define STARNT_SCALE_PROBE_BACKOFF 2
 #define STARNT_SCALE_SETTLE_FRAMES 3
