@@ -88,7 +88,8 @@ void expectGpuMatchesCpu(const Case& c, const Image& gpu, Composite composite, f
                 // order and the CPU in depth order, each rounding to 16 bits after every addition;
                 // the network's inputs then differ in their last bits (measured: at most 3 steps of
                 // 2^-11 in the output, on 7 of 4800 pixels of smoke), so one more 1e-3 there.
-                const float allowed = compact && sums.count > 3.5f ? tolerance + 1e-3f : tolerance;
+                // Relative above 1 (HDR colours).
+                const float allowed = (compact && sums.count > 3.5f ? tolerance + 1e-3f : tolerance) * std::max(1.0f, std::abs(want[ch]));
                 if (!(std::abs(gpu.pixel(x, y)[ch] - want[ch]) <= allowed) && ++bad <= 5) {
                     ADD_FAILURE() << "pixel " << x << "," << y << " ch " << ch << ": gpu " << gpu.pixel(x, y)[ch]
                                   << " cpu " << want[ch] << " N=" << sums.count << (compact ? " (compact)" : " (fp32)");
@@ -214,6 +215,17 @@ TEST(GlNeural, DfaoitMatchesCpuReferencePerPixel) {
                                 layout, layout == NeuralOptions::Targets::Compact);
         }
     }
+    // HDR colours (x50) through the narrow layers: each keeps its power-of-16 scale in the 2-bit
+    // alpha (nn::narrowLayerColor), where a plain RGB10_A2 layer clamps them to 1.
+    Scene hdr = makeBuiltinScene("tubes", 3);
+    for (Mesh& m : hdr.meshes) {
+        for (glm::vec4& color : m.colors) color = glm::vec4(glm::vec3(color) * 50.0f, color.a);
+    }
+    const Case hdrCase(std::move(hdr), kW, kH, 200.0f, 20.0f, kBackground);
+    const nn::Network net = loadMethodNetwork(*neuralConfig("dfaoit"), {});
+    expectGpuMatchesCpu(hdrCase, renderWith(hdrCase, "dfaoit"),
+                        [&](const nn::PixelSums& s) { return nn::compositeDfaoit(net, s, kBackground); }, 1e-3f,
+                        NeuralOptions::Targets::Compact, true);
 }
 
 // The composites shade only the pixels pass 1 covered and fill the rest with the background

@@ -8,6 +8,7 @@
 #include "starnt/error.hpp"
 #include "starnt/tools/nn.hpp"
 #include "methods/hybrid_moments/tail_moments_constants.h"
+#include "methods/neural/network_hdr.h"
 
 namespace starnt::nn {
 
@@ -55,6 +56,12 @@ float roundToUnorm16(float v) { return std::round(std::clamp(v, 0.0f, 1.0f) * 65
 
 glm::vec3 roundToUnorm10(glm::vec3 v) { return glm::round(glm::clamp(v, 0.0f, 1.0f) * 1023.0f) / 1023.0f; }
 
+glm::vec3 narrowLayerColor(glm::vec3 c) {
+    const float peak = std::max({c.r, c.g, c.b});
+    const float scale = peak > 1.0f ? (peak > 16.0f ? (peak > 256.0f ? 4096.0f : 256.0f) : 16.0f) : 1.0f;
+    return roundToUnorm10(c / scale) * scale;
+}
+
 glm::vec3 roundToHalf(glm::vec3 v, bool towardZero) {
     return {roundToHalf(v.x, towardZero), roundToHalf(v.y, towardZero), roundToHalf(v.z, towardZero)};
 }
@@ -62,7 +69,7 @@ glm::vec3 roundToHalf(glm::vec3 v, bool towardZero) {
 PixelSums sumsInHalfTargets(FragmentList fragments, bool blendTruncates, float alphaCutoff, bool narrowLayers) {
     fragments = preparedFragments(std::move(fragments), alphaCutoff);
     PixelSums s;
-    const auto layerColor = [&](glm::vec3 c) { return narrowLayers ? roundToUnorm10(c) : roundToHalf(c); };
+    const auto layerColor = [&](glm::vec3 c) { return narrowLayers ? narrowLayerColor(c) : roundToHalf(c); };
     if (!fragments.empty()) {
         s.c1 = layerColor(fragments[0].color);
         s.a1 = roundToHalf(fragments[0].alpha);
@@ -164,18 +171,20 @@ glm::vec3 compositeThreeLayersExact(const PixelSums& s, glm::vec3 background, De
 
 namespace {
 
-// CPU reference of methods/neural/network_hdr.glsl (docs/DESIGN.md, "HDR"): the colour inputs from
-// `firstColour` on divided by the pixel's scale k = the largest of them outside [skipBegin, skipEnd),
-// the output multiplied by k, where k exceeds 1 + 2^-8 (LDR pixels, 16-bit rounding included, keep
-// their bits).
+// CPU reference of methods/neural/network_hdr.glsl (docs/DESIGN.md, "HDR"; the same float
+// operations): the colour inputs from `firstColour` on divided by the pixel's scale k
+// (network_hdr.h) of the largest of them outside [skipBegin, skipEnd), the output multiplied by k,
+// where that largest exceeds 1 + 2^-8 (LDR pixels, 16-bit rounding included, keep their bits).
 template <size_t N>
 glm::vec3 forwardInColourScale(const Network& net, std::array<float, N> x, size_t firstColour, size_t skipBegin = N,
                                size_t skipEnd = N, size_t colourEnd = N) {
-    float k = 1.0f;
+    float peak = 1.0f;
     for (size_t i = firstColour; i < colourEnd; ++i) {
-        if (i < skipBegin || i >= skipEnd) k = std::max(k, x[i]);
+        if (i < skipBegin || i >= skipEnd) peak = std::max(peak, x[i]);
     }
-    if (!(k > 1.0f + 1.0f / 256.0f)) return net.forward(x.data());
+    if (!(peak > float(STARNT_NN_HDR_THRESHOLD))) return net.forward(x.data());
+    const float target = float(STARNT_NN_HDR_TARGET);
+    const float k = peak / (target + (1.0f - target) / peak);
     for (size_t i = firstColour; i < colourEnd; ++i) x[i] /= k;
     return k * net.forward(x.data());
 }

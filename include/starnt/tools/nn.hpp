@@ -68,6 +68,9 @@ glm::vec3 roundToHalf(glm::vec3 v, bool towardZero = false);
 // Clamp to [0, 1] and round to the nearest step of 1/65535 (a GL_R16 target) or 1/1023 (10 bits).
 float roundToUnorm16(float v);
 glm::vec3 roundToUnorm10(glm::vec3 v);
+// What DFAOIT's narrow layer (RGB10_A2) holds of colour c: c / 16^e rounded to 10 bits, times 16^e,
+// e in 0..3 the least that brings the largest channel within 1 (half_targets.glsl, splitLayerValue).
+glm::vec3 narrowLayerColor(glm::vec3 c);
 
 // Drops fragments with alpha < cutoff and sorts the rest by depth: the list targets are defined on.
 FragmentList preparedFragments(FragmentList fragments, float alphaCutoff = kDefaultAlphaCutoff);

@@ -5,6 +5,8 @@
 // round-to-nearest CPU reference), a bias every pixel would carry; GPUs round to nearest, where
 // this changes nothing. Blended writes (pass 3's sums) cannot be rounded this way.
 // CPU reference: nn::roundToHalf.
+#ifndef STARNT_HALF_TARGETS_GLSL
+#define STARNT_HALF_TARGETS_GLSL
 float nearestHalf(float v) {
     float a = min(abs(v), 65504.0);  // the largest finite 16-bit float
     if (a == 0.0) return 0.0;
@@ -28,12 +30,19 @@ vec4 targetValue(vec4 v) {
 }
 
 #ifdef STARNT_SPLIT_ALPHA
-// DFAOIT's narrow layers (NeuralPasses, "Narrow layers"): the colour rounded here to the nearest
-// step of the RGB10_A2 target (1/1023, clamped to [0, 1]; its 2-bit alpha is unused), the alpha to
-// the nearest 16-bit float for the RG16F target. CPU reference: nn::sumsInHalfTargets(...,
-// narrowLayers = true).
+// DFAOIT's narrow layers (NeuralPasses, "Narrow layers"): the colour divided by 16^e and rounded
+// here to the nearest step of the RGB10_A2 target (1/1023, clamped to [0, 1]), e (0..3) the least
+// that brings the largest channel within 1, kept in the target's 2-bit alpha (docs/DESIGN.md,
+// "HDR": LDR colours keep e = 0 and their bits; HDR ones up to 4096 keep 10 bits of their scale);
+// the alpha to the nearest 16-bit float for the RG16F target. CPU reference:
+// nn::narrowLayerColor.
 void splitLayerValue(vec4 v, out vec4 color, out vec2 alpha) {
-    color = vec4(round(clamp(v.rgb, 0.0, 1.0) * 1023.0) / 1023.0, 1.0);
+    float peak = max(max(v.r, v.g), v.b);
+    float e = peak > 1.0 ? (peak > 16.0 ? (peak > 256.0 ? 3.0 : 2.0) : 1.0) : 0.0;
+    color = vec4(round(clamp(v.rgb / exp2(4.0 * e), 0.0, 1.0) * 1023.0) / 1023.0, e / 3.0);
     alpha = vec2(nearestHalf(v.a));
 }
+// The colour a narrow layer holds (splitLayerValue's stored value).
+vec3 narrowLayerColor(vec4 stored) { return stored.rgb * exp2(4.0 * round(stored.a * 3.0)); }
+#endif
 #endif

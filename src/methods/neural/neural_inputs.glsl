@@ -12,6 +12,7 @@ layout(binding = STARNT_UNIT_TRANSMITTANCE) uniform sampler2D u_transmittance;  
 #ifdef STARNT_SPLIT_ALPHA
 // DFAOIT's narrow layers: C1 and C2 in RGB10_A2, their alphas here (a1, a2). Full resolution only.
 layout(binding = STARNT_UNIT_LAYER_ALPHA) uniform sampler2D u_layerAlpha;
+#include "methods/neural/half_targets.glsl"  // narrowLayerColor
 #ifndef STARNT_INPUTS_FULL_RESOLUTION
 #error "narrow layers need every pass at full resolution"
 #endif
@@ -35,7 +36,7 @@ PixelSums readPixelSums(ivec2 p) {
     vec4 f1 = texelFetch(u_nearest, p, 0);
 #ifdef STARNT_SPLIT_ALPHA
     vec2 layerAlpha = texelFetch(u_layerAlpha, p, 0).rg;
-    f1.a = layerAlpha.r;
+    f1 = vec4(narrowLayerColor(f1), layerAlpha.r);
 #endif
     if (f1.a == 0.0) {
         // Pass 1 runs at full resolution: no nearest fragment means no fragment at all. Without
@@ -49,7 +50,7 @@ PixelSums readPixelSums(ivec2 p) {
 #if defined(STARNT_INPUTS_FULL_RESOLUTION)
     vec4 f2 = texelFetch(u_second, p, 0);
 #ifdef STARNT_SPLIT_ALPHA
-    f2.a = layerAlpha.g;
+    f2 = vec4(narrowLayerColor(f2), layerAlpha.g);
 #endif
 #else
     // Pass 2 at full resolution (pass 3 reduced): its own pixel only. The inference may write the
