@@ -326,14 +326,18 @@ TEST(TemporalCorrected, PassThreeSumsTheMomentsBehindTheReference) {
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
                 const size_t i = size_t(y) * size_t(w) + size_t(x);
-                const OrderedBehind want =
-                    behindMomentsOf(nn::preparedFragments(fragments.at(x, h - 1 - y)), referenceAt(reference, w, x, y));
+                const FragmentList list = nn::preparedFragments(fragments.at(x, h - 1 - y));
+                const OrderedBehind want = behindMomentsOf(list, referenceAt(reference, w, x, y));
+                float t = 1.0f;
+                for (const Fragment& f : list) t *= 1.0f - f.alpha;
                 behind += want.moment1.a > 0.0f;
                 bool near = true;
                 for (int k = 0; k < 4; ++k) {
                     near = near && std::abs(first[i][k] - want.moment1[k]) <= 1e-4f + 2e-3f * std::abs(want.moment1[k]);
-                    near = near && std::abs(second[i][k] - want.moment2[k]) <= 1e-4f + 4e-3f * std::abs(want.moment2[k]);
                 }
+                // sum a u^2 and, beside it, the transmittance.
+                near = near && std::abs(second[i].r - want.moment2) <= 1e-4f + 4e-3f * std::abs(want.moment2);
+                near = near && std::abs(second[i].a - t) <= 1e-4f + 1e-3f * t;
                 off += !near;
             }
         EXPECT_GT(behind, size_t(200)) << "pixels with fragments behind the reference";
@@ -342,7 +346,8 @@ TEST(TemporalCorrected, PassThreeSumsTheMomentsBehindTheReference) {
     // A real frame: over the fragments behind pass 1's, in v = u - u1 (orderedClosedFormBehindFromMoments).
     passes.run(frame, draw, NeuralPasses::kDefaultPeelEpsilon, {w, h}, {w, h}, [&] { return referenceTexture.id(); });
     ASSERT_TRUE(passes.behindMomentsSummed());
-    const std::vector<glm::vec4> first = readRgba(passes.realBehindMoment1(), w, h), second = readRgba(passes.realBehindMoment2(), w, h);
+    // (sum a C v, sum a v), and sum a v^2 beside the count.
+    const std::vector<glm::vec4> first = readRgba(passes.realBehindMoment1(), w, h), second = readRgba(passes.colorCount().id(), w, h);
     size_t behind = 0, off = 0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
@@ -359,10 +364,9 @@ TEST(TemporalCorrected, PassThreeSumsTheMomentsBehindTheReference) {
             }
             behind += want1.w > 0.0;
             bool near = true;
-            for (int k = 0; k < 4; ++k) {
-                near = near && std::abs(first[i][k] - want1[k]) <= 1e-4 + 2e-3 * std::abs(want1[k]);
-                near = near && std::abs(second[i][k] - want2[k]) <= 1e-4 + 4e-3 * std::abs(want2[k]);
-            }
+            for (int k = 0; k < 4; ++k) near = near && std::abs(first[i][k] - want1[k]) <= 1e-4 + 2e-3 * std::abs(want1[k]);
+            near = near && std::abs(second[i].g - want2.w) <= 1e-4 + 4e-3 * std::abs(want2.w);
+            near = near && second[i].r == float(list.size());  // the count beside it
             off += !near;
         }
     EXPECT_GT(behind, size_t(200)) << "real frame: pixels with fragments behind the nearest";
@@ -403,7 +407,7 @@ static void expectOrderedFrameMatchesCpu(bool packed, int w, int h, unsigned see
             sums.push_back(s);
             transmittance.push_back(t);
             first.push_back(m.moment1);
-            second.push_back(m.moment2);
+            second.push_back(glm::vec4(m.moment2, 0.0f, 0.0f, t));  // the transmittance beside sum a u^2
         }
     std::vector<glm::vec4> composite(real.nearest.size(), glm::vec4(0.5f, 0.5f, 0.5f, 1.0f));
     gl::Texture2D rc = uploadRgba(composite, w, h), rd = uploadDepth(real.depth, w, h), rn = uploadRgba(real.nearest, w, h);
@@ -431,7 +435,7 @@ static void expectOrderedFrameMatchesCpu(bool packed, int w, int h, unsigned see
             const size_t i = size_t(y) * size_t(w) + size_t(x);
             float z = depth[i];
             const glm::vec4 layer = packed ? unpackNearest(packedLayer[i], z) : nearest[i];
-            const OrderedBehind m{first[i], second[i], referenceAt(reference, w, x, y)};
+            const OrderedBehind m{first[i], second[i].r, referenceAt(reference, w, x, y)};
             const glm::vec3 want = correctedPixel(x, y, w, h, layer, z, sums[i], transmittance[i], {}, oldVP, newVP, kBackground, &m);
             const glm::vec3 plain = correctedPixel(x, y, w, h, layer, z, sums[i], transmittance[i], {}, oldVP, newVP, kBackground);
             ordered += glm::length(want - plain) > 1e-3f;

@@ -110,31 +110,31 @@ float referenceAt(const std::vector<float>& reference, int width, int x, int y) 
 }
 
 OrderedBehind behindMomentsOf(const std::vector<Fragment>& fragments, float reference) {
-    glm::dvec4 first(0.0), second(0.0);
+    glm::dvec4 first(0.0);
+    double second = 0.0;
     for (const Fragment& f : fragments) {
         const float u = depthBehindReference(f.depth, reference);
         const glm::vec4 term = glm::vec4(f.color * f.alpha, f.alpha) * u;  // the shader's float operations
         first += glm::dvec4(term);
-        second += glm::dvec4(term * u);
+        second += double(term.a * u);
     }
-    return {glm::vec4(first), glm::vec4(second), reference};
+    return {glm::vec4(first), float(second), reference};
 }
 
 glm::vec3 orderedClosedFormBehindFromMoments(const glm::vec4& nearest, const glm::vec4& sums, float transmittance,
-                                             const glm::vec4& moment1, const glm::vec4& moment2, const glm::vec3& background) {
+                                             const glm::vec4& moment1, float moment2, const glm::vec3& background) {
     const float behindT = glm::clamp(transmittance / (1.0f - nearest.a), 0.0f, 1.0f);
     const float behindAlpha = sums.a - nearest.a;
     if (!(behindAlpha > float(STARNT_TEMPORAL_MIN_BEHIND_ALPHA))) return background;
     nn::TailMoments m;
     m.alphaColorU = glm::vec3(moment1);
     m.alphaU = moment1.a;
-    m.alphaColorU2 = glm::vec3(moment2);
-    m.alphaU2 = moment2.a;
+    m.alphaU2 = moment2;
     const glm::vec3 alphaColor = glm::vec3(sums) - glm::vec3(nearest) * nearest.a;
     const float mean = moment1.a / behindAlpha;
     const bool spread =
-        moment2.a / behindAlpha - mean * mean > float(STARNT_ORDERED_ALPHA_ROUNDING) / behindAlpha * mean * mean;
-    const glm::vec3 color = spread ? nn::momentWeightedColor(alphaColor, behindAlpha, m, behindT)
+        moment2 / behindAlpha - mean * mean > float(STARNT_ORDERED_ALPHA_ROUNDING) / behindAlpha * mean * mean;
+    const glm::vec3 color = spread ? nn::momentWeightedColor(alphaColor, behindAlpha, m, behindT, false)
                                    : glm::max(alphaColor / behindAlpha, glm::vec3(0.0f));
     return (1.0f - behindT) * color + behindT * background;
 }
@@ -143,7 +143,7 @@ glm::vec3 orderedClosedFormBehind(const glm::vec4& nearest, float depth, const g
                                   const OrderedBehind& ordered, const glm::vec3& background) {
     const float u = depthBehindReference(depth, ordered.reference);
     const glm::vec4 first = ordered.moment1 - u * sums;
-    return orderedClosedFormBehindFromMoments(nearest, sums, transmittance, first, ordered.moment2 - u * (ordered.moment1 + first),
+    return orderedClosedFormBehindFromMoments(nearest, sums, transmittance, first, ordered.moment2 - u * (ordered.moment1.a + first.a),
                                               background);
 }
 

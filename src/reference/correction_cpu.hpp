@@ -63,16 +63,17 @@ float keyedDepth(float z);
 float depthBehindReference(float z, float reference);
 std::vector<float> referenceDepthOnCpu(const std::vector<float>& depth, int width, int height);
 float referenceAt(const std::vector<float>& reference, int width, int x, int y);
-// What an interpolated pixel's pass 3 sums behind the reference depth: (sum a C u, sum a u),
-// (sum a C u^2, sum a u^2) over every fragment.
+// What an interpolated pixel's pass 3 sums behind the reference depth: (sum a C u, sum a u) and
+// sum a u^2 over every fragment.
 struct OrderedBehind {
-    glm::vec4 moment1{0.0f}, moment2{0.0f};
+    glm::vec4 moment1{0.0f};
+    float moment2 = 0.0f;
     float reference = 1.0f;
 };
 OrderedBehind behindMomentsOf(const std::vector<Fragment>& fragments, float reference);
 // What lies behind the nearest layer (C1, a1 at window depth `depth`) weighted by depth: the
 // moments recentred at the nearest fragment's u1 (its own terms then vanish), then
-// nn::momentWeightedColor over the rest (their alpha sum sum a - a1, transmittance T / (1 - a1);
+// nn::momentWeightedColor, linear at most, over the rest (their alpha sum sum a - a1, transmittance T / (1 - a1);
 // the plain mean where their spread is within what a1's rounding in sum a - a1 makes,
 // STARNT_ORDERED_ALPHA_ROUNDING), under 1 - T / (1 - a1), the background the rest; the background
 // where sum a - a1 <= STARNT_TEMPORAL_MIN_BEHIND_ALPHA.
@@ -81,7 +82,7 @@ glm::vec3 orderedClosedFormBehind(const glm::vec4& nearest, float depth, const g
 // The same from moments over the fragments behind the nearest one only, in v = u - u1 (what a real
 // frame at a still camera sums: pass 1 tells which), nothing to recentre.
 glm::vec3 orderedClosedFormBehindFromMoments(const glm::vec4& nearest, const glm::vec4& sums, float transmittance,
-                                             const glm::vec4& moment1, const glm::vec4& moment2, const glm::vec3& background);
+                                             const glm::vec4& moment1, float moment2, const glm::vec3& background);
 
 // One interpolated pixel (x, y): `nearest`, `depth`, `sums`, `transmittance` of the fresh passes at
 // that pixel; `correction` the kept texels of a frame rendered with `oldViewProj` (empty: the frame

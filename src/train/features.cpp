@@ -252,12 +252,12 @@ void exponentialMoments(float tau, float integrals[3]) {
 }
 }  // namespace
 
-glm::vec3 momentWeightedColor(const glm::vec3& alphaColor, float alpha, const TailMoments& m, float tTail) {
+glm::vec3 momentWeightedColor(const glm::vec3& alphaColor, float alpha, const TailMoments& m, float tTail, bool quadraticAllowed) {
     const glm::vec3 plain = glm::max(alphaColor / alpha, glm::vec3(0.0f));
     const float mean = m.alphaU / alpha;
     const float spread = std::sqrt(std::max(m.alphaU2 / alpha - mean * mean, 0.0f));
     if (!(spread > float(STARNT_TAIL_MOMENT_PLAIN_BELOW) * mean)) return plain;
-    const bool quadratic = spread > float(STARNT_TAIL_MOMENT_LINEAR_BELOW) * mean;
+    const bool quadratic = quadraticAllowed && spread > float(STARNT_TAIL_MOMENT_LINEAR_BELOW) * mean;
     const float maxDepth = float(STARNT_TAIL_MOMENT_MAX_OPTICAL_DEPTH);
     const float tau = tTail > 0.0f ? std::min(-std::log(tTail), maxDepth) : maxDepth;
     float integral[3];
@@ -273,7 +273,7 @@ glm::vec3 momentWeightedColor(const glm::vec3& alphaColor, float alpha, const Ta
     const float halfWidth = std::sqrt(3.0f) * spread, lo = mean - halfWidth, width = 2.0f * halfWidth;
     const glm::vec3 firstFromLo = m.alphaColorU - lo * alphaColor;
     const glm::vec3 x1 = firstFromLo / width;
-    const glm::vec3 x2 = ((m.alphaColorU2 - lo * m.alphaColorU) - lo * firstFromLo) / (width * width);
+    const glm::vec3 x2 = quadratic ? ((m.alphaColorU2 - lo * m.alphaColorU) - lo * firstFromLo) / (width * width) : glm::vec3(0.0f);
     // sum a w(x) = alpha c0 exactly (the x-moments of the alphas are 1/2 and 1/3 by construction).
     return glm::max((b0 * alphaColor + b1 * x1 + b2 * x2) / (c0 * alpha), glm::vec3(0.0f));
 }

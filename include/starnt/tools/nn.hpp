@@ -124,7 +124,9 @@ glm::vec3 momentWeightedTailColor(const PixelSums& s, const TailMoments& m);
 // The same weighting for any fragments: `alphaColor` = sum a C, `alpha` = sum a (> 0), `m` their
 // moments, `tTail` their transmittance (corrected frames weigh what lies behind the nearest layer
 // with it: temporal::orderedClosedFormBehind).
-glm::vec3 momentWeightedColor(const glm::vec3& alphaColor, float alpha, const TailMoments& m, float tTail);
+// Without `quadraticAllowed` the weight is linear at most and m.alphaColorU2 is not read.
+glm::vec3 momentWeightedColor(const glm::vec3& alphaColor, float alpha, const TailMoments& m, float tTail,
+                              bool quadraticAllowed = true);
 // hybrid-moments' composite: hybrid's with the deep tail (1 - t_tail) momentWeightedTailColor.
 glm::vec3 compositeHybridMoments(const PixelSums& s, const TailMoments& m, glm::vec3 background);
 // starnt-d (NetworkKind::StarNTDepth) inputs, in this order: STAR-NT's five (t_tail, N, C_tilde),

@@ -8,12 +8,12 @@ vec3 momentWeightedTailColor(PixelSums s, ivec2 p) {
     float alpha = tailAlphaSum(s);
     if (!(alpha > STARNT_EPS_TAIL_ALPHA)) return vec3(0.0);
     return momentWeightedColor(tailPremultiplied(s), alpha, texelFetch(u_tailMoment1, p, 0), texelFetch(u_tailMoment2, p, 0),
-                               tailTransmittance(s));
+                               tailTransmittance(s), true);
 }
 
 // What hybrid-moments puts behind the nearest layer, (C - a1 C1) / (1 - a1) of its composite: what a
 // real frame's kept correction is taken against (correction_capture.glsl) where its pass 3 could not
-// sum the ordered closed form's moments (fewer than 7 draw buffers; infer_full.frag.glsl). Needs
+// sum the ordered closed form's moments (fewer than 6 draw buffers; infer_full.frag.glsl). Needs
 // 1 - a1 > 0.
 #define STARNT_ORDERED_CLOSED_FORM 1
 vec3 orderedClosedFormBehindNearest(PixelSums s, vec3 background) {

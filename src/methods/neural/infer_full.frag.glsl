@@ -15,12 +15,11 @@ uniform vec4 u_sourceScale;
 #ifdef STARNT_CAPTURE_ORDERED
 // The tail-moment methods: pass 3 summed the moments behind pass 1's fragment and the reference
 // depth the interpolated frames will use, so the correction is taken against the ordered closed
-// form they compute (ordered_behind.glsl) and a still camera gives the real frame back. Every
-// texture unit below the engine's is taken: image units 0 and 1, which only the tiles and the
-// A-buffer use, neither in these methods.
+// form they compute (ordered_behind.glsl) and a still camera gives the real frame back: sum a v^2
+// beside the count, (sum a C v, sum a v) through image unit 0, as every texture unit below the
+// engine's is taken (image units: only the tiles and the A-buffer use them, neither in these methods).
 #include "methods/neural/temporal/ordered_behind.glsl"
 layout(binding = 0, rgba32f) uniform readonly highp image2D u_behindMoment1;
-layout(binding = 1, rgba32f) uniform readonly highp image2D u_behindMoment2;
 #endif
 #endif
 
@@ -35,9 +34,9 @@ void main() {
     // The layer and sums this pixel read already (full-resolution inputs: the texels themselves).
 #if defined(STARNT_CAPTURE_ORDERED)
     vec3 closedForm = orderedClosedFormBehindFromMoments(vec4(s.c1, s.a1), vec4(s.sumAlphaColor, s.sumAlpha), s.transmittance,
-                                                         imageLoad(u_behindMoment1, t), imageLoad(u_behindMoment2, t), background());
+                                                         imageLoad(u_behindMoment1, t), texelFetch(u_colorCount, t, 0).g, background());
 #elif defined(STARNT_ORDERED_CLOSED_FORM)
-    // The tail-moment methods where pass 3 could not sum those moments (fewer than 7 draw buffers):
+    // The tail-moment methods where pass 3 could not sum those moments (fewer than 6 draw buffers):
     // against hybrid-moments' composite, the nearest to the ordered closed form they have.
     vec3 closedForm = orderedClosedFormBehindNearest(s, background());
 #else

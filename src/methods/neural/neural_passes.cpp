@@ -125,7 +125,7 @@ NeuralPasses::NeuralPasses(const SurfaceShader& surface, OpaqueScene& opaque, bo
       surface_(surface) {
     GLint drawBuffers = 0;
     glGetIntegerv(GL_MAX_DRAW_BUFFERS, &drawBuffers);
-    behindMomentsFit_ = drawBuffers >= 7;  // a real frame's pass 3 with the moments behind (runSums)
+    behindMomentsFit_ = drawBuffers >= 6;  // a real frame's pass 3 with the moments behind (runSums)
 }
 
 // The compact layout's transmittance, prod (1 - a) blended over up to hundreds of fragments. In a
@@ -169,7 +169,9 @@ void NeuralPasses::resize(int width, int height) {
     // (measured on chess 320x180: MSE 2.9e-6 against 1.2e-6 with 32-bit sums), and weighted by the
     // tail's optical depth -ln t_tail, which a 16-bit transmittance clamps beyond about 11.
     alphaColor_ = gl::Texture2D(tailMoments_ ? GL_RGBA32F : color, width, height, GL_LINEAR);
-    colorCount_ = gl::Texture2D(colorSums_ ? color : single, width, height, GL_LINEAR);
+    // The tail-moment methods' real frames with corrected frames sum a v^2 beside the count
+    // (pass3_accumulate.frag.glsl): one target fewer than a target of its own.
+    colorCount_ = gl::Texture2D(colorSums_ ? color : tailMoments_ ? GL_RG32F : single, width, height, GL_LINEAR);
     transmittance_ = gl::Texture2D(compact && !tailMoments_ ? compactTransmittanceFormat() : GL_R32F, width, height, GL_LINEAR);
     if (narrowLayers_) {
         pass1Fb_ = gl::makeFramebuffer({&nearest_, &layerAlpha_}, &nearestDepth_);
@@ -185,7 +187,9 @@ void NeuralPasses::resize(int width, int height) {
     } else {
         pass3Fb_ = gl::makeFramebuffer({&alphaColor_, &colorCount_, &transmittance_});
     }
-    sumsFb_ = tailMoments_ ? gl::makeFramebuffer({&alphaColor_, &transmittance_, &tailMoment1_, &tailMoment2_})
+    // Corrected frames' sums: the tail-moment methods keep the transmittance beside sum a u^2 in their
+    // second moment target (pass3_accumulate.frag.glsl), free in an interpolated frame.
+    sumsFb_ = tailMoments_ ? gl::makeFramebuffer({&alphaColor_, &tailMoment2_, &tailMoment1_})
                            : gl::makeFramebuffer({&alphaColor_, &transmittance_});
     packedFb_.reset();  // runPackedNearestAndSums makes it again around the new targets
     pass3BehindFb_.reset();
@@ -205,14 +209,13 @@ void NeuralPasses::addMemoryTargets(OitMethod::MemoryTargets& out) const {
                            {"layer_alphas", layerAlpha_.bytes()},
                            {"pass3_tail_moments", tailMoment1_.bytes() + tailMoment2_.bytes()},
                            {"corrected_packed_nearest", packedNearest_.bytes()},
-                           {"corrected_behind_moments", realBehind2_.bytes()},
                            {"pass3_resolve_copies_es", esResolveCopies_.bytes()}});
 }
 
 size_t NeuralPasses::gpuMemoryBytes() const {
     return nearest_.bytes() + nearestDepth_.bytes() + second_.bytes() + secondDepth_.bytes() +
            alphaColor_.bytes() + colorCount_.bytes() + transmittance_.bytes() + layerAlpha_.bytes() +
-           tailMoment1_.bytes() + tailMoment2_.bytes() + packedNearest_.bytes() + realBehind2_.bytes() + esResolveCopies_.bytes();
+           tailMoment1_.bytes() + tailMoment2_.bytes() + packedNearest_.bytes() + esResolveCopies_.bytes();
 }
 
 void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) {
@@ -301,13 +304,9 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
     if (behindSummed_) {
         prepareRealBehindMoments();
         allocatePackedNearest();
-        if (realBehind2_.width() != width_ || realBehind2_.height() != height_) {
-            realBehind2_ = gl::Texture2D(GL_RGBA32F, width_, height_);
-            pass3BehindFb_.reset();
-        }
         if (!pass3BehindFb_.id()) {
-            pass3BehindFb_ = gl::makeFramebuffer(
-                {&alphaColor_, &colorCount_, &transmittance_, &tailMoment1_, &tailMoment2_, &packedNearest_, &realBehind2_});
+            pass3BehindFb_ =
+                gl::makeFramebuffer({&alphaColor_, &colorCount_, &transmittance_, &tailMoment1_, &tailMoment2_, &packedNearest_});
         }
         framebuffer = pass3BehindFb_.id();
         program = &pass3Behind_;
@@ -330,7 +329,7 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
         gl::bindTexture(0, secondDepth_.id());  // z2 (tail moments run at full resolution only)
     }
     if (behindSummed_) {
-        beginBehindMoments(5, behindReference);
+        beginBehindMoment(5, behindReference);
         gl::bindTexture(2, nearestDepth_.id());  // pass3_accumulate.frag.glsl's u_nearestDepth
     }
     MethodBase::runGeometryPass("pass3", *program, frame, draw);
@@ -351,7 +350,10 @@ void NeuralPasses::runNearestAndSums(const FrameDesc& frame, const DrawCallback&
     pass3Size_ = {width_, height_};
     gl::ScopedPass timing(frame.timing, "pass3");
     beginSumAndProduct(sumsFb_.id(), width_, height_, opaque_, GL_ONE_MINUS_SRC_ALPHA);  // sum a C, sum a; prod (1 - a)
-    if (tailMoments_) beginBehindMoments(2, reference);
+    if (tailMoments_) {
+        beginSecondMomentAndProduct(1);
+        beginBehindMoment(2, reference);
+    }
     MethodBase::runGeometryPass("pass3", pass3Sums_, frame, draw);
     opaque_.endDepthTest(sumsFb_.id());
     resetPassState();
@@ -365,13 +367,17 @@ void NeuralPasses::preparePackedNearestAndSums() {
     }
 }
 
-void NeuralPasses::beginBehindMoments(GLuint firstTarget, GLuint reference) {
+void NeuralPasses::beginBehindMoment(GLuint target, GLuint reference) {
     const float zero[4] = {0, 0, 0, 0};
-    for (GLuint target : {firstTarget, firstTarget + 1}) {
-        glClearBufferfv(GL_COLOR, GLint(target), zero);
-        glBlendFunci(target, GL_ONE, GL_ONE);
-    }
+    glClearBufferfv(GL_COLOR, GLint(target), zero);
+    glBlendFunci(target, GL_ONE, GL_ONE);
     gl::bindTexture(1, reference);  // pass3_accumulate.frag.glsl's u_reference
+}
+
+void NeuralPasses::beginSecondMomentAndProduct(GLuint target) {
+    const float empty[4] = {0, 0, 0, 1};
+    glClearBufferfv(GL_COLOR, GLint(target), empty);
+    glBlendFuncSeparatei(target, GL_ONE, GL_ONE, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);  // sum a u^2; prod (1 - a)
 }
 
 void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCallback& draw, GLuint reference) {
@@ -383,9 +389,8 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
         // covered (depth test ALWAYS: the last fragment's depth, < 1 where anything is) for the
         // composite's early empty-pixel test; so the opaque clip runs in the shader, as in pass 1.
         // The tail-moment methods sum their moments behind the nearest layer into their own
-        // moment targets, free in an interpolated frame.
-        packedFb_ = tailMoments_ ? gl::makeFramebuffer({&alphaColor_, &transmittance_, &packedNearest_, &tailMoment1_, &tailMoment2_},
-                                                       &nearestDepth_)
+        // moment targets, free in an interpolated frame, the transmittance beside sum a u^2.
+        packedFb_ = tailMoments_ ? gl::makeFramebuffer({&alphaColor_, &tailMoment2_, &packedNearest_, &tailMoment1_}, &nearestDepth_)
                                  : gl::makeFramebuffer({&alphaColor_, &transmittance_, &packedNearest_}, &nearestDepth_);
     }
     pass3Size_ = {width_, height_};
@@ -406,7 +411,10 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
     const float empty[4] = {emptyPixel, emptyPixel, emptyPixel, emptyPixel};
     glClearBufferfv(GL_COLOR, 2, empty);
     glBlendEquationi(2, GL_MIN);  // blend factors do not apply to MIN
-    if (tailMoments_) beginBehindMoments(3, reference);
+    if (tailMoments_) {
+        beginSecondMomentAndProduct(1);
+        beginBehindMoment(3, reference);
+    }
     glUseProgram(pass3Packed_.id());
     opaque_.clipInShader(pass3Packed_, width_, height_, width_, height_);
     MethodBase::runGeometryPass("pass3", pass3Packed_, frame, draw);

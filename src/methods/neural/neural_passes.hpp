@@ -113,13 +113,13 @@ public:
     // (CorrectedFrames::prepareReference): called after pass 2; a non-zero reference makes pass 3
     // (at full resolution) also sum the moments behind pass 1's fragment and that reference
     // (ordered_behind.glsl; realBehindMoment1/2(), behindMomentsSummed()), for the capture of an
-    // ordered correction. Needs 7 draw buffers; with fewer it sums none.
+    // ordered correction. Needs 6 draw buffers; with fewer it sums none.
     void run(const FrameDesc& frame, const DrawCallback& draw, float peelEpsilon, Size2 pass2Size, Size2 pass3Size,
              const std::function<GLuint()>& behindReference = {});
     void prepareRealBehindMoments();
     bool behindMomentsSummed() const { return behindSummed_; }
+    // (sum a C v, sum a v) in realBehindMoment1(), sum a v^2 in colorCount()'s .g.
     GLuint realBehindMoment1() const { return packedNearest_.id(); }
-    GLuint realBehindMoment2() const { return realBehind2_.id(); }
     // Pass 1 alone (nearest() and nearestDepth()), for refresh frames.
     void runNearest(const FrameDesc& frame, const DrawCallback& draw);
     // Pass 1 and pass 3, both at full resolution (alphaColor() and transmittance() hold the sums
@@ -139,7 +139,9 @@ public:
     void preparePackedNearestAndSums();
     GLuint packedNearest() const { return packedNearest_.id(); }
     // The moments an interpolated frame of a tail-moment method summed behind its reference (the
-    // tail-moment targets, which its real frames' inference has read by then); 0 for the others.
+    // tail-moment targets, which its real frames' inference has read by then): (sum a C u, sum a u),
+    // and sum a u^2 in .r with the transmittance in .a (its transmittance() is not written then);
+    // 0 for the others.
     GLuint behindMoment1() const { return tailMoments_ ? tailMoment1_.id() : 0; }
     GLuint behindMoment2() const { return tailMoments_ ? tailMoment2_.id() : 0; }
     // Binds the pass outputs to the NeuralInputUnit units and sets the upsample uniforms of
@@ -177,9 +179,11 @@ public:
 
 private:
     void runSums(const FrameDesc& frame, const DrawCallback& draw, Size2 pass3Size, GLuint behindReference = 0);  // pass 3
-    // Interpolated frames' moments behind the reference: clears and blends targets firstTarget and
-    // firstTarget + 1 of the bound framebuffer, binds `reference`.
-    void beginBehindMoments(GLuint firstTarget, GLuint reference);
+    // The moments behind the reference (pass3_accumulate.frag.glsl, STARNT_BEHIND_MOMENTS): clears and
+    // blends `target` of the bound framebuffer for (sum a C u, sum a u), binds `reference`;
+    // beginSecondMomentAndProduct the interpolated frames' target of sum a u^2 and prod (1 - a).
+    void beginBehindMoment(GLuint target, GLuint reference);
+    void beginSecondMomentAndProduct(GLuint target);
     const char* behindMomentsDefine() const { return tailMoments_ ? "#define STARNT_BEHIND_MOMENTS\n" : ""; }
     OpaqueScene& opaque_;
     gl::Program pass1_;
@@ -206,12 +210,12 @@ private:
     // runPackedNearestAndSums' pass 3 and its targets: the sums and the packed nearest fragment.
     gl::Program pass3Packed_;
     gl::Texture2D packedNearest_;  // allocated on first need
-    // A real frame's moments behind pass 1's fragment (the first in packedNearest_, free then).
+    // A real frame's moments behind pass 1's fragment (the first in packedNearest_, free then; the
+    // second beside the count).
     gl::Program pass3Behind_;
-    gl::Texture2D realBehind2_;
     gl::FramebufferHandle pass3BehindFb_;
     bool behindSummed_ = false;
-    bool behindMomentsFit_ = false;  // the context has the 7 draw buffers that pass 3 needs
+    bool behindMomentsFit_ = false;  // the context has the 6 draw buffers that pass 3 needs
     void allocatePackedNearest();
     gl::FramebufferHandle packedFb_;
     gl::FramebufferHandle nearestOnlyFb_, secondOnlyFb_, alphaColorOnlyFb_;  // output slots

@@ -2,7 +2,7 @@
 //   target 0 (RGBA32F, blend ONE/ONE):                 sum a_i C_i, sum a_i
 //   target 1 (RGBA32F, blend ONE/ONE):                 sum C_i, N
 //            (R32F: N alone, with STARNT_COUNT_ONLY: the STAR-NT inputs need no sum of C_i,
-//            which only DFAOIT reads; 12 bytes a pixel less)
+//            which only DFAOIT reads; 12 bytes a pixel less; RG32F for the tail-moment methods, below)
 //   target 2 (R32F,    blend ZERO/ONE_MINUS_SRC_ALPHA): prod (1 - a_i)
 //   with STARNT_TAIL_MOMENTS (hybrid-moments, full resolution), over the fragments behind pass 2's
 //   layer only, u a logarithmic depth behind z2 (tail_moments_constants.h; CPU reference
@@ -14,12 +14,14 @@
 //   and with STARNT_PACKED_NEAREST (corrected frames in one geometry pass, no pass 1):
 //   target 2 (RGBA32F, blend equation GL_MIN):        the nearest fragment (packed_nearest.glsl)
 //   and with STARNT_BEHIND_MOMENTS (corrected frames of the tail-moment methods), u a fragment's
-//   depth behind the reference depth (ordered_behind.glsl), in the next two targets (interpolated
-//   frames: 3 and 4 after the packed layer, else 2 and 3, over every fragment; their real frames,
-//   with the tail moments: 5 and 6, over the fragments behind pass 1's, whose depth it reads,
-//   STARNT_BEHIND_NEAREST_KNOWN, with u - u1 for u, u1 pass 1's fragment's):
-//   (RGBA32F, blend ONE/ONE):                          sum a_i C_i u_i, sum a_i u_i
-//   (RGBA32F, blend ONE/ONE):                          sum a_i C_i u_i^2, sum a_i u_i^2
+//   depth behind the reference depth (ordered_behind.glsl), over every fragment:
+//   target 1 (RGBA32F, blend ONE/ONE on rgb, ZERO/ONE_MINUS_SRC_ALPHA on alpha):
+//                                                      sum a u^2 in r, prod (1 - a) in a
+//   the next target (2, or 3 after the packed layer) (RGBA32F, blend ONE/ONE): sum a C u, sum a u
+//   Their real frames (with the tail moments, not STARNT_SUMS_ONLY) sum them over the fragments
+//   behind pass 1's, whose depth they read (STARNT_BEHIND_NEAREST_KNOWN), with v = u - u1 for u, u1
+//   pass 1's fragment's: sum a v^2 beside the count in target 1 (RG32F: N, sum a v^2) and
+//   (sum a C v, sum a v) in target 5 (RGBA32F, blend ONE/ONE).
 layout(location = 0) out vec4 outAlphaColor;
 #ifdef STARNT_SUMS_ONLY
 layout(location = 1) out vec4 outTransmittance;
@@ -27,22 +29,21 @@ layout(location = 1) out vec4 outTransmittance;
 #include "methods/neural/temporal/packed_nearest.glsl"
 layout(location = 2) out vec4 outPackedNearest;
 #define STARNT_BEHIND_MOMENT1_LOCATION 3
-#define STARNT_BEHIND_MOMENT2_LOCATION 4
 #else
 #define STARNT_BEHIND_MOMENT1_LOCATION 2
-#define STARNT_BEHIND_MOMENT2_LOCATION 3
 #endif
 #else
 layout(location = 1) out vec4 outColorCount;
 layout(location = 2) out vec4 outTransmittance;
 #define STARNT_BEHIND_MOMENT1_LOCATION 5
-#define STARNT_BEHIND_MOMENT2_LOCATION 6
 #define STARNT_BEHIND_NEAREST_KNOWN
+#if defined(STARNT_BEHIND_MOMENTS) && !defined(STARNT_COUNT_ONLY)
+#error "the moments behind pass 1's fragment share the count's target: count only"
+#endif
 #endif
 #ifdef STARNT_BEHIND_MOMENTS
 #include "methods/neural/temporal/ordered_behind.glsl"
 layout(location = STARNT_BEHIND_MOMENT1_LOCATION) out vec4 outBehindMoment1;
-layout(location = STARNT_BEHIND_MOMENT2_LOCATION) out vec4 outBehindMoment2;
 layout(binding = 1) uniform highp sampler2D u_reference;  // reference_depth.frag.glsl, one texel a tile
 #ifdef STARNT_BEHIND_NEAREST_KNOWN
 layout(binding = 2) uniform highp sampler2D u_nearestDepth;  // pass 1's depth
@@ -60,7 +61,7 @@ void main() {
     outAlphaColor = vec4(s.rgb * s.a, s.a);
 #if defined(STARNT_SUMS_ONLY)
 #elif defined(STARNT_COUNT_ONLY)
-    outColorCount = vec4(1.0);  // an R32F target keeps .r
+    outColorCount = vec4(1.0, 0.0, 0.0, 0.0);  // an R32F target keeps .r (RG32F: .g below)
 #else
     outColorCount = vec4(s.rgb, 1.0);
 #endif
@@ -81,7 +82,11 @@ void main() {
                  : 0.0;
 #endif
     outBehindMoment1 = vec4(s.rgb * s.a, s.a) * behind;
-    outBehindMoment2 = outBehindMoment1 * behind;
+#ifdef STARNT_BEHIND_NEAREST_KNOWN
+    outColorCount.g = outBehindMoment1.a * behind;
+#else
+    outTransmittance.r = outBehindMoment1.a * behind;
+#endif
 #endif
 #ifdef STARNT_TAIL_MOMENTS
     float second = texelFetch(u_secondDepth, ivec2(gl_FragCoord.xy), 0).r;

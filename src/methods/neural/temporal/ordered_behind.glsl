@@ -2,7 +2,8 @@
 // frames: depth order behind the nearest layer"; CPU reference temporal::orderedClosedFormBehind,
 // the same float operations): what lies behind the nearest layer weighted by where its opacity lies
 // in depth, as hybrid-moments weighs its tail, instead of the order-free mean of closed_form_behind.glsl.
-// Pass 3 sums, over every fragment, depth moments in u = ln(1 + max(z - r, 0) / (s (1 - r))), the
+// Pass 3 sums, over every fragment, depth moments in u = ln(1 + max(z - r, 0) / (s (1 - r))) (sum a C u,
+// sum a u and sum a u^2: the weight is at most linear here, which reads no sum a C u^2), the
 // tail moments' logarithmic depth (tail_moments_constants.h) taken behind a reference depth r that
 // the last real frame gives (CorrectedFrames: the nearest depth over the pixels around, so at or
 // before the fresh nearest layer where the view moved less than that neighbourhood); the composite
@@ -23,12 +24,12 @@ float depthBehindReference(float z, float reference) {
 }
 
 // `nearest` = C1, a1 (a1 < 1 - STARNT_TEMPORAL_MIN_TRANSMITTANCE), `sums` = (sum a C, sum a), `t` =
-// prod (1 - a), all over every fragment; `m1`, `m2` = (sum a C v, sum a v), (sum a C v^2, sum a v^2)
-// with v = u - u1 the depth behind the nearest fragment's (whose own terms are then 0): a real
+// prod (1 - a), all over every fragment; `m1`, `m2` = (sum a C v, sum a v), sum a v^2 with v = u - u1
+// the depth behind the nearest fragment's (whose own terms are then 0): a real
 // frame sums them so over the fragments behind pass 1's, an interpolated frame gets them by
 // recentring its sums (orderedClosedFormBehind). Centred so, a rounding of a1 in sum a - a1 moves
 // the spread by the mean's distance behind the nearest fragment, not by the reference's.
-vec3 orderedClosedFormBehindFromMoments(vec4 nearest, vec4 sums, float t, vec4 m1, vec4 m2, vec3 background) {
+vec3 orderedClosedFormBehindFromMoments(vec4 nearest, vec4 sums, float t, vec4 m1, float m2, vec3 background) {
     float behindT = clamp(t / (1.0 - nearest.a), 0.0, 1.0);
     float behindAlpha = sums.a - nearest.a;
     if (!(behindAlpha > float(STARNT_TEMPORAL_MIN_BEHIND_ALPHA))) return background;
@@ -36,17 +37,18 @@ vec3 orderedClosedFormBehindFromMoments(vec4 nearest, vec4 sums, float t, vec4 m
     // sum a - a1 carries a1's rounding (the layer's 16-bit or 11-bit alpha), which alone makes one
     // fragment behind look spread over |mean| sqrt(error / (sum a - a1)): below that, the plain mean.
     float mean = m1.a / behindAlpha;
-    bool spread = m2.a / behindAlpha - mean * mean > float(STARNT_ORDERED_ALPHA_ROUNDING) / behindAlpha * mean * mean;
-    vec3 color = spread ? momentWeightedColor(alphaColor, behindAlpha, m1, m2, behindT) : max(alphaColor / behindAlpha, vec3(0.0));
+    bool spread = m2 / behindAlpha - mean * mean > float(STARNT_ORDERED_ALPHA_ROUNDING) / behindAlpha * mean * mean;
+    vec3 color = spread ? momentWeightedColor(alphaColor, behindAlpha, m1, vec4(0.0, 0.0, 0.0, m2), behindT, false)
+                        : max(alphaColor / behindAlpha, vec3(0.0));
     return (1.0 - behindT) * color + behindT * background;
 }
 
 // The same from an interpolated frame's pass 3: `m1`, `m2` in u over every fragment, recentred at
 // u1, the nearest fragment's (at window depth `depth`), with the sums over every fragment.
-vec3 orderedClosedFormBehind(vec4 nearest, float depth, vec4 sums, float t, vec4 m1, vec4 m2, float reference,
+vec3 orderedClosedFormBehind(vec4 nearest, float depth, vec4 sums, float t, vec4 m1, float m2, float reference,
                              vec3 background) {
     float u = depthBehindReference(depth, reference);
     vec4 first = m1 - u * sums;
-    return orderedClosedFormBehindFromMoments(nearest, sums, t, first, m2 - u * (m1 + first), background);
+    return orderedClosedFormBehindFromMoments(nearest, sums, t, first, m2 - u * (m1.a + first.a), background);
 }
 #endif
