@@ -38,9 +38,10 @@ inline glm::mat4 turnedViewProj(int w, int h, float yawDeg) {
 }
 
 // Renders `yaws` with the starnt method and `options`, the camera turned about its target by +yaw
-// around y; returns each output in GL order.
+// around y (over FrameDesc::backgroundTexture `background` where given); returns each output in GL order.
 inline std::vector<std::vector<glm::vec4>> renderSequence(TestScene& c, const MethodOptions& options,
-                                                          const std::vector<float>& yaws, const std::string& name = "starnt") {
+                                                          const std::vector<float>& yaws, const std::string& name = "starnt",
+                                                          GLuint background = 0) {
     auto method = createMethod(name, SceneGpu::surfaceShader(), options);
     std::vector<std::vector<glm::vec4>> out;
     for (float yaw : yaws) {
@@ -50,6 +51,7 @@ inline std::vector<std::vector<glm::vec4>> renderSequence(TestScene& c, const Me
         FrameDesc f = c.frame();
         f.view = cam.view();
         f.projection = cam.projection(c.aspect());
+        f.backgroundTexture = background;
         method->render(f, c.gpu->callback(f.view, f.projection, {}));
         glFinish();
         out.push_back(readRgba(method->outputTexture(), c.width, c.height));

@@ -452,6 +452,37 @@ TEST(TemporalCorrected, OrderedCompositeMatchesCpuReference) {
     expectOrderedFrameMatchesCpu(true, 41, 29, 22);
 }
 
+// Where the background is one colour the composites clear their own output to it instead of drawing
+// the empty pixels (EmptyPixelSkip::clearToBackground): bit for bit the frames that a background
+// texture of that colour gives, which takes the drawn fill; real and interpolated frames, 16- and
+// 32-bit outputs (the clear value rounded as the fill's shader rounds).
+TEST(TemporalCorrected, ClearedEmptyPixelsEqualTheDrawnFill) {
+    const int w = 64, h = 48;
+    test::TestScene c(makeBuiltinScene("tubes", 3), w, h, 30.0f, 15.0f, kBackground);
+    const gl::Texture2D flat = uploadRgba(std::vector<glm::vec4>(size_t(w) * size_t(h), glm::vec4(kBackground, 1.0f)), w, h);
+    const std::vector<float> yaws = {0.0f, 1.5f, 3.0f, 4.5f};
+    for (const char* method : {"recommended", "dfaoit"}) {
+        for (const auto targets : {NeuralOptions::Targets::Compact, NeuralOptions::Targets::Float32}) {
+            for (const int interval : {1, 2}) {
+                MethodOptions o = correctedOptions();
+                o.neural.targets = targets;
+                o.neural.temporalInterval = interval;
+                const auto cleared = renderSequence(c, o, yaws, method), drawn = renderSequence(c, o, yaws, method, flat.id());
+                for (size_t f = 0; f < yaws.size(); ++f) {
+                    size_t differ = 0, background = 0;
+                    for (size_t i = 0; i < cleared[f].size(); ++i) {
+                        differ += std::memcmp(&cleared[f][i], &drawn[f][i], 3 * sizeof(float)) != 0;
+                        background += glm::vec3(drawn[f][i]) == glm::vec3(drawn[f][0]);  // a corner: empty
+                    }
+                    EXPECT_EQ(differ, 0u) << method << " K = " << interval << (targets == NeuralOptions::Targets::Compact ? " compact" : " fp32")
+                                          << " frame " << f;
+                    EXPECT_GT(background, cleared[f].size() / 10) << "the view must leave empty pixels";
+                }
+            }
+        }
+    }
+}
+
 // One geometry pass or two: the same interpolated frames but for the packed nearest layer's steps,
 // for a method with tail moments (the packed target is its first moment target) and one without.
 TEST(TemporalCorrected, OnePassGivesTheTwoPassFrames) {

@@ -9,6 +9,7 @@
 //     values first thing. The engine's texture is only sampled.
 //   - the background: every composite reads background.glsl, whose uniforms bindBackground sets.
 #pragma once
+#include <optional>
 #include <string>
 
 #include "gl/gl_util.hpp"
@@ -55,6 +56,12 @@ public:
     void end() const;
     // The output alpha the composites write is the transmittance (premultiplied output).
     bool premultiplied() const { return premultiplied_; }
+    // What an empty pixel's composite is (background.glsl, transmittance 1), when it is one colour
+    // for the whole frame: none with a background texture.
+    std::optional<glm::vec4> uniformBackground() const {
+        if (background_) return std::nullopt;
+        return glm::vec4(premultiplied_ ? glm::vec3(0.0f) : color_, 1.0f);
+    }
     // Whether the frame has an opaque scene or a premultiplied output: what the last real frame's
     // composite held for the background then changes from frame to frame.
     bool active() const { return depth_ || background_ || premultiplied_; }

@@ -1,5 +1,8 @@
 #include "methods/neural/empty_pixels.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include <glm/gtc/type_ptr.hpp>
 
 #include "methods/common/method_base.hpp"
@@ -20,6 +23,7 @@ void EmptyPixelSkip::bindCovered(GLuint colorTexture, GLuint pass1Depth, int wid
     if (gl::attachTexture(framebuffer_.id(), GL_DEPTH_ATTACHMENT, pass1Depth) != GL_FRAMEBUFFER_COMPLETE) {
         throw Error("internal: the output and pass-1 depth do not form a complete framebuffer");
     }
+    cleared_ = false;
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
     const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glDrawBuffers(second_ ? 2 : 1, buffers);
@@ -34,12 +38,34 @@ void EmptyPixelSkip::bindCovered(GLuint colorTexture, GLuint pass1Depth, int wid
     glDepthRangef(1.0f, 1.0f);
 }
 
-void EmptyPixelSkip::fillEmpty(const OpaqueScene& background, bool halfOutput, const gl::VertexArrayHandle& emptyVao) const {
-    glDepthFunc(GL_LEQUAL);
-    glUseProgram(background_.id());
-    background.bindBackground(background_);
-    glUniform1i(background_.uniform("u_halfOutput"), halfOutput ? 1 : 0);
-    gl::drawFullscreenTriangle(emptyVao);
+namespace {
+// half_targets.glsl's nearestHalf: to the nearest 16-bit float, ties to even, at most 65504.
+float nearestHalf(float v) {
+    const float h = float(static_cast<_Float16>(std::min(std::abs(v), 65504.0f)));
+    return v < 0.0f ? -h : h;
+}
+}  // namespace
+
+bool EmptyPixelSkip::clearToBackground(const OpaqueScene& background, bool halfOutput) {
+    std::optional<glm::vec4> value = background.uniformBackground();
+    if (!value) return false;
+    if (halfOutput) *value = glm::vec4(nearestHalf(value->r), nearestHalf(value->g), nearestHalf(value->b), nearestHalf(value->a));
+    glClearBufferfv(GL_COLOR, 0, &(*value)[0]);
+    const float hidden[4] = {0.0f, 0.0f, 0.0f, -1.0f};  // infer_background.frag.glsl's second output
+    if (second_) glClearBufferfv(GL_COLOR, 1, hidden);
+    cleared_ = true;
+    return true;
+}
+
+void EmptyPixelSkip::fillEmpty(const OpaqueScene& background, bool halfOutput, const gl::VertexArrayHandle& emptyVao) {
+    if (!cleared_) {
+        glDepthFunc(GL_LEQUAL);
+        glUseProgram(background_.id());
+        background.bindBackground(background_);
+        glUniform1i(background_.uniform("u_halfOutput"), halfOutput ? 1 : 0);
+        gl::drawFullscreenTriangle(emptyVao);
+    }
+    cleared_ = false;
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
     glDisable(GL_DEPTH_TEST);

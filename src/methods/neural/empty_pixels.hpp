@@ -34,15 +34,23 @@ public:
     // `secondColor` (optional): a second target at draw buffer 1 that the composite writes too
     // (the fused capture of corrected frames); fillEmpty writes (0, 0, 0, -1) there, "hidden".
     void bindCovered(GLuint colorTexture, GLuint pass1Depth, int width, int height, GLuint secondColor = 0);
-    // After the covered pixels were drawn: writes the background into the empty ones and restores
-    // the default depth state (test off, function LESS, writes on) and the frame's depth range
-    // (resetPassState).
-    void fillEmpty(const OpaqueScene& background, bool halfOutput, const gl::VertexArrayHandle& emptyVao) const;
+    // Before the covered pixels are drawn, where the background is one colour and the composite
+    // does not read the output (a texture of the caller's own, not a pass target written in place):
+    // clears the bound targets to what fillEmpty would write, which then draws nothing. Returns
+    // whether it cleared. Why: on llvmpipe the fill's full-screen draw took 3.5-4 ms a 1280x720 frame
+    // (magic_stars, chess: every block runs the depth test, most shade), a clear next to nothing
+    // (docs/DESIGN.md, "Corrected frames: the cost of real and interpolated frames").
+    bool clearToBackground(const OpaqueScene& background, bool halfOutput);
+    // After the covered pixels were drawn: writes the background into the empty ones (unless
+    // clearToBackground did) and restores the default depth state (test off, function LESS, writes
+    // on) and the frame's depth range (resetPassState).
+    void fillEmpty(const OpaqueScene& background, bool halfOutput, const gl::VertexArrayHandle& emptyVao);
 
 private:
     gl::Program background_;
     gl::FramebufferHandle framebuffer_;
     bool second_ = false;  // a second target is attached
+    bool cleared_ = false;  // clearToBackground wrote the empty pixels of this composite
 };
 
 }  // namespace starnt

@@ -261,6 +261,8 @@ private:
     void bindOutput() {
         if (skipEmpty()) {
             emptyPixels_.bindCovered(out_.texture, passes_.nearestDepth().id(), width_, height_);
+            // Not in place over a pass target, which the composite reads.
+            if (out_.texture == output_.id()) emptyPixels_.clearToBackground(opaque_, compactOutput());
         } else {
             glBindFramebuffer(GL_FRAMEBUFFER, out_.framebuffer);
             glViewport(0, 0, width_, height_);
@@ -271,11 +273,10 @@ private:
     }
 
     // After the composite: the background into the pixels it skipped.
-    void finishOutput() const {
-        if (skipEmpty()) {
-            emptyPixels_.fillEmpty(opaque_, options_.neural.targets == NeuralOptions::Targets::Compact, fullscreenVao_);
-        }
+    void finishOutput() {
+        if (skipEmpty()) emptyPixels_.fillEmpty(opaque_, compactOutput(), fullscreenVao_);
     }
+    bool compactOutput() const { return options_.neural.targets == NeuralOptions::Targets::Compact; }
 
     // Real frames from one probe to the next (tile_constants.h: doubled after each probe in a row
     // that kept full resolution, up to 32).
@@ -400,6 +401,7 @@ private:
             const auto targets = temporal_.beginFusedCapture(gl::textureInternalFormat(out_.texture), passes_.nearestDepth().id(),
                                                             width_, height_, frame.projection * frame.view);
             emptyPixels_.bindCovered(out_.texture, targets.coverDepth, width_, height_, targets.correction);
+            emptyPixels_.clearToBackground(opaque_, compactOutput());  // its own output, not read here
             const bool ordered = passes_.behindMomentsSummed();
             const gl::Program& program = inference(ordered ? "infer_full_capture_ordered" : "infer_full_capture", true);
             setCommonUniforms(program, frame);

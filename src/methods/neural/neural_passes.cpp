@@ -169,9 +169,7 @@ void NeuralPasses::resize(int width, int height) {
     // (measured on chess 320x180: MSE 2.9e-6 against 1.2e-6 with 32-bit sums), and weighted by the
     // tail's optical depth -ln t_tail, which a 16-bit transmittance clamps beyond about 11.
     alphaColor_ = gl::Texture2D(tailMoments_ ? GL_RGBA32F : color, width, height, GL_LINEAR);
-    // The tail-moment methods' real frames with corrected frames sum a v^2 beside the count
-    // (pass3_accumulate.frag.glsl): one target fewer than a target of its own.
-    colorCount_ = gl::Texture2D(colorSums_ ? color : tailMoments_ ? GL_RG32F : single, width, height, GL_LINEAR);
+    colorCount_ = gl::Texture2D(colorSums_ ? color : countBesideBehind_ ? GL_RG32F : single, width, height, GL_LINEAR);
     transmittance_ = gl::Texture2D(compact && !tailMoments_ ? compactTransmittanceFormat() : GL_R32F, width, height, GL_LINEAR);
     if (narrowLayers_) {
         pass1Fb_ = gl::makeFramebuffer({&nearest_, &layerAlpha_}, &nearestDepth_);
@@ -183,10 +181,8 @@ void NeuralPasses::resize(int width, int height) {
     if (tailMoments_) {
         tailMoment1_ = gl::Texture2D(GL_RGBA32F, width, height);
         tailMoment2_ = gl::Texture2D(GL_RGBA32F, width, height);
-        pass3Fb_ = gl::makeFramebuffer({&alphaColor_, &colorCount_, &transmittance_, &tailMoment1_, &tailMoment2_});
-    } else {
-        pass3Fb_ = gl::makeFramebuffer({&alphaColor_, &colorCount_, &transmittance_});
     }
+    makePass3Framebuffer();
     // Corrected frames' sums: the tail-moment methods keep the transmittance beside sum a u^2 in their
     // second moment target (pass3_accumulate.frag.glsl), free in an interpolated frame.
     sumsFb_ = tailMoments_ ? gl::makeFramebuffer({&alphaColor_, &tailMoment2_, &tailMoment1_})
@@ -196,6 +192,11 @@ void NeuralPasses::resize(int width, int height) {
     nearestOnlyFb_ = gl::makeFramebuffer({&nearest_});
     secondOnlyFb_ = gl::makeFramebuffer({&second_});
     alphaColorOnlyFb_ = gl::makeFramebuffer({&alphaColor_});
+}
+
+void NeuralPasses::makePass3Framebuffer() {
+    pass3Fb_ = tailMoments_ ? gl::makeFramebuffer({&alphaColor_, &colorCount_, &transmittance_, &tailMoment1_, &tailMoment2_})
+                            : gl::makeFramebuffer({&alphaColor_, &colorCount_, &transmittance_});
 }
 
 void NeuralPasses::addMemoryTargets(OitMethod::MemoryTargets& out) const {
@@ -304,6 +305,14 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
     if (behindSummed_) {
         prepareRealBehindMoments();
         allocatePackedNearest();
+        if (!countBesideBehind_) {
+            // sum a v^2 beside the count (pass3_accumulate.frag.glsl): RG32F from now on, as 32-bit
+            // sums keep the spread that the closed form takes from it (m2 / a - mean^2).
+            countBesideBehind_ = true;
+            colorCount_ = gl::Texture2D(GL_RG32F, width_, height_, GL_LINEAR);
+            makePass3Framebuffer();
+            pass3BehindFb_.reset();
+        }
         if (!pass3BehindFb_.id()) {
             pass3BehindFb_ =
                 gl::makeFramebuffer({&alphaColor_, &colorCount_, &transmittance_, &tailMoment1_, &tailMoment2_, &packedNearest_});

@@ -216,6 +216,8 @@ private:
     gl::FramebufferHandle pass3BehindFb_;
     bool behindSummed_ = false;
     bool behindMomentsFit_ = false;  // the context has the 6 draw buffers that pass 3 needs
+    bool countBesideBehind_ = false;  // colorCount_ is RG32F: sum a v^2 beside the count
+    void makePass3Framebuffer();
     void allocatePackedNearest();
     gl::FramebufferHandle packedFb_;
     gl::FramebufferHandle nearestOnlyFb_, secondOnlyFb_, alphaColorOnlyFb_;  // output slots

@@ -126,6 +126,7 @@ void CorrectedFrames::composite(const glm::mat4& newViewProj, GLuint nearest, GL
     }
     glCopyImageSubData(depth, GL_TEXTURE_2D, 0, 0, 0, 0, coverDepth_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width_, height_, 1);
     emptyPixels_.bindCovered(output, coverDepth_.id(), width_, height_);
+    emptyPixels_.clearToBackground(background, halfOutput);  // the output is not read here
     setCompositeUniforms(composite_, newViewProj, background, halfOutput);
     bindComposite(nearest, depth, sumAlphaColor, transmittance, behindMoment1, behindMoment2);
     gl::drawFullscreenTriangle(emptyVao_);
@@ -142,6 +143,7 @@ void CorrectedFrames::compositePacked(const glm::mat4& newViewProj, GLuint packe
     }
     const bool halfOutput = gl::textureInternalFormat(output) == GL_RGBA16F;  // before any binding (ES)
     emptyPixels_.bindCovered(output, coverDepth, width_, height_);
+    emptyPixels_.clearToBackground(background, halfOutput);  // the output is not read here
     setCompositeUniforms(compositePacked_, newViewProj, background, halfOutput);
     bindComposite(packedNearest, 0, sumAlphaColor, transmittance, behindMoment1, behindMoment2);
     gl::drawFullscreenTriangle(emptyVao_);
