@@ -1,4 +1,4 @@
-// Offline study (issue 17): how much of the compact layout's change in MSE comes from llvmpipe's
+// Offline study: how much of the compact layout's change in MSE comes from llvmpipe's
 // truncating blends, and what a GPU's round-to-nearest blending would give. Not a test and not
 // part of the library.
 //

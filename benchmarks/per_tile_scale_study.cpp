@@ -1,4 +1,4 @@
-// Offline study (issue 13): how many pass-2 + pass-3 fragments per-tile scales would save under the
+// Offline study: how many pass-2 + pass-3 fragments per-tile scales would save under the
 // scale guard's own loss budget, against the global scales the guard picks today. Not a test and
 // not part of the library: it measures what a per-tile shading rate could buy before anyone builds
 // one (docs/DESIGN.md, "Scale guard", says why the runtime keeps global scales).

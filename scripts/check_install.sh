@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Checks the library as engines use it (issue 18). Needs a finished build in build/.
+# Checks the library as engines use it (docs/INTEGRATION.md). Needs a finished build in build/.
 #   install       (default) `cmake --install` into a temporary prefix, then against that prefix:
 #                 builds examples/minimal_engine with find_package(starnt), runs it (its own EGL
 #                 context, geometry and shaders; it checks its images against the A-buffer), builds
@@ -21,7 +21,7 @@ case "$mode" in
     quiet cmake -S examples/minimal_engine -B "$work/example" -G Ninja -DCMAKE_BUILD_TYPE=Release \
       -DCMAKE_PREFIX_PATH="$work/prefix"
     quiet cmake --build "$work/example"
-    # The same engine with its context on OpenGL 4.5 core, then on OpenGL ES 3.2 (issue 16).
+    # The same engine with its context on OpenGL 4.5 core, then on OpenGL ES 3.2.
     for api in gl gles; do
       "$work/example/minimal_engine" "$work/images-$api" "$api"
       for m in abuffer peel wboit mboit starnt; do

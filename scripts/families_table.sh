@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Leave-one-family-out table (issue 15): for each network and each training family, train on every
+# Leave-one-family-out table (docs/results/families.md): for each network and each training family, train on every
 # other family (built-in captures + procedural families + the generic synthetic lists) and report
 # the image-space MSE on the held-out family's validation lists against hybrid and WBOIT (CPU
 # references, over black). Writes the JSON reports to OUT_DIR and a markdown table to stdout.

@@ -1,4 +1,4 @@
-// `starnt bench` (issue 6): the plan (variants, scenes, presets), the Q formula, and real runs of the
+// `starnt bench`: the plan (variants, scenes, presets), the Q formula, and real runs of the
 // CLI at a tiny size checking every output file, every JSON field, agreement with `starnt compare`,
 // determinism, and that failures are recorded while the run goes on.
 #include <gtest/gtest.h>

@@ -54,7 +54,7 @@ TEST(Cli, RenderWritesImageStatsAndExr) {
     EXPECT_EQ(stats["memory_targets"]["revealage"].get<size_t>(), size_t(64 * 48 * 4));
 }
 
-// The neural method names its targets and their bytes (issue 17). Compact targets (the default):
+// The neural method names its targets and their bytes. Compact targets (the default):
 // 36 bytes a pixel at full resolution for STAR-NT, the output written in place over pass 3's sums
 // (or pass 2's colour when only pass 3 is reduced), so at 1920x1080 the passes hold 74.6 MB and the
 // tiles 0.33 MB: within the paper's 75 MB. Fixed scales keep the tiles updating every frame, so at

@@ -292,7 +292,7 @@ Scene deepStack(int sheets) {
     return scene;
 }
 
-// Issue 17: the compact layout's 16-bit pass-3 sums at pixels of 150 fragments. The GPU follows the
+// The compact layout's 16-bit pass-3 sums at pixels of 150 fragments. The GPU follows the
 // CPU model of 16-bit blending (nn::sumsInHalfTargets) there too, and over those pixels the MSE
 // against the exact composite stays within 2 % of the 32-bit layout's. At these depths the sum of
 // alphas reaches 30, where 16-bit floats are 2^-6 apart and llvmpipe's blending truncates every

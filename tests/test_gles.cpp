@@ -1,4 +1,4 @@
-// OpenGL ES 3.2 (issue 16, SPEC 12): `starnt render --api gles` gives the desktop image within 1/255
+// OpenGL ES 3.2: `starnt render --api gles` gives the desktop image within 1/255
 // for every method, with full-resolution and reduced passes, tiles and both kinds of interpolated
 // frame, on built-in and suite scenes; and an ES context that lacks what the methods need fails
 // with one clear error. The in-process GPU-vs-CPU tests run on ES too (CTest's Gles.* tests).

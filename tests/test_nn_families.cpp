@@ -1,4 +1,4 @@
-// Training scene families (issue 15): the procedural generators, hold-out, per-family errors and
+// Training scene families: the procedural generators, hold-out, per-family errors and
 // the CPU WBOIT composite; `starnt train --hold-out` on the command line.
 #include <gtest/gtest.h>
 

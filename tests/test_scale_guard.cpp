@@ -1,4 +1,4 @@
-// Issue 13: scale rules, the scale guard (GPU against its CPU reference, and what it sees), and the
+// Scale rules, the scale guard (GPU against its CPU reference, and what it sees), and the
 // work counters that show what reduced passes save.
 #include <cstring>
 #include <gtest/gtest.h>

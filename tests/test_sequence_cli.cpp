@@ -103,8 +103,7 @@ TEST(SequenceCli, BadTemporalFramesAndPathsFailClearly) {
     expectFailureWritingNothing(sequence(dir, "--frames 2 --camera orbit:10 --camera-path orbit:0,30"), dir, "exclude");
 }
 
-// EXPECTED TO FAIL until TemporalFrames is wired into the neural method (issue 5 integration):
-// with --temporal 2 every second frame is interpolated, starting with a real one.
+// With --temporal 2 every second frame is interpolated, starting with a real one.
 TEST(SequenceCli, TemporalTwoAlternates) {
     const fs::path dir = starnt::test::makeTempDir("seq_cli_temporal");
     const CliRun r = run(sequence(dir, "--method starnt --frames 5 --camera-path orbit:0,8 --temporal 2"));

@@ -1,4 +1,4 @@
-// Issue 14: refresh frames (`--temporal-mode refresh`): pass 1 rendered at the new camera, what lay
+// Refresh frames (`--temporal-mode refresh`): pass 1 rendered at the new camera, what lay
 // behind the kept frame's nearest layer reprojected under it.
 #include <cstring>
 #include <gtest/gtest.h>
