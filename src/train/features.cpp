@@ -58,7 +58,8 @@ glm::vec3 roundToUnorm10(glm::vec3 v) { return glm::round(glm::clamp(v, 0.0f, 1.
 
 glm::vec3 narrowLayerColor(glm::vec3 c) {
     const float peak = std::max({c.r, c.g, c.b});
-    const float scale = peak > 1.0f ? (peak > 16.0f ? (peak > 256.0f ? 4096.0f : 256.0f) : 16.0f) : 1.0f;
+    const float edge = 1.0f + 0.5f / 1023.0f;  // half a step above each scale, as half_targets.glsl
+    const float scale = peak > edge ? (peak > 16.0f * edge ? (peak > 256.0f * edge ? 4096.0f : 256.0f) : 16.0f) : 1.0f;
     return roundToUnorm10(c / scale) * scale;
 }
 

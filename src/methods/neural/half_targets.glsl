@@ -38,7 +38,8 @@ vec4 targetValue(vec4 v) {
 // nn::narrowLayerColor.
 void splitLayerValue(vec4 v, out vec4 color, out vec2 alpha) {
     float peak = max(max(v.r, v.g), v.b);
-    float e = peak > 1.0 ? (peak > 16.0 ? (peak > 256.0 ? 3.0 : 2.0) : 1.0) : 0.0;
+    // Thresholds half a step above each scale, so that a lit LDR colour rounding a hair above 1 keeps e = 0.
+    float e = peak > 1.0 + 0.5 / 1023.0 ? (peak > 16.0 * (1.0 + 0.5 / 1023.0) ? (peak > 256.0 * (1.0 + 0.5 / 1023.0) ? 3.0 : 2.0) : 1.0) : 0.0;
     color = vec4(round(clamp(v.rgb / exp2(4.0 * e), 0.0, 1.0) * 1023.0) / 1023.0, e / 3.0);
     alpha = vec2(nearestHalf(v.a));
 }

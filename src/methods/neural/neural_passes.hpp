@@ -124,8 +124,9 @@ public:
     void runNearest(const FrameDesc& frame, const DrawCallback& draw);
     // Pass 1 and pass 3, both at full resolution (alphaColor() and transmittance() hold the sums
     // over every fragment), for corrected interpolated frames (no pass 2, no tail resolve).
-    // The tail-moment methods sum their moments behind `reference` too (ordered_behind.glsl:
-    // behindMoment1(), behindMoment2(); `reference` the corrected frames' reference depth,
+    // The tail-moment methods sum their moments behind `reference` too, the transmittance then in
+    // behindMoment2()'s alpha rather than in transmittance() (ordered_behind.glsl: behindMoment1(),
+    // behindMoment2(); `reference` the corrected frames' reference depth,
     // CorrectedFrames::reference()).
     void runNearestAndSums(const FrameDesc& frame, const DrawCallback& draw, GLuint reference = 0);
     // Compiles runNearestAndSums' pass 3 now rather than in the first frame that needs it.
