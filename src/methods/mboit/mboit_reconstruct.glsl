@@ -114,20 +114,19 @@ void mboitNormalise(float b0, vec2 moments[MBOIT_COUNT], out vec2 b[MBOIT_B_COUN
 }
 // M_ij (i >= j) of the Hermitian Toeplitz matrix.
 #define MBOIT_MATRIX(b, i, j) b[(i) - (j)]
-// x0 on the unit circle at the depth's phase.
-vec2 mboitPoint(float z) {
-    float phase = mboitPhase(z);
-    return vec2(cos(phase), sin(phase));
-}
+// Where the depth z lies in the moments' domain (its phase), computed once per reconstruction.
+float mboitPosition(float z) { return mboitPhase(z); }
+// x0 on the unit circle at that phase.
+vec2 mboitPoint(float phase) { return vec2(cos(phase), sin(phase)); }
 // Support point x_i from a kernel root (projected onto the circle) and its indicator f_i: 1 in front
-// of z, 0 behind, a linear ramp across the wrapping zone.
-float mboitSupport(vec2 root, float z, out vec2 x) {
+// of the phase, 0 behind, a linear ramp across the wrapping zone.
+float mboitSupport(vec2 root, float phase, out vec2 x) {
     float len = length(root);
     x = len > 0.0 ? root / len : vec2(1.0, 0.0);
     float angle = atan(x.y, x.x);
     if (angle < 0.0) angle += 2.0 * MBOIT_PI;
     float zoneStart = 2.0 * MBOIT_PI - u_wrapAngle;
-    return angle > zoneStart ? (angle - zoneStart) / u_wrapAngle : (angle < mboitPhase(z) ? 1.0 : 0.0);
+    return angle > zoneStart ? (angle - zoneStart) / u_wrapAngle : (angle < phase ? 1.0 : 0.0);
 }
 // sum_k p_k b_k (real part) for the polynomial p in Newton form (divided differences d, points x).
 float mboitPolynomialSum(vec2 d[MBOIT_ORDER + 1], vec2 x[MBOIT_ORDER + 1], vec2 b[MBOIT_B_COUNT]) {
@@ -175,6 +174,7 @@ void mboitNormalise(float b0, float moments[MBOIT_COUNT], out float b[MBOIT_B_CO
 }
 // M_ij of the Hankel matrix.
 #define MBOIT_MATRIX(b, i, j) b[(i) + (j)]
+float mboitPosition(float z) { return z; }
 float mboitPoint(float z) { return z; }
 // Support point x_i (a kernel root) and its indicator f_i: 1 in front of z, 0 behind.
 float mboitSupport(float root, float z, out float x) {
@@ -195,8 +195,8 @@ float mboitPolynomialSum(float d[MBOIT_ORDER + 1], float x[MBOIT_ORDER + 1], flo
 }
 #endif
 
-// Steps 2-4 for both kinds, with the kind's hooks above (mboitNormalise, MBOIT_MATRIX, mboitPoint,
-// mboitSupport, mboitPolynomialSum).
+// Steps 2-4 for both kinds, with the kind's hooks above (mboitNormalise, MBOIT_MATRIX, mboitPosition,
+// mboitPoint, mboitSupport, mboitPolynomialSum).
 float mboitFractionInFront(float b0, MBOIT_SCALAR moments[MBOIT_COUNT], float z) {
     const int n = MBOIT_ORDER;
     MBOIT_SCALAR b[MBOIT_B_COUNT];
@@ -217,7 +217,8 @@ float mboitFractionInFront(float b0, MBOIT_SCALAR moments[MBOIT_COUNT], float z)
             L[i * (n + 1) + j] = lij / dj;
         }
     }
-    MBOIT_SCALAR x0 = mboitPoint(z);
+    float position = mboitPosition(z);
+    MBOIT_SCALAR x0 = mboitPoint(position);
     MBOIT_SCALAR q[n + 1];
     mboitSolve(L, D, x0, q);
     // The kernel polynomial sum_k conj(q_k) x^k, its roots, the support points.
@@ -228,7 +229,7 @@ float mboitFractionInFront(float b0, MBOIT_SCALAR moments[MBOIT_COUNT], float z)
     float f[n + 1];
     x[0] = x0;
     f[0] = u_overestimation;
-    for (int i = 1; i <= n; ++i) f[i] = mboitSupport(roots[i - 1], z, x[i]);
+    for (int i = 1; i <= n; ++i) f[i] = mboitSupport(roots[i - 1], position, x[i]);
     // Newton divided differences of the interpolating polynomial.
     MBOIT_SCALAR d[n + 1];
     for (int i = 0; i <= n; ++i) d[i] = mboitFromReal(f[i]);
