@@ -16,6 +16,9 @@
 //             rule, tiles::guardPredictedLoss, per tile) within budget x occupied pixels, by a
 //             Lagrangian search (exact for this separable problem up to the convex hull);
 //   joint:    the same with s2 = s3 in every tile (one stride map for both passes).
+//   rates:    what the runtime's per-tile shading rates do (--shading-rate-image; tiles::tileShadingRate
+//             per tile: pass 2 at full rate, pass 3 at the coarsest rate within the tile's own
+//             share of the budget): the saving of pass-3 invocations, and of passes 2 + 3.
 // Prints the fragment saving against full resolution and the predicted added MSE over the image.
 #include <algorithm>
 #include <cmath>
@@ -93,8 +96,8 @@ int main(int argc, char** argv) {
         HeadlessGlContext context(GlApi::Desktop);
         std::printf("budget = allowed added MSE per occupied pixel (the runtime's STARNT_SCALE_GUARD_BUDGET is %.1e)\n",
                     double(STARNT_SCALE_GUARD_BUDGET));
-        std::printf("%-12s %9s %10s | %-8s %12s | %-14s %14s\n", "scene", "budget", "fragments", "global", "saving",
-                    "per-tile saving", "joint saving");
+        std::printf("%-12s %9s %10s | %-8s %12s | %-14s %14s | %s\n", "scene", "budget", "fragments", "global", "saving",
+                    "per-tile saving", "joint saving", "rates: pass 3, passes 2+3 saving");
         for (const std::string& name : names) {
             const study::CapturedScene captured = study::captureSuiteScene(name, width, height);
             const bench::SceneSpec* spec = &captured.spec;
@@ -131,12 +134,21 @@ int main(int argc, char** argv) {
                 const double globalSaving = 1.0 - (double(global.pass2) * global.pass2 + double(global.pass3) * global.pass3) / 2.0;
                 const Choice separate = perTileChoice(tileSums, tileFragments, allowed, false);
                 const Choice joint = perTileChoice(tileSums, tileFragments, allowed, true);
+                double ratePass3 = 0.0, rateLoss = 0.0;  // the runtime's per-tile rule
+                for (size_t t = 0; t < tileSums.size(); ++t) {
+                    const uint32_t rate = tiles::tileShadingRate(tileSums[t], float(budget));
+                    const float scale = rate == STARNT_SHADING_RATE_QUARTER ? 0.25f : rate == STARNT_SHADING_RATE_HALF ? 0.5f : 1.0f;
+                    ratePass3 += tileFragments[t] * double(scale) * scale;
+                    rateLoss += tiles::guardPredictedLoss(tileSums[t], 1.0f, scale);
+                }
                 char globalText[32];
                 std::snprintf(globalText, sizeof globalText, "%g/%g", double(global.pass2), double(global.pass3));
-                std::printf("%-12s %9.1e %10.0f | %-8s %11.1f%% | %6.1f%% (+%.1e) %6.1f%% (+%.1e)\n", name.c_str(), budget,
-                            allFragments, globalText, 100.0 * globalSaving,
+                std::printf("%-12s %9.1e %10.0f | %-8s %11.1f%% | %6.1f%% (+%.1e) %6.1f%% (+%.1e) | %6.1f%% %6.1f%% (+%.1e)\n",
+                            name.c_str(), budget, allFragments, globalText, 100.0 * globalSaving,
                             100.0 * (1.0 - separate.fragments / (2.0 * allFragments)), separate.loss / double(pixels),
-                            100.0 * (1.0 - joint.fragments / (2.0 * allFragments)), joint.loss / double(pixels));
+                            100.0 * (1.0 - joint.fragments / (2.0 * allFragments)), joint.loss / double(pixels),
+                            100.0 * (1.0 - ratePass3 / allFragments), 100.0 * (1.0 - (allFragments + ratePass3) / (2.0 * allFragments)),
+                            rateLoss / double(pixels));
             }
         }
     } catch (const std::exception& e) {

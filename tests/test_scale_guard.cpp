@@ -81,6 +81,21 @@ Layers layered(int w, int h, const std::function<glm::vec3(int, int)>& behind) {
     return l;
 }
 
+// The exact nearest and second layers of the scene's frame, from a fragment capture, in GL order.
+void capturedLayers(const test::TestScene& c, std::vector<glm::vec4>& nearest, std::vector<glm::vec4>& second) {
+    const int w = c.width, h = c.height;
+    const CapturedFrame frags = c.capture();
+    nearest.assign(size_t(w * h), glm::vec4(0.0f));
+    second.assign(size_t(w * h), glm::vec4(0.0f));
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const nn::PixelSums s = nn::sumsFromFragments(frags.at(x, y));
+            const size_t i = size_t(h - 1 - y) * size_t(w) + size_t(x);  // capture rows top-first
+            if (s.count > 0.5f) nearest[i] = glm::vec4(s.c1, s.a1);
+            if (s.count > 1.5f) second[i] = glm::vec4(s.c2, s.a2);
+        }
+}
+
 }  // namespace
 
 TEST(ScaleRules, SnappedContinuousAndStep) {
@@ -126,6 +141,175 @@ TEST(ScaleRules, GuardPicksTheCheapestPairWithinTheBudget) {
     s = guardScales(g, budget);
     EXPECT_EQ(s.pass2, 0.25f);
     EXPECT_EQ(s.pass3, 0.25f);
+}
+
+// Per-tile shading rates: the coarsest pass-3 rate whose loss in the tile stays within the budget
+// times the tile's own occupied pixels; pass 2's losses do not count (it stays at full rate), and a
+// tile with nothing occupied keeps the full rate.
+TEST(ScaleRules, ShadingRatePerTileIsTheCoarsestWithinTheTilesBudget) {
+    const float budget = float(STARNT_SCALE_GUARD_BUDGET);
+    ScaleGuard t;
+    t.occupied = 0.1f / budget;  // allowed loss in this tile: 0.1
+    t.loss2 = {50.0f, 90.0f};
+    t.loss3 = {0.05f, 0.09f};
+    EXPECT_EQ(tileShadingRate(t, budget), STARNT_SHADING_RATE_QUARTER);
+    t.loss3 = {0.05f, 0.2f};
+    EXPECT_EQ(tileShadingRate(t, budget), STARNT_SHADING_RATE_HALF);
+    t.loss3 = {0.11f, 0.2f};
+    EXPECT_EQ(tileShadingRate(t, budget), STARNT_SHADING_RATE_FULL);
+    t.occupied *= 2.0f;  // twice the pixels, twice the allowance
+    EXPECT_EQ(tileShadingRate(t, budget), STARNT_SHADING_RATE_QUARTER);
+    t = {};
+    EXPECT_EQ(tileShadingRate(t, budget), STARNT_SHADING_RATE_FULL) << "nothing occupied: nothing to reduce";
+}
+
+namespace {
+
+// Runs the GPU tiles with shading rates on the layers and checks the rate image and the per-rate
+// counts against tiles::tileShadingRate on the CPU reference's per-tile sums. A tile whose loss
+// lies within 1e-3 of its threshold may go either way (the GPU's pow differs in the last bits).
+// Returns the CPU classes.
+std::vector<uint32_t> expectShadingRatesMatchCpu(const std::vector<glm::vec4>& composite, const std::vector<glm::vec4>& nearest,
+                                                 const std::vector<glm::vec4>& second, int w, int h) {
+    GpuTiles gpu;
+    gpu.enableShadingRates();
+    gpu.resize(w, h);
+    EXPECT_EQ(gpu.shadingRateImage(), 0u) << "no rate image before a guard update";
+    const gl::Texture2D c = upload(composite, w, h), n = upload(nearest, w, h), s = upload(second, w, h);
+    gpu.update(c.id(), n.id(), TileSignal::Back, s.id());
+    glFinish();
+    EXPECT_TRUE(gpu.pollHistogram());
+    EXPECT_NE(gpu.shadingRateImage(), 0u);
+    const std::vector<uint8_t> rates = gpu.readShadingRates();
+    const std::vector<ScaleGuard> tiles = scaleGuardTiles(w, h, composite, nearest, second, GuardPixels::Sampled);
+    EXPECT_EQ(rates.size(), tiles.size());
+    const float budget = float(STARNT_SCALE_GUARD_BUDGET);
+    std::array<uint32_t, STARNT_SHADING_RATE_CLASSES> counts{};
+    std::vector<uint32_t> classes;
+    int borderline = 0;
+    for (size_t i = 0; i < tiles.size() && i < rates.size(); ++i) {
+        const uint32_t want = tileShadingRate(tiles[i], budget);
+        classes.push_back(want);
+        if (tiles[i].occupied > 0.0f) ++counts[want];
+        const float allowed = budget * tiles[i].occupied;
+        const bool nearThreshold = std::abs(tiles[i].loss3[0] - allowed) <= 1e-3f * allowed ||
+                                   std::abs(tiles[i].loss3[1] - allowed) <= 1e-3f * allowed;
+        if (nearThreshold) {
+            ++borderline;
+            continue;
+        }
+        EXPECT_EQ(uint32_t(rates[i]), want) << "tile " << i;
+    }
+    if (borderline == 0) {
+        for (int k = 0; k < STARNT_SHADING_RATE_CLASSES; ++k) EXPECT_EQ(gpu.shadingRateTiles()[size_t(k)], counts[size_t(k)]) << k;
+    }
+    return classes;
+}
+
+}  // namespace
+
+// The shading-rate image computed on the GPU (tile_shading_rate.comp.glsl) against the CPU rule,
+// on layers whose back differs by tile column: flat (nothing to lose), a slow gradient, 4-pixel
+// stripes (a 2x2 rate keeps some, a 4x4 rate none) and 1-pixel stripes (every reduction loses).
+// The rate image needs an r8ui image (desktop GL); no shading-rate hardware is needed to make it.
+TEST(ScaleGuard, ShadingRatesGpuMatchCpuPerTile) {
+    test::glContext();
+    if (gl::isEs()) GTEST_SKIP() << "the shading-rate image is desktop GL's (GL_NV_shading_rate_image, an r8ui image)";
+    const int w = 64, h = 48;
+    const Layers l = layered(w, h, [](int x, int y) {
+        const int column = x / STARNT_TILE_SIZE;
+        const glm::vec3 flat(0.3f, 0.6f, 0.2f);  // column 1 starts from it: tile 0's samples at x = 16 see it
+        if (column == 0) return flat;
+        if (column == 1) return flat + glm::vec3(0.002f * float(x - 16), 0.0f, 0.001f * float(y));
+        if (column == 2) return (x / 2) % 2 == 0 ? glm::vec3(0.9f, 0.2f, 0.1f) : glm::vec3(0.1f, 0.3f, 0.9f);
+        return x % 2 == 0 ? glm::vec3(1.0f) : glm::vec3(0.0f);
+    });
+    const std::vector<uint32_t> classes = expectShadingRatesMatchCpu(l.composite, l.nearest, l.second, w, h);
+    ASSERT_EQ(classes.size(), size_t(4 * 3));
+    for (int row = 0; row < 3; ++row) {  // the premise: the columns get different rates
+        EXPECT_EQ(classes[size_t(row * 4 + 0)], STARNT_SHADING_RATE_QUARTER) << row;
+        EXPECT_EQ(classes[size_t(row * 4 + 3)], STARNT_SHADING_RATE_FULL) << row;
+    }
+}
+
+// The same on a real render's layers (the method's composite, layers from a fragment capture).
+TEST(ScaleGuard, ShadingRatesGpuMatchCpuOnARealRender) {
+    const int w = 160, h = 96;
+    test::TestScene c(makeBuiltinScene("smoke", 3), w, h, 30.0f, 15.0f, kBackground);
+    if (gl::isEs()) GTEST_SKIP() << "the shading-rate image is desktop GL's (GL_NV_shading_rate_image, an r8ui image)";
+    auto method = createMethod("starnt", SceneGpu::surfaceShader(), {});
+    const FrameDesc f = c.frame();
+    method->render(f, c.gpu->callback(f.view, f.projection, {}));
+    glFinish();
+    const std::vector<glm::vec4> composite = readGl(method->outputTexture(), w, h);
+    std::vector<glm::vec4> nearest, second;
+    capturedLayers(c, nearest, second);
+    const std::vector<uint32_t> classes = expectShadingRatesMatchCpu(composite, nearest, second, w, h);
+    int occupiedTiles = 0;
+    for (const ScaleGuard& t : scaleGuardTiles(w, h, composite, nearest, second, GuardPixels::Sampled)) occupiedTiles += t.occupied > 0.0f;
+    EXPECT_GT(occupiedTiles, 10) << "the premise: a scene that covers many tiles";
+    std::array<int, STARNT_SHADING_RATE_CLASSES> perClass{};
+    for (uint32_t k : classes) ++perClass[k];
+    // The premise: smoke's tiles differ (at this size 55 full, 3 at 2x2, 2 at 4x4).
+    EXPECT_GT(perClass[STARNT_SHADING_RATE_FULL], 0);
+    EXPECT_GT(perClass[STARNT_SHADING_RATE_HALF] + perClass[STARNT_SHADING_RATE_QUARTER], 0);
+}
+
+// Without a shading-rate image (llvmpipe, ES, most drivers) `auto` is the whole-pass scales, frame
+// for frame the same images as `off`, and `on` is an error naming what is missing; `on` also needs
+// the guard's tiles. On a GPU with GL_NV_shading_rate_image, `on` renders with per-tile rates after
+// the settling probes, close to the full-rate image.
+TEST(ShadingRateImage, AutoFallsBackToTheWholePassScalesAndOnNamesWhatIsMissing) {
+    test::TestScene c(makeBuiltinScene("tubes", 3), 96, 64, 30.0f, 15.0f, kBackground);
+    MethodOptions off;
+    MethodOptions noTiles;
+    noTiles.neural.spatial = false;
+    noTiles.neural.shadingRateImage = NeuralOptions::ShadingRateImage::On;
+    try {
+        createMethod("starnt", SceneGpu::surfaceShader(), noTiles);
+        ADD_FAILURE() << "on without the tiles must be an error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("--spatial on"), std::string::npos) << e.what();
+    }
+    MethodOptions on;
+    on.neural.shadingRateImage = NeuralOptions::ShadingRateImage::On;
+    const bool usable = gl::shadingRateImageSupport(STARNT_TILE_SIZE, STARNT_SHADING_RATE_CLASSES).usable;
+    if (!usable) {
+        try {
+            createMethod("starnt", SceneGpu::surfaceShader(), on);
+            ADD_FAILURE() << "on without a shading-rate image must be an error";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("GL_NV_shading_rate_image"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("--shading-rate-image on"), std::string::npos) << e.what();
+        }
+    }
+    MethodOptions automatic;
+    automatic.neural.shadingRateImage = NeuralOptions::ShadingRateImage::Auto;
+    auto reference = createMethod("starnt", SceneGpu::surfaceShader(), off);
+    auto tested = createMethod("starnt", SceneGpu::surfaceShader(), usable ? on : automatic);
+    int ratedFrames = 0;
+    for (int frame = 0; frame < 14; ++frame) {
+        c.camera = orbitCamera(c.scene.bounds(), 30.0f + 1.5f * float(frame), 15.0f, c.aspect());
+        const FrameDesc f = c.frame();
+        reference->render(f, c.gpu->callback(f.view, f.projection, {}));
+        const std::vector<glm::vec4> want = readGl(reference->outputTexture(), c.width, c.height);
+        tested->render(f, c.gpu->callback(f.view, f.projection, {}));
+        const std::vector<glm::vec4> got = readGl(tested->outputTexture(), c.width, c.height);
+        const nlohmann::json stats = frameStatsJson(tested->lastFrameStats());
+        if (!usable) {
+            EXPECT_FALSE(stats.contains("shading_rate_image")) << "frame " << frame;
+            ASSERT_EQ(got, want) << "frame " << frame << ": auto without a shading-rate image must be the plain tiles";
+        } else {
+            ratedFrames += stats.value("shading_rate_image", false) ? 1 : 0;
+            double mse = 0.0;
+            for (size_t i = 0; i < got.size(); ++i) {
+                const glm::vec3 d = glm::vec3(got[i]) - glm::vec3(want[i]);
+                mse += double(glm::dot(d, d)) / 3.0;
+            }
+            EXPECT_LT(mse / double(got.size()), 1e-3) << "frame " << frame;
+        }
+    }
+    if (usable) EXPECT_GT(ratedFrames, 0) << "no frame used the per-tile rates";
 }
 
 // The guard sees what a corner test misses: one-pixel strands between the samples of a half-size
@@ -209,15 +393,8 @@ TEST(ScaleGuard, GpuMatchesCpuOnARealRender) {
     ASSERT_TRUE(stats.contains("guard")) << stats.dump();
     EXPECT_TRUE(stats["probe_frame"].get<bool>());
     const std::vector<glm::vec4> composite = readGl(method->outputTexture(), w, h);
-    const CapturedFrame frags = c.capture();
-    std::vector<glm::vec4> nearest(size_t(w * h), glm::vec4(0.0f)), second(size_t(w * h), glm::vec4(0.0f));
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const nn::PixelSums s = nn::sumsFromFragments(frags.at(x, y));
-            const size_t i = size_t(h - 1 - y) * size_t(w) + size_t(x);  // capture rows top-first
-            if (s.count > 0.5f) nearest[i] = glm::vec4(s.c1, s.a1);
-            if (s.count > 1.5f) second[i] = glm::vec4(s.c2, s.a2);
-        }
+    std::vector<glm::vec4> nearest, second;
+    capturedLayers(c, nearest, second);
     const ScaleGuard cpu = scaleGuardSums(w, h, composite, nearest, second);
     expectGuardNear(runGpuGuard(composite, nearest, second, w, h), cpu);
     EXPECT_GT(cpu.occupied, 150.0f);

@@ -47,6 +47,11 @@ struct NeuralFrameStats {
         std::optional<bool> probeFrame;           // "probe_frame" (with the guard): full-resolution probe
         std::optional<int> probeInterval;         // "probe_interval" (with the guard): real frames between probes
         std::optional<Guard> guard;               // "guard" (with the guard, once measured)
+        // With per-tile shading rates (NeuralOptions::shadingRateImage): "shading_rate_image", pass
+        // 3 of this frame ran with them; "shading_rate_tiles", occupied tiles shaded per pixel, per
+        // 2x2 and per 4x4 pixels at the newest probe.
+        std::optional<bool> shadingRateImage;
+        std::optional<std::array<uint32_t, 3>> shadingRateTiles;
     };
 
     std::string network;                  // "network": "starnt", "dfaoit" (hybrid: "starnt" inputs)

@@ -107,6 +107,14 @@ struct NeuralOptions {
     // to the pass where the composite cannot (corner inference, joint upsampling, reduced pass 3,
     // skipEmptyPixels off). false: always the pass, for comparison.
     bool fusedCorrectionCapture = true;
+    // Per-tile shading rates for pass 3 through the driver's shading-rate image (docs/DESIGN.md,
+    // "Per-tile shading rates on GPUs"; GL_NV_shading_rate_image, a GPU feature): with the adaptive
+    // tiles and the scale guard, each 16x16 tile's pass-3 fragments are shaded once per pixel, per
+    // 2x2 or per 4x4 pixels, as the guard's prediction for that tile allows, instead of one reduced
+    // scale for the whole pass. Off (default: not yet measured on a GPU); Auto: where the driver
+    // offers it, else the whole-pass scales as with Off; On: required (an error without it).
+    enum class ShadingRateImage { Off, Auto, On };
+    ShadingRateImage shadingRateImage = ShadingRateImage::Off;
 };
 
 struct MethodOptions {

@@ -32,6 +32,9 @@ const WordFlag kWordFlags[] = {
      "neural methods: what the tiles measure: back|composite"},
     {"--scale-guard", &AccelerationFlags::scaleGuard, parseScaleGuardOption,
      "neural methods: probe frames that keep passes at full resolution where reducing loses detail: on|off"},
+    {"--shading-rate-image", &AccelerationFlags::shadingRateImage, parseShadingRateImageOption,
+     "neural methods with tiles: per-tile pass-3 shading rates from the guard through GL_NV_shading_rate_image "
+     "(GPU only): off|auto (where the driver has it)|on (required)"},
     {"--temporal-mode", &AccelerationFlags::temporalMode, parseTemporalModeOption,
      "neural methods: interpolated frames: warp (the paper) | refresh (fresh pass 1) | correct (fresh sums and "
      "nearest layer, the last real frame's network correction)"},

@@ -25,6 +25,7 @@ struct AccelerationFlags {
     std::string scaleRule = "snapped";      // snapped | continuous | step
     std::string tileSignal = "back";        // back | composite
     std::string scaleGuard = "on";          // on | off
+    std::string shadingRateImage = "off";   // off | auto | on
     std::string temporalMode = "correct";   // warp | refresh | correct
     int correctedPasses = 1;                // geometry passes of a corrected frame: 1 | 2
     std::string upsample = "bilinear";      // bilinear | joint

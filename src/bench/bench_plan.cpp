@@ -70,6 +70,14 @@ const std::vector<Variant>& allVariants() {
                                 "the recommended configuration: starnt-d's tail, temporal K = " +
                                     std::to_string(kRecommendedTemporalInterval) + " with corrected frames"),
                     "starnt-d", "K = " + std::to_string(kRecommendedTemporalInterval) + " corrected"),
+        accelerated(makeVariant("starnt-vrs", "starnt",
+                                "STAR-NT, tiles on with per-tile pass-3 shading rates through the driver's shading-rate image "
+                                "where it has one (GPU; elsewhere the same as starnt)",
+                                [](MethodOptions& o) {
+                                    o.neural.spatial = true;
+                                    o.neural.shadingRateImage = NeuralOptions::ShadingRateImage::Auto;
+                                }),
+                    "starnt-full", "tiles, per-tile shading rates"),
         makeVariant("starnt-paper", "starnt",
                     "STAR-NT as the paper: tiles on the composite, continuous scales, no guard",
                     [](MethodOptions& o) {
@@ -170,7 +178,7 @@ const Preset& findPreset(const std::string& name) {
         {"gpu", 1920, 1080, 64, "orbit:0,126,15", {"magic_stars", "chess", "tree", "hair", "hairball", "engine"},
          {"builtin:panes", "builtin:smoke", "builtin:tubes"}, 8, 32,
          {"wboit", "mboit", "mboit-t3", "dfaoit", "starnt-full", "starnt", "hybrid", "hybrid-moments", "starnt-d",
-          "starnt-total", "starnt-total-refresh", "starnt-total-warp", "recommended"}},
+          "starnt-total", "starnt-total-refresh", "starnt-total-warp", "recommended", "starnt-vrs"}},
     };
     for (const auto& p : presets) {
         if (p.name == name) return p;

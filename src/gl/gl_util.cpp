@@ -57,6 +57,28 @@ void checkFrameSize(int width, int height) {
     }
 }
 
+ShadingRateImageSupport shadingRateImageSupport(int texelSize, int paletteEntries) {
+    ShadingRateImageSupport support;
+    if (!epoxy_is_desktop_gl() || !epoxy_has_gl_extension("GL_NV_shading_rate_image")) {
+        support.missing = "GL_NV_shading_rate_image (a shading-rate image; GPU drivers only)";
+        return support;
+    }
+    GLint width = 0, height = 0, palette = 0;
+    glGetIntegerv(GL_SHADING_RATE_IMAGE_TEXEL_WIDTH_NV, &width);
+    glGetIntegerv(GL_SHADING_RATE_IMAGE_TEXEL_HEIGHT_NV, &height);
+    glGetIntegerv(GL_SHADING_RATE_IMAGE_PALETTE_SIZE_NV, &palette);
+    if (width != texelSize || height != texelSize) {
+        support.missing = "shading-rate image texels of " + std::to_string(texelSize) + "x" + std::to_string(texelSize) +
+                          " pixels (this driver's: " + std::to_string(width) + "x" + std::to_string(height) + ")";
+    } else if (palette < paletteEntries) {
+        support.missing = "a shading-rate palette of " + std::to_string(paletteEntries) + " entries (this driver's: " +
+                          std::to_string(palette) + ")";
+    } else {
+        support.usable = true;
+    }
+    return support;
+}
+
 void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
 void deleteBuffer(GLuint id) { glDeleteBuffers(1, &id); }
 void deleteFramebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
@@ -73,7 +95,7 @@ size_t bytesPerTexel(GLenum f) {
         case GL_RG32F: return 8;
         case GL_R32F: case GL_R32UI: case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8: return 4;
         case GL_R16F: case GL_R16: case GL_DEPTH_COMPONENT16: return 2;
-        case GL_R8: return 1;
+        case GL_R8: case GL_R8UI: return 1;
         default: {
             char hex[16];
             std::snprintf(hex, sizeof hex, "0x%04X", unsigned(f));

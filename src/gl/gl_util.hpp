@@ -22,6 +22,15 @@ bool hasCurrentContext();
 // anything of that size is allocated.
 void checkFrameSize(int width, int height);
 
+// Whether the current context offers a shading-rate image (GL_NV_shading_rate_image) whose
+// texels cover `texelSize` x `texelSize` pixels, with a palette of at least `paletteEntries`
+// rates; `missing` says what is not there otherwise (docs/DESIGN.md, "Per-tile shading rates on GPUs").
+struct ShadingRateImageSupport {
+    bool usable = false;
+    std::string missing;
+};
+ShadingRateImageSupport shadingRateImageSupport(int texelSize, int paletteEntries);
+
 // Owns one GL name; Deleter is called with the name on destruction, when a context is current.
 template <void (*Deleter)(GLuint)>
 class Handle {

@@ -53,6 +53,11 @@ nlohmann::json frameStatsJson(const FrameStats& stats) {
                                 {"energy_pass3", g.energyPass3},
                                 {"loss_pass3", {g.lossPass3[0], g.lossPass3[1]}}};
             }
+            if (t.shadingRateImage) out["shading_rate_image"] = *t.shadingRateImage;
+            if (t.shadingRateTiles) {
+                const auto& r = *t.shadingRateTiles;
+                out["shading_rate_tiles"] = {r[0], r[1], r[2]};
+            }
         }
     }
     return out;

@@ -144,7 +144,7 @@ private:
         record.stats = {{"frame", i}, {"frame_ms", ms}, {"interpolated", interpolated}, {"pass_ms", passes},
                         {"pass_counters", countersJson(counters)}, {"memory_bytes", method_->gpuMemoryBytes()},
                         {"rss_bytes", residentMemoryBytes()}};
-        for (const char* key : {"scale_pass2", "scale_pass3", "w_bar", "tile_levels", "probe_frame"}) {
+        for (const char* key : {"scale_pass2", "scale_pass3", "w_bar", "tile_levels", "probe_frame", "shading_rate_image", "shading_rate_tiles"}) {
             if (methodStats.contains(key)) record.stats[key] = methodStats[key];
         }
         // With qualityEvery = n > 1, the error is measured on three frames in every n (a real frame

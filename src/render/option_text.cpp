@@ -79,6 +79,14 @@ void parseScaleGuardOption(const std::string& text, MethodOptions& options) {
     else throw Error("--scale-guard '" + text + "': expected on or off");
 }
 
+void parseShadingRateImageOption(const std::string& text, MethodOptions& options) {
+    using S = NeuralOptions::ShadingRateImage;
+    if (text == "off") options.neural.shadingRateImage = S::Off;
+    else if (text == "auto") options.neural.shadingRateImage = S::Auto;
+    else if (text == "on") options.neural.shadingRateImage = S::On;
+    else throw Error("--shading-rate-image '" + text + "': expected off, auto or on");
+}
+
 void parseTemporalModeOption(const std::string& text, MethodOptions& options) {
     if (text == "warp") options.neural.temporalMode = NeuralOptions::TemporalMode::Warp;
     else if (text == "refresh") options.neural.temporalMode = NeuralOptions::TemporalMode::Refresh;

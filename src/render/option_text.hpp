@@ -22,6 +22,7 @@ void parseScaleRuleOption(const std::string& text, MethodOptions& options);
 void parseTileSignalOption(const std::string& text, MethodOptions& options);
 // "on" | "off".
 void parseScaleGuardOption(const std::string& text, MethodOptions& options);
+void parseShadingRateImageOption(const std::string& text, MethodOptions& options);
 // "bilinear" | "joint" (docs/DESIGN.md, "Adaptive tiles and tile-guided resolution").
 void parseUpsampleOption(const std::string& text, MethodOptions& options);
 // "warp" | "refresh" (docs/DESIGN.md, "Temporal reprojection") | "correct" (beyond it).

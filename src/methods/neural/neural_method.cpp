@@ -44,6 +44,8 @@ public:
                   narrowLayersApply(config, options_, spatial_, corners_), config.tailMoments),
           temporal_(options_, config.tailMoments) {
         if (spatial_ || corners_) tiles_ = std::make_unique<tiles::GpuTiles>();
+        shadingRates_ = shadingRatesApply();
+        if (shadingRates_) tiles_->enableShadingRates();
         if (temporal_.interpolates() && temporal_.corrects()) {
             if (options_.neural.correctedOnePass) passes_.preparePackedNearestAndSums();
             else passes_.prepareNearestAndSums();
@@ -118,6 +120,10 @@ public:
             if (guarded()) {
                 t.probeFrame = probe_ && !temporal_.lastWasInterpolated();
                 t.probeInterval = probeInterval();
+                if (shadingRates_) {
+                    t.shadingRateImage = pass3Rates_ != 0 && !temporal_.lastWasInterpolated();
+                    t.shadingRateTiles = tiles_->shadingRateTiles();
+                }
                 if (tiles_->hasGuard()) {
                     const tiles::ScaleGuard& g = tiles_->guard();
                     t.guard = NeuralFrameStats::Guard{g.occupied, g.energy2, g.energy3, g.loss2, g.loss3};
@@ -223,6 +229,7 @@ private:
                 return temporal_.prepareReference(passes_.nearestDepth().id(), frame.width, frame.height);
             };
         }
+        passes_.setPass3ShadingRates(pass3Rates_);
         passes_.run(frame, draw, NeuralPasses::kDefaultPeelEpsilon,
                     {tiles::scaledSize(full.width, scale2_), tiles::scaledSize(full.height, scale2_)},
                     {tiles::scaledSize(full.width, scale3_), tiles::scaledSize(full.height, scale3_)}, behindReference);
@@ -287,6 +294,26 @@ private:
     // The scale guard applies to the adaptive scales only (not to fixed --scales).
     bool guarded() const { return spatial_ && options_.neural.scaleGuard && options_.neural.fixedScale2 == 0.0f; }
 
+    // Per-tile pass-3 shading rates (docs/DESIGN.md, "Per-tile shading rates on GPUs"): they need
+    // the guard's per-tile sums and the driver's shading-rate image; `on` without either is an
+    // error naming what is missing, `auto` falls back to the whole-pass scales.
+    bool shadingRatesApply() const {
+        using S = NeuralOptions::ShadingRateImage;
+        const S mode = options_.neural.shadingRateImage;
+        if (mode == S::Off) return false;
+        std::string missing;
+        if (!guarded()) {
+            missing = "the adaptive tiles with the scale guard (--spatial on, --scale-guard on, --scales auto)";
+        } else {
+            const gl::ShadingRateImageSupport support =
+                gl::shadingRateImageSupport(STARNT_TILE_SIZE, STARNT_SHADING_RATE_CLASSES);
+            if (!support.usable) missing = support.missing + " in this OpenGL context";
+        }
+        if (missing.empty()) return true;
+        if (mode == S::On) throw Error("--shading-rate-image on: " + config_.name + " needs " + missing);
+        return false;
+    }
+
     static const MethodOptions& validated(const NeuralMethodConfig& config, const MethodOptions& o) {
         auto scaleOk = [](float s) { return s == 0.0f || (s >= float(STARNT_SCALE_MIN) && s <= 1.0f); };
         if (!scaleOk(o.neural.fixedScale2) || !scaleOk(o.neural.fixedScale3) || ((o.neural.fixedScale2 == 0.0f) != (o.neural.fixedScale3 == 0.0f))) {
@@ -348,8 +375,18 @@ private:
                 probe_ = tiles_->updates() < STARNT_SCALE_SETTLE_FRAMES || realFramesSinceProbe_ + 1 >= probeInterval() ||
                          (tiles_->hasGuard() && !verdict);
                 realFramesSinceProbe_ = probe_ ? 0 : realFramesSinceProbe_ + 1;
+                pass3Rates_ = 0;
                 if (probe_ || !verdict) {
                     scale2_ = scale3_ = 1.0f;
+                } else if (shadingRates_) {
+                    // Per-tile rates for pass 3 instead of whole-pass scales; pass 2 at full resolution.
+                    scale2_ = scale3_ = 1.0f;
+                    pass3Rates_ = tiles_->shadingRateImage();
+                    if (tiles_->guardReadings() != guardReadingsSeen_) {
+                        guardReadingsSeen_ = tiles_->guardReadings();
+                        const auto& n = tiles_->shadingRateTiles();
+                        fullProbes_ = n[STARNT_SHADING_RATE_HALF] + n[STARNT_SHADING_RATE_QUARTER] == 0 ? fullProbes_ + 1 : 0;
+                    }
                 } else {
                     // The guard decides (measured: w_bar of the tiles stays near 3 on the built-in
                     // scenes, where halving pass 3 loses 0.02-2 % of what it adds).
@@ -450,6 +487,8 @@ private:
     gl::Texture2D cornerNetwork_, overlay_;
     gl::FramebufferHandle cornerFb_;
     float scale2_ = 1.0f, scale3_ = 1.0f;
+    bool shadingRates_ = false;  // per-tile pass-3 shading rates (shadingRatesApply)
+    GLuint pass3Rates_ = 0;      // this real frame's rate image (0: one invocation per pixel)
     bool cornersUsed_ = false;
     bool fusedCaptured_ = false;  // this real frame's composite captured the corrected frames' correction
     NeuralPasses::OutputSlot out_;  // this frame's output

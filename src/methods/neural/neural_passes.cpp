@@ -1,5 +1,7 @@
 #include "methods/neural/neural_passes.hpp"
 
+#include "methods/neural/tiles/tile_constants.h"
+
 #include <bit>
 #include <cstdio>
 
@@ -341,7 +343,21 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
         beginBehindMoment(5, behindReference);
         gl::bindTexture(2, nearestDepth_.id());  // pass3_accumulate.frag.glsl's u_nearestDepth
     }
+    const bool rates = pass3Rates_ != 0 && pass3Size == full;
+    if (rates) {
+        // docs/DESIGN.md, "Per-tile shading rates on GPUs": the palette maps the tile classes.
+        const GLenum palette[STARNT_SHADING_RATE_CLASSES] = {GL_SHADING_RATE_1_INVOCATION_PER_PIXEL_NV,
+                                                            GL_SHADING_RATE_1_INVOCATION_PER_2X2_PIXELS_NV,
+                                                            GL_SHADING_RATE_1_INVOCATION_PER_4X4_PIXELS_NV};
+        glBindShadingRateImageNV(pass3Rates_);
+        glShadingRateImagePaletteNV(0, 0, STARNT_SHADING_RATE_CLASSES, palette);
+        glEnable(GL_SHADING_RATE_IMAGE_NV);
+    }
     MethodBase::runGeometryPass("pass3", *program, frame, draw);
+    if (rates) {
+        glDisable(GL_SHADING_RATE_IMAGE_NV);
+        glBindShadingRateImageNV(0);
+    }
     opaque_.endDepthTest(framebuffer);
     resetPassState();
 }

@@ -116,6 +116,10 @@ public:
     // ordered correction. Needs 6 draw buffers; with fewer it sums none.
     void run(const FrameDesc& frame, const DrawCallback& draw, float peelEpsilon, Size2 pass2Size, Size2 pass3Size,
              const std::function<GLuint()>& behindReference = {});
+    // Per-tile shading rates for the next real frames' pass 3 at full resolution: an R8UI image of
+    // STARNT_SHADING_RATE_* classes, one texel per 16x16 tile (GpuTiles::shadingRateImage), through
+    // GL_NV_shading_rate_image; 0 = one invocation per pixel.
+    void setPass3ShadingRates(GLuint rateImage) { pass3Rates_ = rateImage; }
     void prepareRealBehindMoments();
     bool behindMomentsSummed() const { return behindSummed_; }
     // (sum a C v, sum a v) in realBehindMoment1(), sum a v^2 in colorCount()'s .g.
@@ -197,6 +201,7 @@ private:
     gl::Texture2D nearest_, nearestDepth_, second_, secondDepth_, alphaColor_, colorCount_, transmittance_;
     gl::Texture2D layerAlpha_;  // narrow layers only: a1, a2
     gl::Texture2D tailMoment1_, tailMoment2_;  // tail moments only
+    GLuint pass3Rates_ = 0;                    // setPass3ShadingRates
     TailResolveCopies esResolveCopies_;  // OpenGL ES only: what the tail resolve reads
     bool colorSums_ = true;
     NeuralOptions::Targets targets_;

@@ -69,4 +69,15 @@
 // Below this transmittance in front of a pass's share, the share is not divided out (invisible).
 #define STARNT_GUARD_MIN_TRANSMITTANCE 1e-4
 
+// Per-tile pass-3 shading rates (docs/DESIGN.md, "Per-tile shading rates on GPUs"; GPUs with a
+// shading-rate image only): on a probe frame each 16x16 tile gets the coarsest rate whose predicted
+// pass-3 loss in that tile stays within STARNT_SCALE_GUARD_BUDGET x its occupied pixels
+// (tiles::tileShadingRate, tile_shading_rate.comp.glsl), one texel of the shading-rate image per
+// tile; the palette maps the classes to 1, 1/4 and 1/16 of the fragment-shader invocations.
+// After the guard sums, the readback buffer holds the occupied tiles of each class.
+#define STARNT_SHADING_RATE_FULL 0u     /* one invocation per pixel */
+#define STARNT_SHADING_RATE_HALF 1u     /* one per 2x2 pixels (the guard's scale 1/2) */
+#define STARNT_SHADING_RATE_QUARTER 2u  /* one per 4x4 pixels (the guard's scale 1/4) */
+#define STARNT_SHADING_RATE_CLASSES 3
+
 #endif

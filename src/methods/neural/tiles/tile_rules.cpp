@@ -70,7 +70,15 @@ PassScales guardScales(const ScaleGuard& guard, double budget) {
     return best;
 }
 
-int scaledSize(int size, float scale) { return std::max(1, int(std::ceil(double(size) * double(scale) - 1e-9))); }
+uint32_t tileShadingRate(const ScaleGuard& tile, float budget) {
+    if (!(tile.occupied > 0.0f)) return STARNT_SHADING_RATE_FULL;
+    // With pass 2 at full resolution, a pass-3 rate loses loss3 of its scale (guardPredictedLoss).
+    const float allowed = budget * tile.occupied;
+    if (tile.loss3[1] <= allowed) return STARNT_SHADING_RATE_QUARTER;
+    if (tile.loss3[0] <= allowed) return STARNT_SHADING_RATE_HALF;
+    return STARNT_SHADING_RATE_FULL;
+}
 
+int scaledSize(int size, float scale) { return std::max(1, int(std::ceil(double(size) * double(scale) - 1e-9))); }
 
 }  // namespace starnt::tiles

@@ -69,6 +69,13 @@ PassScales guardScales(const ScaleGuard& guard, double budget);
 // The predicted loss of one pair (as above), for tests and stats.
 double guardPredictedLoss(const ScaleGuard& guard, float scale2, float scale3);
 
+// The shading-rate class of one tile (tile_constants.h, STARNT_SHADING_RATE_*) from its own guard
+// sums: the coarsest rate for pass 3 whose predicted loss in the tile (guardPredictedLoss with pass
+// 2 at full resolution) is at most `budget` x the tile's occupied pixels; full rate for a tile with
+// no occupied pixel. So the whole image stays within the guard's budget too. Float arithmetic, as
+// tile_shading_rate.comp.glsl does it.
+uint32_t tileShadingRate(const ScaleGuard& tile, float budget);
+
 // ceil(size * scale), at least 1: a reduced pass's size along one axis.
 int scaledSize(int size, float scale);
 

@@ -9,8 +9,11 @@ namespace {
 
 GLuint groups(int n, int size) { return GLuint((n + size - 1) / size); }
 
-// The readback: the four level counts (uint), then the guard sums (float).
-constexpr size_t kReadbackBytes = 4 * sizeof(uint32_t) + STARNT_GUARD_VALUES * sizeof(float);
+// The readback: the four level counts (uint), the guard sums (float), then the occupied tiles per
+// shading rate (uint; tile_shading_rate.comp.glsl).
+constexpr size_t kGuardOffset = 4 * sizeof(uint32_t);
+constexpr size_t kRateTilesOffset = kGuardOffset + STARNT_GUARD_VALUES * sizeof(float);
+constexpr size_t kReadbackBytes = kRateTilesOffset + STARNT_SHADING_RATE_CLASSES * sizeof(uint32_t);
 
 gl::Program compute(const char* label, const char* file) {
     return gl::buildComputeProgram(label, "#include \"" + std::string(file) + "\"\n");
@@ -52,6 +55,7 @@ void GpuTiles::resize(int width, int height) {
     for (auto& m : masks_) m = gl::Buffer(bytes);
     occupancy_ = gl::Buffer(bytes);
     guardTileSums_ = gl::Buffer(bytes * STARNT_GUARD_VALUES);
+    if (shadingRateProgram_) rates_ = gl::Texture2D(GL_R8UI, tilesX_, tilesY_);
     reset();
 }
 
@@ -68,7 +72,25 @@ void GpuTiles::reset() {
     wBar_ = 0.0;
     hasGuard_ = false;
     guard_ = {};
+    ratesWritten_ = false;
+    rateTiles_ = {};
     updates_ = 0;
+}
+
+void GpuTiles::enableShadingRates() {
+    if (shadingRateProgram_) return;
+    shadingRateProgram_ = compute("tile_shading_rate", "methods/neural/tiles/tile_shading_rate.comp.glsl");
+    if (tilesX_ > 0) rates_ = gl::Texture2D(GL_R8UI, tilesX_, tilesY_);
+}
+
+std::vector<uint8_t> GpuTiles::readShadingRates() const {
+    std::vector<uint8_t> out(size_t(tilesX_) * size_t(tilesY_));
+    if (!rates_ || out.empty()) return out;
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(rates_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, GLsizei(out.size()), out.data());
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    return out;
 }
 
 void GpuTiles::update(GLuint composite, GLuint nearest, TileSignal signal, GLuint second) {
@@ -120,6 +142,16 @@ void GpuTiles::update(GLuint composite, GLuint nearest, TileSignal signal, GLuin
         glUseProgram(guardTotal_.id());
         glUniform1ui(guardTotal_.uniform("u_tileCount"), GLuint(tilesX_ * tilesY_));
         glDispatchCompute(1, 1, 1);
+        if (shadingRateProgram_) {
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+            glUseProgram(shadingRateProgram_.id());
+            glBindImageTexture(0, rates_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R8UI);
+            glUniform2i(shadingRateProgram_.uniform("u_tiles"), tilesX_, tilesY_);
+            glDispatchCompute(groups(tilesX_, 8), groups(tilesY_, 8), 1);
+            // The rasteriser reads the image in the next frame's pass 3 (and tests read it back).
+            glMemoryBarrier(GL_ALL_BARRIER_BITS);
+            ratesWritten_ = true;
+        }
     }
 
     // Copy into the next readback slot and fence it; pollHistogram picks it up once finished.
@@ -150,7 +182,10 @@ bool GpuTiles::pollHistogram() {
     float guard[STARNT_GUARD_VALUES];
     gl::readBuffer(r.buffer.id(), 0, sizeof counts, counts);
     if (r.hasGuard) {
-        gl::readBuffer(r.buffer.id(), sizeof counts, sizeof guard, guard);
+        gl::readBuffer(r.buffer.id(), kGuardOffset, sizeof guard, guard);
+        if (shadingRateProgram_) {
+            gl::readBuffer(r.buffer.id(), kRateTilesOffset, GLsizeiptr(sizeof(uint32_t) * rateTiles_.size()), rateTiles_.data());
+        }
         guard_.occupied = guard[STARNT_GUARD_OCCUPIED];
         guard_.energy2 = guard[STARNT_GUARD_ENERGY_PASS2];
         guard_.energy3 = guard[STARNT_GUARD_ENERGY_PASS3];
@@ -205,12 +240,13 @@ void GpuTiles::addMemoryTargets(OitMethod::MemoryTargets& out) const {
                            {"tile_occupancy", occupancy_.bytes()},
                            {"tile_histogram", histogramBuffer_.bytes()},
                            {"tile_guard_sums", guardTileSums_.bytes()},
+                           {"tile_shading_rates", rates_.bytes()},
                            {"tile_readbacks", readbacks}});
 }
 
 size_t GpuTiles::gpuMemoryBytes() const {
     size_t bytes = masks_[0].bytes() + masks_[1].bytes() + occupancy_.bytes() + histogramBuffer_.bytes() +
-                   guardTileSums_.bytes();
+                   guardTileSums_.bytes() + rates_.bytes();
     for (const auto& r : readbacks_) bytes += r.buffer.bytes();
     return bytes;
 }

@@ -11,6 +11,7 @@
 #include "gl/gl_util.hpp"
 #include "gl/gpu_timer.hpp"
 #include "gl/shader.hpp"
+#include "methods/neural/tiles/tile_constants.h"
 #include "methods/neural/tiles/tile_rules.hpp"
 
 namespace starnt::tiles {
@@ -42,6 +43,16 @@ public:
     const ScaleGuard& guard() const { return guard_; }
     // Guard measurements picked up so far (grows by one with each probe's readback; never reset).
     int guardReadings() const { return guardReadings_; }
+    // Per-tile pass-3 shading rates (tile_constants.h, STARNT_SHADING_RATE_*): from now on every
+    // update that computes the guard also writes the shading-rate image (R8UI, one texel per tile)
+    // and counts the occupied tiles of each rate into the readback. Desktop GL (an r8ui image).
+    void enableShadingRates();
+    // The rate image of the newest guard update since the last reset; 0 before one.
+    GLuint shadingRateImage() const { return ratesWritten_ ? rates_.id() : 0; }
+    // Occupied tiles per rate of the newest guard readback (zeros before one).
+    const std::array<uint32_t, STARNT_SHADING_RATE_CLASSES>& shadingRateTiles() const { return rateTiles_; }
+    // Blocking readback of the rate image, row-major from the bottom-left tile (tests).
+    std::vector<uint8_t> readShadingRates() const;
     // Number of updates run since the last reset (0: the masks are all level 0 from the start).
     int updates() const { return updates_; }
 
@@ -67,7 +78,10 @@ private:
     };
     void clearReadbacks();
 
-    gl::Program evaluate_, balance_, histogramProgram_, overlay_, guardTiles_, guardTotal_;
+    gl::Program evaluate_, balance_, histogramProgram_, overlay_, guardTiles_, guardTotal_, shadingRateProgram_;
+    gl::Texture2D rates_;  // with enableShadingRates: one R8UI texel per tile
+    bool ratesWritten_ = false;
+    std::array<uint32_t, STARNT_SHADING_RATE_CLASSES> rateTiles_{};
     int width_ = 0, height_ = 0, tilesX_ = 0, tilesY_ = 0;
     gl::Buffer masks_[2], occupancy_, histogramBuffer_, guardTileSums_;
     int current_ = 0;  // masks_[current_] holds the latest masks
