@@ -77,7 +77,7 @@ const std::vector<Variant>& allVariants() {
                                     o.neural.spatial = true;
                                     o.neural.shadingRateImage = NeuralOptions::ShadingRateImage::Auto;
                                 }),
-                    "starnt-full", "tiles, per-tile shading rates"),
+                    "starnt", "per-tile shading rates"),
         makeVariant("starnt-paper", "starnt",
                     "STAR-NT as the paper: tiles on the composite, continuous scales, no guard",
                     [](MethodOptions& o) {

@@ -120,10 +120,12 @@ public:
             if (guarded()) {
                 t.probeFrame = probe_ && !temporal_.lastWasInterpolated();
                 t.probeInterval = probeInterval();
-                if (shadingRates_) {
+                // Asked for: whether this frame's pass 3 ran with the rates (false where the
+                // driver lacks them, so a report cannot take the plain tiles for them).
+                if (options_.neural.shadingRateImage != NeuralOptions::ShadingRateImage::Off) {
                     t.shadingRateImage = pass3Rates_ != 0 && !temporal_.lastWasInterpolated();
-                    t.shadingRateTiles = tiles_->shadingRateTiles();
                 }
+                if (shadingRates_) t.shadingRateTiles = tiles_->shadingRateTiles();
                 if (tiles_->hasGuard()) {
                     const tiles::ScaleGuard& g = tiles_->guard();
                     t.guard = NeuralFrameStats::Guard{g.occupied, g.energy2, g.energy3, g.loss2, g.loss3};
@@ -243,6 +245,9 @@ private:
             gl::ScopedPass timing(frame.timing, "tiles");
             tiles_->update(out_.texture, passes_.nearest().id(), options_.neural.tileSignal,
                            guarded() ? passes_.second().id() : 0);
+            // The rasteriser may cache the rate image: after the image stores, only this makes the
+            // next frames' pass 3 read the new rates (NV_shading_rate_image).
+            if (shadingRates_) glShadingRateImageBarrierNV(GL_TRUE);
         }
     }
 
@@ -304,6 +309,10 @@ private:
         std::string missing;
         if (!guarded()) {
             missing = "the adaptive tiles with the scale guard (--spatial on, --scale-guard on, --scales auto)";
+        } else if (temporal_.interpolates()) {
+            // The corrected frames' capture and the warp read pass 3's full sums, which the
+            // coarse copies of layers 1 and 2 would spoil (docs/DESIGN.md, "Per-tile shading rates on GPUs").
+            missing = "no temporal frames (--temporal off)";
         } else {
             const gl::ShadingRateImageSupport support =
                 gl::shadingRateImageSupport(STARNT_TILE_SIZE, STARNT_SHADING_RATE_CLASSES);
@@ -381,11 +390,14 @@ private:
                 } else if (shadingRates_) {
                     // Per-tile rates for pass 3 instead of whole-pass scales; pass 2 at full resolution.
                     scale2_ = scale3_ = 1.0f;
-                    pass3Rates_ = tiles_->shadingRateImage();
+                    const auto& n = tiles_->shadingRateTiles();
+                    const bool reduced = n[STARNT_SHADING_RATE_HALF] + n[STARNT_SHADING_RATE_QUARTER] > 0;
+                    // Only where the newest readback reduced a tile (the image may be a probe
+                    // newer: at worst one frame binds an all-1x1 image or skips a reduced one).
+                    pass3Rates_ = reduced ? tiles_->shadingRateImage() : 0;
                     if (tiles_->guardReadings() != guardReadingsSeen_) {
                         guardReadingsSeen_ = tiles_->guardReadings();
-                        const auto& n = tiles_->shadingRateTiles();
-                        fullProbes_ = n[STARNT_SHADING_RATE_HALF] + n[STARNT_SHADING_RATE_QUARTER] == 0 ? fullProbes_ + 1 : 0;
+                        fullProbes_ = reduced ? 0 : fullProbes_ + 1;
                     }
                 } else {
                     // The guard decides (measured: w_bar of the tiles stays near 3 on the built-in

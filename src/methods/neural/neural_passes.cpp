@@ -343,21 +343,26 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
         beginBehindMoment(5, behindReference);
         gl::bindTexture(2, nearestDepth_.id());  // pass3_accumulate.frag.glsl's u_nearestDepth
     }
-    const bool rates = pass3Rates_ != 0 && pass3Size == full;
-    if (rates) {
-        // docs/DESIGN.md, "Per-tile shading rates on GPUs": the palette maps the tile classes.
-        const GLenum palette[STARNT_SHADING_RATE_CLASSES] = {GL_SHADING_RATE_1_INVOCATION_PER_PIXEL_NV,
-                                                            GL_SHADING_RATE_1_INVOCATION_PER_2X2_PIXELS_NV,
-                                                            GL_SHADING_RATE_1_INVOCATION_PER_4X4_PIXELS_NV};
-        glBindShadingRateImageNV(pass3Rates_);
-        glShadingRateImagePaletteNV(0, 0, STARNT_SHADING_RATE_CLASSES, palette);
-        glEnable(GL_SHADING_RATE_IMAGE_NV);
-    }
+    // docs/DESIGN.md, "Per-tile shading rates on GPUs": the palette of viewport 0 maps the tile
+    // classes; the rates are off again (image unbound) after the pass, also when the draw throws.
+    struct ShadingRates {
+        bool on;
+        explicit ShadingRates(GLuint image) : on(image != 0) {
+            if (!on) return;
+            const GLenum palette[STARNT_SHADING_RATE_CLASSES] = {GL_SHADING_RATE_1_INVOCATION_PER_PIXEL_NV,
+                                                                GL_SHADING_RATE_1_INVOCATION_PER_2X2_PIXELS_NV,
+                                                                GL_SHADING_RATE_1_INVOCATION_PER_4X4_PIXELS_NV};
+            glBindShadingRateImageNV(image);
+            glShadingRateImagePaletteNV(0, 0, STARNT_SHADING_RATE_CLASSES, palette);
+            glEnable(GL_SHADING_RATE_IMAGE_NV);
+        }
+        ~ShadingRates() {
+            if (!on) return;
+            glDisable(GL_SHADING_RATE_IMAGE_NV);
+            glBindShadingRateImageNV(0);
+        }
+    } rates(pass3Size == full ? pass3Rates_ : 0);
     MethodBase::runGeometryPass("pass3", *program, frame, draw);
-    if (rates) {
-        glDisable(GL_SHADING_RATE_IMAGE_NV);
-        glBindShadingRateImageNV(0);
-    }
     opaque_.endDepthTest(framebuffer);
     resetPassState();
 }
