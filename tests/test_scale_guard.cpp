@@ -16,6 +16,8 @@
 #include "reference/tiles_cpu.hpp"
 #include "methods/neural/tiles/tiles_gpu.hpp"
 #include "methods/registry.hpp"
+#include "methods/common/opaque_scene.hpp"
+#include "methods/neural/neural_passes.hpp"
 #include "reference/fragment_capture.hpp"
 #include "scene/scene_gpu.hpp"
 #include "starnt/tools/nn.hpp"
@@ -253,6 +255,49 @@ TEST(ScaleGuard, ShadingRatesGpuMatchCpuOnARealRender) {
     // The premise: smoke's tiles differ (at this size 55 full, 3 at 2x2, 2 at 4x4).
     EXPECT_GT(perClass[STARNT_SHADING_RATE_FULL], 0);
     EXPECT_GT(perClass[STARNT_SHADING_RATE_HALF] + perClass[STARNT_SHADING_RATE_QUARTER], 0);
+}
+
+// With per-tile shading rates pass 3 sums only the fragments behind pass 2's layer (a per-pixel
+// depth test against its depth), and the inference adds the exact layers back, as after reduced
+// passes. Without the rates (setPass3TailsOnly) that is the same frame: every pass-3 target, with
+// the two layers put back, against the plain pass 3's (float32 targets; tubes, three layers deep).
+TEST(ShadingRateImage, TailOnlyPassThreePlusTheLayersIsThePlainPassThree) {
+    test::glContext();
+    const int w = 96, h = 64;
+    test::TestScene c(makeBuiltinScene("tubes", 3), w, h, 30.0f, 15.0f, kBackground);
+    const FrameDesc f = c.frame();
+    const DrawCallback draw = c.gpu->callback(f.view, f.projection, {});
+    OpaqueScene opaque(kBackground);
+    opaque.begin(f);
+    NeuralPasses passes(SceneGpu::surfaceShader(), opaque, false, NeuralOptions::Targets::Float32);
+    passes.run(f, draw, NeuralPasses::kDefaultPeelEpsilon, {w, h}, {w, h});
+    ASSERT_FALSE(passes.pass3HoldsTails());
+    const std::vector<glm::vec4> sums = readGl(passes.alphaColor().id(), w, h);
+    const std::vector<float> count = gl::readTextureFloats(passes.colorCount().id(), w, h, 1);
+    const std::vector<float> t = gl::readTextureFloats(passes.transmittance().id(), w, h, 1);
+    passes.setPass3TailsOnly(true);
+    passes.run(f, draw, NeuralPasses::kDefaultPeelEpsilon, {w, h}, {w, h});
+    ASSERT_TRUE(passes.pass3HoldsTails());
+    const std::vector<glm::vec4> tailSums = readGl(passes.alphaColor().id(), w, h);
+    const std::vector<float> tailCount = gl::readTextureFloats(passes.colorCount().id(), w, h, 1);
+    const std::vector<float> tailT = gl::readTextureFloats(passes.transmittance().id(), w, h, 1);
+    const std::vector<glm::vec4> l1 = readGl(passes.nearest().id(), w, h), l2 = readGl(passes.second().id(), w, h);
+    size_t deep = 0, off = 0;
+    for (size_t i = 0; i < sums.size(); ++i) {
+        const glm::vec4 layers = glm::vec4(glm::vec3(l1[i]) * l1[i].a + glm::vec3(l2[i]) * l2[i].a, l1[i].a + l2[i].a);
+        const float layerCount = (l1[i].a > 0.0f ? 1.0f : 0.0f) + (l2[i].a > 0.0f ? 1.0f : 0.0f);
+        deep += tailCount[i] > 0.5f;
+        bool near = glm::length(tailSums[i] + layers - sums[i]) <= 1e-4f + 1e-4f * glm::length(sums[i]);
+        near = near && tailCount[i] + layerCount == count[i];
+        near = near && std::abs(tailT[i] * (1.0f - l1[i].a) * (1.0f - l2[i].a) - t[i]) <= 1e-5f;
+        off += !near;
+    }
+    EXPECT_GT(deep, size_t(200)) << "the premise: pixels with more than two layers";
+    EXPECT_EQ(off, 0u) << "pixels whose tail plus layers differs from the plain sums";
+    passes.setPass3TailsOnly(false);
+    passes.run(f, draw, NeuralPasses::kDefaultPeelEpsilon, {w, h}, {w, h});
+    EXPECT_FALSE(passes.pass3HoldsTails());
+    EXPECT_EQ(readGl(passes.alphaColor().id(), w, h), sums) << "the plain pass 3 again, its clip state restored";
 }
 
 // Without a shading-rate image (llvmpipe, ES, most drivers) `auto` is the whole-pass scales, frame

@@ -111,10 +111,9 @@ struct NeuralOptions {
     // "Per-tile shading rates on GPUs"; GL_NV_shading_rate_image, a GPU feature): with the adaptive
     // tiles and the scale guard, each 16x16 tile's pass-3 fragments are shaded once per pixel, per
     // 2x2 or per 4x4 pixels, as the guard's prediction for that tile allows, instead of one reduced
-    // scale for the whole pass. Not with temporal frames. Off (default: not yet measured on a GPU,
-    // and the guard does not yet price the coarse copies of the two front layers in pass 3's sums);
-    // Auto: where the driver offers it, else the whole-pass scales as with Off; On: required (an
-    // error without it).
+    // scale for the whole pass (that pass 3 then sums only what lies behind the second layer). Not
+    // with temporal frames. Off (default: not yet measured on a GPU); Auto: where the driver offers
+    // it, else the whole-pass scales as with Off; On: required (an error without it).
     enum class ShadingRateImage { Off, Auto, On };
     ShadingRateImage shadingRateImage = ShadingRateImage::Off;
 };

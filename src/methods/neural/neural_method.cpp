@@ -443,7 +443,8 @@ private:
         // Corner inference needs the masks of a previous real frame; the first frame infers everywhere.
         cornersUsed_ = corners_ && tiles_->updates() > 0;
         const Size2 full{width_, height_};
-        const bool fullResolution = passes_.pass2Size() == full && passes_.pass3Size() == full;
+        // (Per-tile shading rates leave pass 3's tails, read as after reduced passes.)
+        const bool fullResolution = passes_.pass2Size() == full && passes_.pass3Size() == full && !passes_.pass3HoldsTails();
         // Corrected frames keep this frame's correction: written by the composite itself where it can.
         fusedCaptured_ = !cornersUsed_ && fusedCaptureApplies() && fullResolution;
         if (fusedCaptured_) {

@@ -191,6 +191,7 @@ void NeuralPasses::resize(int width, int height) {
                            : gl::makeFramebuffer({&alphaColor_, &transmittance_});
     packedFb_.reset();  // runPackedNearestAndSums makes it again around the new targets
     pass3BehindFb_.reset();
+    pass3TailFb_.reset();
     nearestOnlyFb_ = gl::makeFramebuffer({&nearest_});
     secondOnlyFb_ = gl::makeFramebuffer({&second_});
     alphaColorOnlyFb_ = gl::makeFramebuffer({&alphaColor_});
@@ -314,6 +315,7 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
             colorCount_ = gl::Texture2D(GL_RG32F, width_, height_, GL_LINEAR);
             makePass3Framebuffer();
             pass3BehindFb_.reset();
+            pass3TailFb_.reset();
         }
         if (!pass3BehindFb_.id()) {
             pass3BehindFb_ =
@@ -322,11 +324,27 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
         framebuffer = pass3BehindFb_.id();
         program = &pass3Behind_;
     }
+    // With per-tile shading rates, pass 3 sums only the fragments behind pass 2's layer, by a depth
+    // test per pixel against its depth: a coarse fragment's colour must not stand in for the exact
+    // layers 1 and 2, which the inference adds back (the reduced passes' "targets hold tails").
+    pass3HoldsTails_ = (pass3Rates_ != 0 || pass3TailsOnly_) && pass3Size == full && !tailMoments_ && !behindSummed_;
+    if (pass3HoldsTails_) {
+        if (!pass3TailFb_.id()) pass3TailFb_ = gl::makeFramebuffer({&alphaColor_, &colorCount_, &transmittance_}, &secondDepth_);
+        framebuffer = pass3TailFb_.id();
+    }
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     glClearBufferfv(GL_COLOR, 0, zero);
     glClearBufferfv(GL_COLOR, 1, zero);
     glClearBufferfv(GL_COLOR, 2, one);
-    opaque_.beginDepthTest(framebuffer, pass3Size.width, pass3Size.height, full.width, full.height);
+    if (pass3HoldsTails_) {
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_GREATER);  // behind the second layer, which pass 2's depth holds (1 where none)
+        glDepthMask(GL_FALSE);
+        glUseProgram(program->id());
+        opaque_.clipInShader(*program, full.width, full.height, full.width, full.height);
+    } else {
+        opaque_.beginDepthTest(framebuffer, pass3Size.width, pass3Size.height, full.width, full.height);
+    }
     glEnable(GL_BLEND);
     // Per-target blend functions: core in GL 4.0 and GLES 3.2 (EXT_draw_buffers_indexed on 3.1).
     glBlendFunci(0, GL_ONE, GL_ONE);
@@ -363,7 +381,13 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
         }
     } rates(pass3Size == full ? pass3Rates_ : 0);
     MethodBase::runGeometryPass("pass3", *program, frame, draw);
-    opaque_.endDepthTest(framebuffer);
+    if (pass3HoldsTails_) {
+        // The other frames clip by the depth test, with the opaque depth unbound from the shader.
+        glUseProgram(program->id());
+        glUniform1i(program->uniform("u_opaqueClip"), 0);
+    } else {
+        opaque_.endDepthTest(framebuffer);
+    }
     resetPassState();
 }
 

@@ -119,7 +119,13 @@ public:
     // Per-tile shading rates for the next real frames' pass 3 at full resolution: an R8UI image of
     // STARNT_SHADING_RATE_* classes, one texel per 16x16 tile (GpuTiles::shadingRateImage), through
     // GL_NV_shading_rate_image; 0 = one invocation per pixel.
+    // Such a pass 3 sums only the fragments behind pass 2's layer (pass3HoldsTails()), which
+    // setPass3TailsOnly gives without the rates (tests).
     void setPass3ShadingRates(GLuint rateImage) { pass3Rates_ = rateImage; }
+    void setPass3TailsOnly(bool tailsOnly) { pass3TailsOnly_ = tailsOnly; }
+    // The last run's pass-3 targets hold each pixel's tail (sums minus layers 1 and 2) rather than
+    // its sums, as after the tail resolve of reduced passes: the inference reads them so.
+    bool pass3HoldsTails() const { return pass3HoldsTails_; }
     void prepareRealBehindMoments();
     bool behindMomentsSummed() const { return behindSummed_; }
     // (sum a C v, sum a v) in realBehindMoment1(), sum a v^2 in colorCount()'s .g.
@@ -202,6 +208,8 @@ private:
     gl::Texture2D layerAlpha_;  // narrow layers only: a1, a2
     gl::Texture2D tailMoment1_, tailMoment2_;  // tail moments only
     GLuint pass3Rates_ = 0;                    // setPass3ShadingRates
+    bool pass3TailsOnly_ = false, pass3HoldsTails_ = false;
+    gl::FramebufferHandle pass3TailFb_;        // pass 3's targets over pass 2's depth
     TailResolveCopies esResolveCopies_;  // OpenGL ES only: what the tail resolve reads
     bool colorSums_ = true;
     NeuralOptions::Targets targets_;
