@@ -36,14 +36,7 @@ using namespace starnt;
 
 namespace {
 
-double squaredSrgb(glm::vec3 a, glm::vec3 b) {
-    double sum = 0.0;
-    for (int c = 0; c < 3; ++c) {
-        const double d = linearToSrgb(std::clamp(a[c], 0.0f, 1.0f)) - linearToSrgb(std::clamp(b[c], 0.0f, 1.0f));
-        sum += d * d;
-    }
-    return sum / 3.0;
-}
+using study::squaredSrgb;
 
 // The nearest fragment of `list` (sorted, non-empty) over the ordered closed form of the rest,
 // whose background is `behindBackground`, with moments behind `reference`.

@@ -16,9 +16,21 @@
 #include "scene/scene_gpu.hpp"
 #include "starnt/tools/camera.hpp"
 #include "starnt/error.hpp"
+#include "starnt/tools/image.hpp"
 #include "starnt/tools/scene.hpp"
 
 namespace starnt::study {
+
+// Mean over RGB of the squared difference of the sRGB encodings of two linear colours (each
+// clamped to [0, 1]): one pixel's share of the MSE the bench reports.
+inline double squaredSrgb(glm::vec3 a, glm::vec3 b) {
+    double sum = 0.0;
+    for (int c = 0; c < 3; ++c) {
+        const double d = linearToSrgb(std::clamp(a[c], 0.0f, 1.0f)) - linearToSrgb(std::clamp(b[c], 0.0f, 1.0f));
+        sum += d * d;
+    }
+    return sum / 3.0;
+}
 
 inline std::vector<std::string> splitList(const std::string& text) {
     std::vector<std::string> out;

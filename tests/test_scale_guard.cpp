@@ -272,15 +272,20 @@ TEST(ShadingRateImage, TailOnlyPassThreePlusTheLayersIsThePlainPassThree) {
     NeuralPasses passes(SceneGpu::surfaceShader(), opaque, false, NeuralOptions::Targets::Float32);
     passes.run(f, draw, NeuralPasses::kDefaultPeelEpsilon, {w, h}, {w, h});
     ASSERT_FALSE(passes.pass3HoldsTails());
-    const std::vector<glm::vec4> sums = readGl(passes.alphaColor().id(), w, h);
-    const std::vector<float> count = gl::readTextureFloats(passes.colorCount().id(), w, h, 1);
-    const std::vector<float> t = gl::readTextureFloats(passes.transmittance().id(), w, h, 1);
+    // Pass 3's targets: sum a C and sum a, the count, the transmittance.
+    struct PassThree {
+        std::vector<glm::vec4> sums;
+        std::vector<float> count, t;
+    };
+    const auto readPassThree = [&] {
+        return PassThree{readGl(passes.alphaColor().id(), w, h), gl::readTextureFloats(passes.colorCount().id(), w, h, 1),
+                         gl::readTextureFloats(passes.transmittance().id(), w, h, 1)};
+    };
+    const auto [sums, count, t] = readPassThree();
     passes.setPass3TailsOnly(true);
     passes.run(f, draw, NeuralPasses::kDefaultPeelEpsilon, {w, h}, {w, h});
     ASSERT_TRUE(passes.pass3HoldsTails());
-    const std::vector<glm::vec4> tailSums = readGl(passes.alphaColor().id(), w, h);
-    const std::vector<float> tailCount = gl::readTextureFloats(passes.colorCount().id(), w, h, 1);
-    const std::vector<float> tailT = gl::readTextureFloats(passes.transmittance().id(), w, h, 1);
+    const auto [tailSums, tailCount, tailT] = readPassThree();
     const std::vector<glm::vec4> l1 = readGl(passes.nearest().id(), w, h), l2 = readGl(passes.second().id(), w, h);
     size_t deep = 0, off = 0;
     for (size_t i = 0; i < sums.size(); ++i) {
@@ -307,37 +312,27 @@ TEST(ShadingRateImage, TailOnlyPassThreePlusTheLayersIsThePlainPassThree) {
 TEST(ShadingRateImage, AutoFallsBackToTheWholePassScalesAndOnNamesWhatIsMissing) {
     // Smoke: its guard sums allow 2x2 and 4x4 in some tiles at this size (ShadingRatesGpuMatchCpuOnARealRender).
     test::TestScene c(makeBuiltinScene("smoke", 3), 160, 96, 30.0f, 15.0f, kBackground);
+    // `on` where it cannot apply: one error naming the option and what is missing.
+    const auto expectRefused = [](const MethodOptions& options, const std::string& mentions) {
+        try {
+            createMethod("starnt", SceneGpu::surfaceShader(), options);
+            ADD_FAILURE() << "--shading-rate-image on must be an error without " << mentions;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("--shading-rate-image on"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find(mentions), std::string::npos) << e.what();
+        }
+    };
     MethodOptions off;
-    MethodOptions noTiles;
-    noTiles.neural.spatial = false;
-    noTiles.neural.shadingRateImage = NeuralOptions::ShadingRateImage::On;
-    try {
-        createMethod("starnt", SceneGpu::surfaceShader(), noTiles);
-        ADD_FAILURE() << "on without the tiles must be an error";
-    } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("--spatial on"), std::string::npos) << e.what();
-    }
-    MethodOptions onWithTemporal;
-    onWithTemporal.neural.shadingRateImage = NeuralOptions::ShadingRateImage::On;
-    onWithTemporal.neural.temporalInterval = 2;
-    try {
-        createMethod("starnt", SceneGpu::surfaceShader(), onWithTemporal);
-        ADD_FAILURE() << "on with temporal frames must be an error";
-    } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("--temporal off"), std::string::npos) << e.what();
-    }
     MethodOptions on;
     on.neural.shadingRateImage = NeuralOptions::ShadingRateImage::On;
+    MethodOptions noTiles = on;
+    noTiles.neural.spatial = false;
+    expectRefused(noTiles, "--spatial on");
+    MethodOptions onWithTemporal = on;
+    onWithTemporal.neural.temporalInterval = 2;
+    expectRefused(onWithTemporal, "--temporal off");
     const bool usable = gl::shadingRateImageSupport(STARNT_TILE_SIZE, STARNT_SHADING_RATE_CLASSES).usable;
-    if (!usable) {
-        try {
-            createMethod("starnt", SceneGpu::surfaceShader(), on);
-            ADD_FAILURE() << "on without a shading-rate image must be an error";
-        } catch (const Error& e) {
-            EXPECT_NE(std::string(e.what()).find("GL_NV_shading_rate_image"), std::string::npos) << e.what();
-            EXPECT_NE(std::string(e.what()).find("--shading-rate-image on"), std::string::npos) << e.what();
-        }
-    }
+    if (!usable) expectRefused(on, "GL_NV_shading_rate_image");
     MethodOptions automatic;
     automatic.neural.shadingRateImage = NeuralOptions::ShadingRateImage::Auto;
     // Without the extension `auto` must be `off` exactly; with it, the reference is full rate

@@ -1,11 +1,10 @@
 #include "methods/neural/neural_passes.hpp"
 
-#include "methods/neural/tiles/tile_constants.h"
-
 #include <bit>
 #include <cstdio>
 
 #include "methods/neural/temporal/packed_nearest.h"
+#include "methods/neural/tiles/tile_constants.h"
 #include "starnt/error.hpp"
 #include "starnt/network.hpp"
 
