@@ -319,7 +319,7 @@ private:
             if (!support.usable) missing = support.missing + " in this OpenGL context";
         }
         if (missing.empty()) return true;
-        if (mode == S::On) throw Error("--shading-rate-image on: " + config_.name + " needs " + missing);
+        if (mode == S::On) throw Error("--shading-rate-image on needs " + missing);
         return false;
     }
 
