@@ -345,33 +345,28 @@ TEST(TemporalCorrected, PassThreeSumsTheMomentsBehindTheReference) {
         EXPECT_GT(behind, size_t(200)) << "pixels with fragments behind the reference";
         EXPECT_LE(off, size_t(w * h / 200)) << (onePass ? "one pass" : "two passes") << ": pixels off the CPU sums";
     }
-    // A real frame: over the fragments behind pass 1's, in v = u - u1 (orderedClosedFormBehindFromMoments).
+    // A real frame: the same sums over every fragment (its composite recentres them at pass 1's
+    // fragment as an interpolated frame's does), sum a u^2 beside the count.
     passes.run(frame, draw, NeuralPasses::kDefaultPeelEpsilon, {w, h}, {w, h}, [&] { return referenceTexture.id(); });
     ASSERT_TRUE(passes.behindMomentsSummed());
-    // (sum a C v, sum a v), and sum a v^2 beside the count.
+    EXPECT_EQ(passes.realBehindReference(), referenceTexture.id());
     const std::vector<glm::vec4> first = readRgba(passes.realBehindMoment1(), w, h), second = readRgba(passes.colorCount().id(), w, h);
     size_t behind = 0, off = 0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             const size_t i = size_t(y) * size_t(w) + size_t(x);
             const FragmentList list = nn::preparedFragments(fragments.at(x, h - 1 - y));
-            const float r = referenceAt(reference, w, x, y);
-            glm::dvec4 want1(0.0), want2(0.0);
-            for (size_t k = 1; k < list.size(); ++k) {
-                if (!(list[k].depth > list[0].depth)) continue;
-                const double v = double(depthBehindReference(list[k].depth, r)) - double(depthBehindReference(list[0].depth, r));
-                const glm::dvec4 term = glm::dvec4(glm::dvec3(list[k].color) * double(list[k].alpha), list[k].alpha) * v;
-                want1 += term;
-                want2 += term * v;
-            }
-            behind += want1.w > 0.0;
+            const OrderedBehind want = behindMomentsOf(list, referenceAt(reference, w, x, y));
+            behind += want.moment1.a > 0.0f;
             bool near = true;
-            for (int k = 0; k < 4; ++k) near = near && std::abs(first[i][k] - want1[k]) <= 1e-4 + 2e-3 * std::abs(want1[k]);
-            near = near && std::abs(second[i].g - want2.w) <= 1e-4 + 4e-3 * std::abs(want2.w);
+            for (int k = 0; k < 4; ++k) {
+                near = near && std::abs(first[i][k] - want.moment1[k]) <= 1e-4f + 2e-3f * std::abs(want.moment1[k]);
+            }
+            near = near && std::abs(second[i].g - want.moment2) <= 1e-4f + 4e-3f * std::abs(want.moment2);
             near = near && second[i].r == float(list.size());  // the count beside it
             off += !near;
         }
-    EXPECT_GT(behind, size_t(200)) << "real frame: pixels with fragments behind the nearest";
+    EXPECT_GT(behind, size_t(200)) << "real frame: pixels with fragments behind the reference";
     EXPECT_LE(off, size_t(w * h / 200)) << "real frame: pixels off the CPU sums";
     passes.run(frame, draw, NeuralPasses::kDefaultPeelEpsilon, {w, h}, {w, h});
     EXPECT_FALSE(passes.behindMomentsSummed()) << "without a reference, the moments' pass as always";
@@ -552,8 +547,8 @@ TEST(TemporalCorrected, WithoutSumsTheClosedFormAloneAndResetsAreReal) {
 
 // A still camera: an interpolated frame is the real one up to the rounding of the kept correction
 // and of the 16-bit output (the closed form cancels: B_cf + (B_net - B_cf)). For the tail-moment
-// methods, whose real frames sum the ordered closed form's moments themselves (behind pass 1's
-// fragment) and whose interpolated frames recentre theirs at the packed layer's, a few pixels more
+// methods, whose real frames recentre the ordered closed form's moments at pass 1's fragment and
+// whose interpolated frames recentre theirs at the packed layer's, a few pixels more
 // where the closed form's switches (linear or quadratic weight) fall differently for the packed
 // layer's rounding than for pass 1's.
 TEST(TemporalCorrected, StillCameraGivesTheRealFrame) {

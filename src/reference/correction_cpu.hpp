@@ -79,8 +79,8 @@ OrderedBehind behindMomentsOf(const std::vector<Fragment>& fragments, float refe
 // where sum a - a1 <= STARNT_TEMPORAL_MIN_BEHIND_ALPHA.
 glm::vec3 orderedClosedFormBehind(const glm::vec4& nearest, float depth, const glm::vec4& sums, float transmittance,
                                   const OrderedBehind& ordered, const glm::vec3& background);
-// The same from moments over the fragments behind the nearest one only, in v = u - u1 (what a real
-// frame at a still camera sums: pass 1 tells which), nothing to recentre.
+// The same from moments already recentred at the nearest fragment (v = u - u1, its own terms 0):
+// what orderedClosedFormBehind makes of the sums over every fragment.
 glm::vec3 orderedClosedFormBehindFromMoments(const glm::vec4& nearest, const glm::vec4& sums, float transmittance,
                                              const glm::vec4& moment1, float moment2, const glm::vec3& background);
 

@@ -13,13 +13,15 @@ layout(location = 1) out vec4 outCorrection;
 layout(binding = STARNT_UNIT_NEAREST_DEPTH) uniform highp sampler2D u_captureDepth;
 uniform vec4 u_sourceScale;
 #ifdef STARNT_CAPTURE_ORDERED
-// The tail-moment methods: pass 3 summed the moments behind pass 1's fragment and the reference
-// depth the interpolated frames will use, so the correction is taken against the ordered closed
-// form they compute (ordered_behind.glsl) and a still camera gives the real frame back: sum a v^2
-// beside the count, (sum a C v, sum a v) through image unit 0, as every texture unit below the
-// engine's is taken (image units: only the tiles and the A-buffer use them, neither in these methods).
+// The tail-moment methods: pass 3 summed the moments behind the reference depth that the
+// interpolated frames will use, as theirs does, so the correction is taken against the ordered
+// closed form they compute, recentred at pass 1's fragment as they recentre (ordered_behind.glsl),
+// and a still camera gives the real frame back: sum a u^2 beside the count, (sum a C u, sum a u)
+// and the reference through image units 0 and 1, as every texture unit below the engine's is taken
+// (image units: only the tiles and the A-buffer use them, neither in these methods).
 #include "methods/neural/temporal/ordered_behind.glsl"
 layout(binding = 0, rgba32f) uniform readonly highp image2D u_behindMoment1;
+layout(binding = 1, r32f) uniform readonly highp image2D u_captureReference;  // one texel a tile
 #endif
 #endif
 
@@ -33,8 +35,10 @@ void main() {
     ivec2 t = ivec2(gl_FragCoord.xy);
     // The layer and sums this pixel read already (full-resolution inputs: the texels themselves).
 #if defined(STARNT_CAPTURE_ORDERED)
-    vec3 closedForm = orderedClosedFormBehindFromMoments(vec4(s.c1, s.a1), vec4(s.sumAlphaColor, s.sumAlpha), s.transmittance,
-                                                         imageLoad(u_behindMoment1, t), texelFetch(u_colorCount, t, 0).g, background());
+    vec3 closedForm = orderedClosedFormBehind(vec4(s.c1, s.a1), texelFetch(u_captureDepth, t, 0).r,
+                                              vec4(s.sumAlphaColor, s.sumAlpha), s.transmittance, imageLoad(u_behindMoment1, t),
+                                              texelFetch(u_colorCount, t, 0).g,
+                                              imageLoad(u_captureReference, t / STARNT_ORDERED_REFERENCE_TILE).r, background());
 #elif defined(STARNT_ORDERED_CLOSED_FORM)
     // The tail-moment methods where pass 3 could not sum those moments (fewer than 6 draw buffers):
     // against hybrid-moments' composite, the nearest to the ordered closed form they have.

@@ -456,8 +456,9 @@ private:
             const gl::Program& program = inference(ordered ? "infer_full_capture_ordered" : "infer_full_capture", true);
             setCommonUniforms(program, frame);
             if (ordered) {
-                // infer_full.frag.glsl's u_behindMoment1 (sum a v^2 is read beside the count)
+                // infer_full.frag.glsl's u_behindMoment1 and u_captureReference (sum a u^2 is read beside the count)
                 glBindImageTexture(0, passes_.realBehindMoment1(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+                glBindImageTexture(1, passes_.realBehindReference(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
             }
             glUniform4fv(program.uniform("u_sourceScale"), 1, &targets.sourceScale[0]);
             drawFullscreen();

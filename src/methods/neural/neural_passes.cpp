@@ -302,6 +302,7 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
     gl::ScopedPass timing(frame.timing, "pass3");
     useReducedRectangle(pass3Size, full);
     behindSummed_ = behindReference != 0 && behindMomentsFit_;
+    behindReference_ = behindSummed_ ? behindReference : 0;
     GLuint framebuffer = pass3Fb_.id();
     const gl::Program* program = &pass3_;
     if (behindSummed_) {
@@ -356,10 +357,7 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
         glBlendFunci(4, GL_ONE, GL_ONE);
         gl::bindTexture(0, secondDepth_.id());  // z2 (tail moments run at full resolution only)
     }
-    if (behindSummed_) {
-        beginBehindMoment(5, behindReference);
-        gl::bindTexture(2, nearestDepth_.id());  // pass3_accumulate.frag.glsl's u_nearestDepth
-    }
+    if (behindSummed_) beginBehindMoment(5, behindReference);
     // docs/DESIGN.md, "Per-tile shading rates on GPUs": the palette of viewport 0 maps the tile
     // classes; the rates are off again (image unbound) after the pass, also when the draw throws.
     struct ShadingRates {

@@ -111,9 +111,10 @@ public:
     // Renders the three passes; pass2Size / pass3Size are the reduced sizes (the full size for s = 1).
     // `behindReference`, the tail-moment methods' real frames with corrected frames
     // (CorrectedFrames::prepareReference): called after pass 2; a non-zero reference makes pass 3
-    // (at full resolution) also sum the moments behind pass 1's fragment and that reference
-    // (ordered_behind.glsl; realBehindMoment1/2(), behindMomentsSummed()), for the capture of an
-    // ordered correction. Needs 6 draw buffers; with fewer it sums none.
+    // (at full resolution) also sum the moments behind that reference over every fragment, as an
+    // interpolated frame's pass 3 sums them (ordered_behind.glsl; realBehindMoment1(),
+    // behindMomentsSummed()), for the capture of an ordered correction. Needs 6 draw buffers; with
+    // fewer it sums none.
     void run(const FrameDesc& frame, const DrawCallback& draw, float peelEpsilon, Size2 pass2Size, Size2 pass3Size,
              const std::function<GLuint()>& behindReference = {});
     // Per-tile shading rates for the next real frames' pass 3 at full resolution: an R8UI image of
@@ -128,8 +129,10 @@ public:
     bool pass3HoldsTails() const { return pass3HoldsTails_; }
     void prepareRealBehindMoments();
     bool behindMomentsSummed() const { return behindSummed_; }
-    // (sum a C v, sum a v) in realBehindMoment1(), sum a v^2 in colorCount()'s .g.
+    // (sum a C u, sum a u) in realBehindMoment1(), sum a u^2 in colorCount()'s .g, behind
+    // realBehindReference() (the reference depth pass 3 read).
     GLuint realBehindMoment1() const { return packedNearest_.id(); }
+    GLuint realBehindReference() const { return behindReference_; }
     // Pass 1 alone (nearest() and nearestDepth()), for refresh frames.
     void runNearest(const FrameDesc& frame, const DrawCallback& draw);
     // Pass 1 and pass 3, both at full resolution (alphaColor() and transmittance() hold the sums
@@ -224,11 +227,12 @@ private:
     // runPackedNearestAndSums' pass 3 and its targets: the sums and the packed nearest fragment.
     gl::Program pass3Packed_;
     gl::Texture2D packedNearest_;  // allocated on first need
-    // A real frame's moments behind pass 1's fragment (the first in packedNearest_, free then; the
+    // A real frame's moments behind the reference (the first in packedNearest_, free then; the
     // second beside the count).
     gl::Program pass3Behind_;
     gl::FramebufferHandle pass3BehindFb_;
     bool behindSummed_ = false;
+    GLuint behindReference_ = 0;  // what the last behindSummed_ pass 3 read (not owned)
     bool behindMomentsFit_ = false;  // the context has the 6 draw buffers that pass 3 needs
     bool countBesideBehind_ = false;  // colorCount_ is RG32F: sum a v^2 beside the count
     void makePass3Framebuffer();

@@ -18,10 +18,10 @@
 //   target 1 (RGBA32F, blend ONE/ONE on rgb, ZERO/ONE_MINUS_SRC_ALPHA on alpha):
 //                                                      sum a u^2 in r, prod (1 - a) in a
 //   the next target (2, or 3 after the packed layer) (RGBA32F, blend ONE/ONE): sum a C u, sum a u
-//   Their real frames (with the tail moments, not STARNT_SUMS_ONLY) sum them over the fragments
-//   behind pass 1's, whose depth they read (STARNT_BEHIND_NEAREST_KNOWN), with v = u - u1 for u, u1
-//   pass 1's fragment's: sum a v^2 beside the count in target 1 (RG32F: N, sum a v^2) and
-//   (sum a C v, sum a v) in target 5 (RGBA32F, blend ONE/ONE).
+//   Their real frames (with the tail moments, not STARNT_SUMS_ONLY) sum the same over every
+//   fragment, the same float operations, so that their composite recentres them as the
+//   interpolated frames' does (STARNT_BEHIND_BESIDE_COUNT): sum a u^2 beside the count in target 1
+//   (RG32F: N, sum a u^2) and (sum a C u, sum a u) in target 5 (RGBA32F, blend ONE/ONE).
 layout(location = 0) out vec4 outAlphaColor;
 #ifdef STARNT_SUMS_ONLY
 layout(location = 1) out vec4 outTransmittance;
@@ -36,7 +36,7 @@ layout(location = 2) out vec4 outPackedNearest;
 layout(location = 1) out vec4 outColorCount;
 layout(location = 2) out vec4 outTransmittance;
 #define STARNT_BEHIND_MOMENT1_LOCATION 5
-#define STARNT_BEHIND_NEAREST_KNOWN
+#define STARNT_BEHIND_BESIDE_COUNT
 #if defined(STARNT_BEHIND_MOMENTS) && !defined(STARNT_COUNT_ONLY)
 #error "the moments behind pass 1's fragment share the count's target: count only"
 #endif
@@ -45,9 +45,6 @@ layout(location = 2) out vec4 outTransmittance;
 #include "methods/neural/temporal/ordered_behind.glsl"
 layout(location = STARNT_BEHIND_MOMENT1_LOCATION) out vec4 outBehindMoment1;
 layout(binding = 1) uniform highp sampler2D u_reference;  // reference_depth.frag.glsl, one texel a tile
-#ifdef STARNT_BEHIND_NEAREST_KNOWN
-layout(binding = 2) uniform highp sampler2D u_nearestDepth;  // pass 1's depth
-#endif
 #endif
 #ifdef STARNT_TAIL_MOMENTS
 layout(location = 3) out vec4 outTailMoment1;
@@ -72,17 +69,8 @@ void main() {
 #ifdef STARNT_BEHIND_MOMENTS
     float behind = depthBehindReference(gl_FragCoord.z,
                                         texelFetch(u_reference, ivec2(gl_FragCoord.xy) / STARNT_ORDERED_REFERENCE_TILE, 0).r);
-#ifdef STARNT_BEHIND_NEAREST_KNOWN
-    // Behind the nearest fragment (pass 2's rule, without its epsilon), from its depth on:
-    // orderedClosedFormBehindFromMoments' v = u - u1.
-    float nearestDepth = texelFetch(u_nearestDepth, ivec2(gl_FragCoord.xy), 0).r;
-    behind = gl_FragCoord.z > nearestDepth
-                 ? behind - depthBehindReference(nearestDepth, texelFetch(u_reference, ivec2(gl_FragCoord.xy) /
-                                                                                         STARNT_ORDERED_REFERENCE_TILE, 0).r)
-                 : 0.0;
-#endif
     outBehindMoment1 = vec4(s.rgb * s.a, s.a) * behind;
-#ifdef STARNT_BEHIND_NEAREST_KNOWN
+#ifdef STARNT_BEHIND_BESIDE_COUNT
     outColorCount.g = outBehindMoment1.a * behind;
 #else
     outTransmittance.r = outBehindMoment1.a * behind;

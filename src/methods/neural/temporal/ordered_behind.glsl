@@ -25,9 +25,9 @@ float depthBehindReference(float z, float reference) {
 
 // `nearest` = C1, a1 (a1 < 1 - STARNT_TEMPORAL_MIN_TRANSMITTANCE), `sums` = (sum a C, sum a), `t` =
 // prod (1 - a), all over every fragment; `m1`, `m2` = (sum a C v, sum a v), sum a v^2 with v = u - u1
-// the depth behind the nearest fragment's (whose own terms are then 0): a real
-// frame sums them so over the fragments behind pass 1's, an interpolated frame gets them by
-// recentring its sums (orderedClosedFormBehind). Centred so, a rounding of a1 in sum a - a1 moves
+// the depth behind the nearest fragment's (whose own terms are then 0), as orderedClosedFormBehind
+// recentres the sums over every fragment (both kinds of frame sum those, the same float operations
+// per fragment, so a still camera gives the same closed form). Centred so, a rounding of a1 in sum a - a1 moves
 // the spread by the mean's distance behind the nearest fragment, not by the reference's.
 vec3 orderedClosedFormBehindFromMoments(vec4 nearest, vec4 sums, float t, vec4 m1, float m2, vec3 background) {
     float behindT = clamp(t / (1.0 - nearest.a), 0.0, 1.0);
