@@ -250,6 +250,14 @@ void expectEveryJsonField(const fs::path& dir) {
                 EXPECT_TRUE(c["stats"].contains(key)) << key;
             }
             EXPECT_GT(c["stats"]["frame_ms"].get<double>(), 0.0);
+            // The times come from a run of their own (nothing between its frames): the per-frame
+            // times are that run's, so their mean over the timed frames (all 3: warm-up frames
+            // precede them) is the summary's; the run that measured the errors keeps its mean apart.
+            ASSERT_TRUE(c["stats"].contains("frame_ms_mean_with_comparison"));
+            EXPECT_GT(c["stats"]["frame_ms_mean_with_comparison"].get<double>(), 0.0);
+            double msSum = 0.0;
+            for (const auto& f : c["frames"]) msSum += f["frame_ms"].get<double>();
+            EXPECT_NEAR(c["stats"]["frame_ms_mean"].get<double>(), msSum / 3.0, 1e-9);
             EXPECT_GT(c["stats"]["memory_bytes"].get<double>(), 0.0);
             EXPECT_EQ(c["frames"].size(), 3u);  // one record per frame, each with its error
             for (const auto& f : c["frames"]) EXPECT_TRUE(f.contains("mse") && f.contains("flip"));

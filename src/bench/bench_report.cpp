@@ -113,8 +113,9 @@ void header(std::ostringstream& md, const Results& r) {
     md << "| wall time | " << fixed(r.wallSeconds, 1) << " s |\n\n";
     md << "Frame times are means over the " << r.plan.frames << " timed frames, after " << r.plan.warmupFrames
        << " untimed warm-up frames at the first camera (shader compiles; tiles settle): the same statistic for "
-          "every variant, table and plots (interpolated and probe frames make periodic sequences); "
-          "glFinish + wall clock"
+          "every variant, table and plots (interpolated and probe frames make periodic sequences), "
+          "in a run of the path with nothing between its frames (the errors come from a second run that "
+          "reads every frame back); glFinish + wall clock"
        << (m.gl.software ? "; on a CPU rasteriser they rank methods by work done, not by GPU speed" : "")
        << "; per-pass times are " << (m.gl.software ? "glFinish + wall clock around each pass" : "GL_TIMESTAMP pairs")
        << ". Errors are means over "

@@ -180,7 +180,9 @@ json toJson(const Results& r) {
           {"ground_truth", "abuffer, same cameras, every frame"},
           {"abuffer_memory_cap_bytes", r.plan.abufferCapBytes},
           {"api", glApiName(r.plan.api)},
-          {"timing", "mean over the timed frames, after untimed warm-up frames; glFinish + wall clock per frame"},
+          {"timing", "mean over the timed frames, after untimed warm-up frames, in a run of the path without readbacks "
+                     "or error measurement between frames (frame_ms_mean_with_comparison: the run that measured the "
+                     "errors); glFinish + wall clock per frame"},
           {"quality", "mean over every frame of MSE (sRGB) and LDR-FLIP mean (67.02 px/deg) against the ground truth"},
           {"q_metric", "Q = (MSE_unsorted - MSE_method) / (frame_ms * MSE_unsorted) * 100, % per ms"}}},
         {"variants", variants},

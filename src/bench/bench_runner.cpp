@@ -53,7 +53,7 @@ public:
             scene = loadScene(spec_.source);
         } catch (const std::exception& e) {
             result.loadError = e.what();
-            progress_.skip(size_t(plan_.frames) * (1 + plan_.variants.size()));
+            progress_.skip(size_t(plan_.frames) * (1 + 2 * plan_.variants.size()));
             return result;
         }
         result.loaded = true;
@@ -97,6 +97,11 @@ private:
         }
     }
 
+    // Two runs of the path per variant (docs/DESIGN.md, "Benchmark"): the times come from a run with
+    // nothing between its frames; the errors from a second run that reads every frame back and
+    // measures it against the ground truth (CPU MSE and FLIP), whose frame times are kept only as
+    // frame_ms_mean_with_comparison. That work between frames slowed the next frame by 10-60 % on
+    // llvmpipe, and not every method alike.
     CaseResult runVariant(const Scene& scene, const SceneGpu& gpu, const Variant& variant, const SceneResult& sceneResult) {
         CaseResult c;
         c.variant = variant.name;
@@ -107,22 +112,47 @@ private:
         RenderJob job = baseJob(plan_, spec_, scene);
         job.method = variant.method;
         job.methodOptions = variant.options;
-        job.readTileOverlay = true;
-        if (sceneResult.groundTruthOk) job.referenceImages = &groundTruth_;
         size_t framesDone = 0;
-        job.onFrame = [&](const FrameRecord& record) {
-            c.frames.push_back(record.stats);
+        const auto step = [&](const FrameRecord& record) {
             ++framesDone;
             progress_.step("frame " + std::to_string(record.index + 1) + "/" + std::to_string(plan_.frames));
         };
+        std::vector<nlohmann::json> timedFrames;
+        job.onFrame = [&](const FrameRecord& record) {
+            timedFrames.push_back(record.stats);
+            step(record);
+        };
         try {
-            RenderOutput out = renderScene(gpu, job);
-            c.stats = out.stats;
+            RenderOutput timed = renderScene(gpu, job);
+            RenderOutput out;
+            if (sceneResult.groundTruthOk) {
+                job.referenceImages = &groundTruth_;
+                job.readTileOverlay = true;
+                job.onFrame = [&](const FrameRecord& record) {
+                    nlohmann::json frame = record.stats;
+                    // The timed run's figures for this frame, the compared run's errors.
+                    const nlohmann::json& t = timedFrames.at(size_t(record.index));
+                    for (const char* key : {"frame_ms", "pass_ms", "pass_counters"}) frame[key] = t.at(key);
+                    c.frames.push_back(std::move(frame));
+                    step(record);
+                };
+                out = renderScene(gpu, job);
+                for (const char* key : {"error", "reference_method"}) {
+                    if (out.stats.contains(key)) timed.stats[key] = out.stats[key];
+                }
+                timed.stats["frame_ms_mean_with_comparison"] = out.stats["frame_ms_mean"];
+                timed.image = std::move(out.image);
+                timed.tileOverlay = std::move(out.tileOverlay);
+            } else {
+                progress_.skip(size_t(plan_.frames));
+                for (auto& frame : timedFrames) c.frames.push_back(std::move(frame));
+            }
+            c.stats = timed.stats;
             c.image = (imageDir_ / (fileSafe(variant.name) + ".png")).string();
-            saveImage(out.image, (outDir_ / c.image).string());
-            if (out.tileOverlay) {
+            saveImage(timed.image, (outDir_ / c.image).string());
+            if (timed.tileOverlay) {
                 c.tileOverlay = (imageDir_ / (fileSafe(variant.name) + "_tiles.png")).string();
-                saveImage(*out.tileOverlay, (outDir_ / c.tileOverlay).string());
+                saveImage(*timed.tileOverlay, (outDir_ / c.tileOverlay).string());
             }
             c.ok = true;
             if (sceneResult.groundTruthOk) {
@@ -133,7 +163,7 @@ private:
         } catch (const std::exception& e) {
             c.ok = false;
             c.error = e.what();
-            progress_.skip(size_t(plan_.frames) - framesDone);
+            progress_.skip(2 * size_t(plan_.frames) - framesDone);
         }
         c.wallSeconds = secondsSince(start);
         return c;
@@ -172,7 +202,8 @@ private:
 
 }  // namespace
 
-size_t totalFrames(const Plan& plan) { return plan.scenes.size() * size_t(plan.frames) * (1 + plan.variants.size()); }
+// The ground truth once, every variant twice (timed, then compared).
+size_t totalFrames(const Plan& plan) { return plan.scenes.size() * size_t(plan.frames) * (1 + 2 * plan.variants.size()); }
 
 Results runBench(const Plan& plan, const std::string& outDir, std::FILE* progressOut) {
     const auto start = std::chrono::steady_clock::now();
