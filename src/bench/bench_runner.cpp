@@ -112,6 +112,8 @@ private:
         RenderJob job = baseJob(plan_, spec_, scene);
         job.method = variant.method;
         job.methodOptions = variant.options;
+        // The tile overlay is read after the timed frames; the compared run reads it when there is one.
+        job.readTileOverlay = !sceneResult.groundTruthOk;
         size_t framesDone = 0;
         const auto step = [&](const FrameRecord& record) {
             ++framesDone;
