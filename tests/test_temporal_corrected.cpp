@@ -320,6 +320,12 @@ TEST(TemporalCorrected, PassThreeSumsTheMomentsBehindTheReference) {
     OpaqueScene opaque(kBackground);
     opaque.begin(frame);
     NeuralPasses passes(SceneGpu::surfaceShader(), opaque, false, NeuralOptions::Targets::Float32, false, true);
+    // (sum a C u, sum a u) and sum a u^2 of one pixel against the CPU sums.
+    const auto momentsNear = [](const glm::vec4& first, float second, const OrderedBehind& want) {
+        bool near = true;
+        for (int k = 0; k < 4; ++k) near = near && std::abs(first[k] - want.moment1[k]) <= 1e-4f + 2e-3f * std::abs(want.moment1[k]);
+        return near && std::abs(second - want.moment2) <= 1e-4f + 4e-3f * std::abs(want.moment2);
+    };
     for (bool onePass : {true, false}) {
         if (onePass) passes.runPackedNearestAndSums(frame, draw, referenceTexture.id());
         else passes.runNearestAndSums(frame, draw, referenceTexture.id());
@@ -333,13 +339,8 @@ TEST(TemporalCorrected, PassThreeSumsTheMomentsBehindTheReference) {
                 float t = 1.0f;
                 for (const Fragment& f : list) t *= 1.0f - f.alpha;
                 behind += want.moment1.a > 0.0f;
-                bool near = true;
-                for (int k = 0; k < 4; ++k) {
-                    near = near && std::abs(first[i][k] - want.moment1[k]) <= 1e-4f + 2e-3f * std::abs(want.moment1[k]);
-                }
                 // sum a u^2 and, beside it, the transmittance.
-                near = near && std::abs(second[i].r - want.moment2) <= 1e-4f + 4e-3f * std::abs(want.moment2);
-                near = near && std::abs(second[i].a - t) <= 1e-4f + 1e-3f * t;
+                const bool near = momentsNear(first[i], second[i].r, want) && std::abs(second[i].a - t) <= 1e-4f + 1e-3f * t;
                 off += !near;
             }
         EXPECT_GT(behind, size_t(200)) << "pixels with fragments behind the reference";
@@ -358,12 +359,7 @@ TEST(TemporalCorrected, PassThreeSumsTheMomentsBehindTheReference) {
             const FragmentList list = nn::preparedFragments(fragments.at(x, h - 1 - y));
             const OrderedBehind want = behindMomentsOf(list, referenceAt(reference, w, x, y));
             behind += want.moment1.a > 0.0f;
-            bool near = true;
-            for (int k = 0; k < 4; ++k) {
-                near = near && std::abs(first[i][k] - want.moment1[k]) <= 1e-4f + 2e-3f * std::abs(want.moment1[k]);
-            }
-            near = near && std::abs(second[i].g - want.moment2) <= 1e-4f + 4e-3f * std::abs(want.moment2);
-            near = near && second[i].r == float(list.size());  // the count beside it
+            const bool near = momentsNear(first[i], second[i].g, want) && second[i].r == float(list.size());  // the count beside it
             off += !near;
         }
     EXPECT_GT(behind, size_t(200)) << "real frame: pixels with fragments behind the reference";

@@ -126,7 +126,6 @@ private:
         };
         try {
             RenderOutput timed = renderScene(gpu, job);
-            RenderOutput out;
             if (sceneResult.groundTruthOk) {
                 job.referenceImages = &groundTruth_;
                 job.readTileOverlay = true;
@@ -138,7 +137,7 @@ private:
                     c.frames.push_back(std::move(frame));
                     step(record);
                 };
-                out = renderScene(gpu, job);
+                RenderOutput out = renderScene(gpu, job);
                 for (const char* key : {"error", "reference_method"}) {
                     if (out.stats.contains(key)) timed.stats[key] = out.stats[key];
                 }
