@@ -1,0 +1,81 @@
+#!/usr/bin/env python3
+"""Summarises one or more `starnt bench` results.json files (one run, or one run per scene) as the
+headline table: per variant the mean over scenes of MSE and FLIP relative to WBOIT, MSE relative to
+MBOIT (and on how many scenes below it), frame time relative to DFAOIT (mean and max), pass 2+3
+fragments relative to DFAOIT; then each acceleration against the same method without it, from the
+same files, paired as the bench pairs them (recommended against starnt-d, starnt against
+starnt-full, the K = 2 variants against starnt).
+
+Usage: scripts/bench_summary.py RESULTS.json [RESULTS.json ...]   (Markdown on stdout)
+Ratios need wboit, mboit and dfaoit in every file; a variant missing from a scene is left out there.
+"""
+import json
+import statistics
+import sys
+
+
+def load(paths):
+    scenes, machine = [], None
+    for path in paths:
+        with open(path) as f:
+            r = json.load(f)
+        machine = machine or r.get("machine")
+        for s in r["scenes"]:
+            if s.get("status") == "ok" or s.get("methods"):
+                scenes.append((s["scene"]["name"], {m["variant"]: m for m in s["methods"] if m.get("status") == "ok"}))
+    return scenes, machine
+
+
+def frame_ms(m):
+    return m["stats"]["frame_ms_mean"]
+
+
+def fragments(m):
+    return sum(p.get("fragment_invocations", 0) for p in m["stats"].get("pass_counters", {}).values())
+
+
+def main(paths):
+    scenes, machine = load(paths)
+    if not scenes:
+        sys.exit("bench_summary: no scene results in " + ", ".join(paths))
+    if machine:
+        print(f"Machine: {machine.get('gl_renderer', '?')} ({machine.get('gl_version', '?')}); "
+              f"{machine.get('cpu_threads', '?')} threads of {machine.get('cpu_model', '?')}; build {machine.get('commit', '?')}\n")
+    print("Scenes: " + ", ".join(name for name, _ in scenes) + "\n")
+    variants = []
+    for _, d in scenes:
+        variants += [v for v in d if v not in variants]
+    print("| variant | MSE / WBOIT | FLIP / WBOIT | MSE / MBOIT (scenes below) | time / DFAOIT (max) | fragments / DFAOIT | ms per frame (per scene) |")
+    print("|---|---|---|---|---|---|---|")
+    for v in variants:
+        rows = [(n, d) for n, d in scenes if v in d and all(k in d for k in ("wboit", "mboit", "dfaoit"))]
+        if not rows:
+            continue
+        q = lambda d, k, x: d[k]["quality"][x]
+        mse = [q(d, v, "mse") / q(d, "wboit", "mse") for _, d in rows]
+        flip = [q(d, v, "flip") / q(d, "wboit", "flip") for _, d in rows]
+        mb = [q(d, v, "mse") / q(d, "mboit", "mse") for _, d in rows]
+        t = [frame_ms(d[v]) / frame_ms(d["dfaoit"]) for _, d in rows]
+        fr = [fragments(d[v]) / max(fragments(d["dfaoit"]), 1) for _, d in rows]
+        ms = ", ".join(f"{frame_ms(d[v]):.2f}" for _, d in rows)
+        print(f"| {v} | {statistics.mean(mse):.3f} | {statistics.mean(flip):.3f} | {statistics.mean(mb):.2f} ({sum(x < 1 for x in mb)}/{len(rows)}) "
+              f"| {statistics.mean(t):.2f} ({max(t):.2f}) | {statistics.mean(fr):.2f} | {ms} |")
+    print("\nEach acceleration against the same method without it (frame time ratio per scene, mean):\n")
+    # The pairs the bench measures each acceleration by (src/bench/bench_plan.cpp, accelerated()).
+    for faster, base, what in (("recommended", "starnt-d", "K = 4 corrected frames against K = 1"),
+                               ("starnt", "starnt-full", "tiles on against tiles off"),
+                               ("starnt-vrs", "starnt", "per-tile shading rates against tiles alone"),
+                               ("starnt-total", "starnt", "K = 2 corrected frames against K = 1"),
+                               ("starnt-total-refresh", "starnt", "K = 2 refresh frames against K = 1"),
+                               ("starnt-total-warp", "starnt", "K = 2 warped frames against K = 1")):
+        pairs = [(n, frame_ms(d[faster]) / frame_ms(d[base])) for n, d in scenes if faster in d and base in d]
+        if pairs:
+            per = ", ".join(f"{n} {r:.2f}" for n, r in pairs)
+            print(f"- {faster} / {base} ({what}): {statistics.mean(r for _, r in pairs):.2f} ({per})")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) < 2 or sys.argv[1] in ("-h", "--help"):
+        print(__doc__)
+        sys.exit(0 if len(sys.argv) >= 2 else 2)
+    main(sys.argv[1:])
