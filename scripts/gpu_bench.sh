@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
 # Runs the GPU preset from a bundle (scripts/bundle.sh) on a lent GPU machine inside a fixed time
 # window, one `bench` per scene so that a window that runs out still leaves every finished scene's
-# report. After each scene it packs what came so far into OUT/gpu_bench.tar.gz (reports, results,
-# logs, and the ground truth and `recommended` images of the first two scenes).
+# report. After each scene it packs what came so far into one file, OUT/gpu_bench.tar.gz or
+# $STARNT_PACK (reports, results, logs, and the ground truth and `recommended` images of the first
+# two scenes): a lent machine hands back a few files, not a tree.
 #
 # Usage: scripts/gpu_bench.sh BUNDLE OUT [SECONDS [SCENES]]
 #   SECONDS  the window (default 420): a scene starts only when the slowest scene so far (or 60 s
 #            before the first) still fits in what is left.
 #   SCENES   comma-separated (default: the preset's six headline scenes).
-# Environment: STARNT_BENCH_ARGS, extra bench arguments (a dry run here: "--width 64 --height 36 --frames 3").
+# Environment: STARNT_PACK=FILE, where the pack goes; STARNT_BENCH_ARGS, extra bench arguments (a dry run here: "--width 64 --height 36 --frames 3").
 # Merge the per-scene results with scripts/bench_summary.py OUT/*/results.json.
 set -uo pipefail
 b="${1:?usage: gpu_bench.sh BUNDLE OUT [SECONDS [SCENES]]}"
@@ -16,11 +17,12 @@ out="${2:?usage: gpu_bench.sh BUNDLE OUT [SECONDS [SCENES]]}"
 window="${3:-420}"
 scenes="${4:-magic_stars,chess,tree,hair,hairball,engine}"
 mkdir -p "$out/runs"
+packed="$(realpath -m "${STARNT_PACK:-$out/gpu_bench.tar.gz}")"
 start=$SECONDS
 pack() {
-  (cd "$out" && tar czf gpu_bench.tar.gz.part --exclude='*.png' --exclude='*.exr' runs \
+  (cd "$out" && tar czf "$packed.part" --exclude='*.png' --exclude='*.exr' runs \
      $(ls runs/*/images/*/ground_truth.png runs/*/images/*/recommended.png 2>/dev/null | head -n 4) &&
-   mv gpu_bench.tar.gz.part gpu_bench.tar.gz)
+   mv "$packed.part" "$packed")
 }
 { nvidia-smi -L 2>&1 || true; "$b/starnt" --bundle-info; } | tee "$out/runs/machine.txt"
 
