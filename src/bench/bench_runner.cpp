@@ -170,17 +170,21 @@ private:
         return c;
     }
 
-    // Means over every frame, plus the last frame measured on the PNG files exactly as
-    // `starnt compare` reads them (and the FLIP map from the same pair).
+    // Means over every compared frame (all, or i mod qualityEvery < 3), plus the last frame measured
+    // on the PNG files exactly as `starnt compare` reads them (and the FLIP map from the same pair).
     Quality measureQuality(CaseResult& c, const SceneResult& sceneResult, const Variant& variant) {
         Quality q;
         double mseSum = 0.0, flipSum = 0.0;
+        size_t compared = 0;
         for (const auto& frame : c.frames) {
+            if (!frame.contains("mse")) continue;
             mseSum += frame.at("mse").get<double>();
             flipSum += frame.at("flip").get<double>();
+            ++compared;
         }
-        q.mse = mseSum / double(c.frames.size());
-        q.flip = flipSum / double(c.frames.size());
+        if (compared == 0) throw Error("internal: no frame of " + variant.name + " was compared with the ground truth");
+        q.mse = mseSum / double(compared);
+        q.flip = flipSum / double(compared);
         q.byFrameKind = c.stats.value("error", nlohmann::json(nullptr));
         const Image reference = loadImage((outDir_ / sceneResult.groundTruthImage).string());
         const Image test = loadImage((outDir_ / c.image).string());
