@@ -7,7 +7,8 @@ same files, paired as the bench pairs them (recommended against starnt-d, starnt
 starnt-full, the K = 2 variants against starnt).
 
 Usage: scripts/bench_summary.py RESULTS.json [RESULTS.json ...]   (Markdown on stdout)
-Ratios need wboit, mboit and dfaoit in every file; a variant missing from a scene is left out there.
+Ratios need wboit, mboit and dfaoit in every file; a variant missing from a scene is left out there;
+a variant with times but no errors (it failed after its timed run) gets "-" for its errors.
 """
 import json
 import statistics
@@ -22,7 +23,8 @@ def load(paths):
         machine = machine or r.get("machine")
         for s in r["scenes"]:
             if s.get("status") == "ok" or s.get("methods"):
-                scenes.append((s["scene"]["name"], {m["variant"]: m for m in s["methods"] if m.get("status") == "ok"}))
+                # A variant that failed after its timed run (its errors, say) still has its times.
+                scenes.append((s["scene"]["name"], {m["variant"]: m for m in s["methods"] if "frame_ms_mean" in m.get("stats", {})}))
     return scenes, machine
 
 
@@ -51,15 +53,19 @@ def main(paths):
         rows = [(n, d) for n, d in scenes if v in d and all(k in d for k in ("wboit", "mboit", "dfaoit"))]
         if not rows:
             continue
-        q = lambda d, k, x: d[k]["quality"][x]
-        mse = [q(d, v, "mse") / q(d, "wboit", "mse") for _, d in rows]
-        flip = [q(d, v, "flip") / q(d, "wboit", "flip") for _, d in rows]
-        mb = [q(d, v, "mse") / q(d, "mboit", "mse") for _, d in rows]
         t = [frame_ms(d[v]) / frame_ms(d["dfaoit"]) for _, d in rows]
         fr = [fragments(d[v]) / max(fragments(d["dfaoit"]), 1) for _, d in rows]
         ms = ", ".join(f"{frame_ms(d[v]):.2f}" for _, d in rows)
-        print(f"| {v} | {statistics.mean(mse):.3f} | {statistics.mean(flip):.3f} | {statistics.mean(mb):.2f} ({sum(x < 1 for x in mb)}/{len(rows)}) "
-              f"| {statistics.mean(t):.2f} ({max(t):.2f}) | {statistics.mean(fr):.2f} | {ms} |")
+        q = lambda d, k, x: (d[k].get("quality") or {}).get(x)
+        if all(q(d, k, x) is not None for _, d in rows for k in (v, "wboit", "mboit") for x in ("mse", "flip")):
+            mse = [q(d, v, "mse") / q(d, "wboit", "mse") for _, d in rows]
+            flip = [q(d, v, "flip") / q(d, "wboit", "flip") for _, d in rows]
+            mb = [q(d, v, "mse") / q(d, "mboit", "mse") for _, d in rows]
+            errors = (f"{statistics.mean(mse):.3f} | {statistics.mean(flip):.3f} | "
+                      f"{statistics.mean(mb):.2f} ({sum(x < 1 for x in mb)}/{len(rows)})")
+        else:
+            errors = "- | - | -"  # no errors measured (a run that failed after its timed frames)
+        print(f"| {v} | {errors} | {statistics.mean(t):.2f} ({max(t):.2f}) | {statistics.mean(fr):.2f} | {ms} |")
     print("\nEach acceleration against the same method without it (frame time ratio per scene, mean):\n")
     # The pairs the bench measures each acceleration by (src/bench/bench_plan.cpp, accelerated()).
     for faster, base, what in (("recommended", "starnt-d", "K = 4 corrected frames against K = 1"),

@@ -6,7 +6,8 @@
 # so that llvmpipe gets through it) on the bundled scenes (exit 0, report.md and results.json
 # written, 0 failures, scenes read from the bundle), and the launcher's refusal, with a clear EGL
 # message, when the machine has no libEGL.so.1 (a fake ldconfig that lists nothing and no library
-# folders to search).
+# folders to search); scripts/gpu_bench.sh on two scenes from the bundle and scripts/bench_summary.py
+# on its pack.
 # Usage: scripts/check_bundle.sh [SCENES...]   (default: the preset's six headline scenes)
 # Prints the bundle's size; exits non-zero on any failure. ctest runs it (Bundle.GpuPresetUnderAnEmptyEnvironment).
 set -euo pipefail
@@ -46,6 +47,22 @@ for v in wboit mboit-t3 dfaoit starnt-d starnt-total-warp recommended; do
 done
 [[ -z $(ls -A "$work/empty") ]] || fail "the bench wrote into the current folder: $(ls -A "$work/empty")"
 echo "check_bundle: bench under env -i: ok ($(tail -n1 "$work/log"))"
+
+# The windowed runner for lent machines: two scenes, packed into one file, merged by bench_summary.
+run 0 env -i PATH=/usr/bin:/bin LP_NUM_THREADS=2 STARNT_PACK="$work/pack.tgz" \
+  STARNT_BENCH_ARGS="--width 32 --height 18 --frames 3 --methods wboit,mboit,dfaoit,starnt-d,recommended" \
+  bash "$root/scripts/gpu_bench.sh" "$b" "$work/windowed" 300 chess,tree
+grep -q '^smoke render: exit 0' "$work/log" || { cat "$work/log" >&2; fail "gpu_bench.sh: the smoke render failed"; }
+[[ $(grep -c ': exit 0 in .*(0 failures)' "$work/log") == 2 ]] || { cat "$work/log" >&2; fail "gpu_bench.sh: not both scenes ran"; }
+mkdir "$work/unpacked"
+tar xzf "$work/pack.tgz" -C "$work/unpacked"
+for s in chess tree; do
+  [[ -s $work/unpacked/runs/$s/report.md ]] || fail "gpu_bench.sh: the pack lacks runs/$s/report.md"
+done
+python3 "$root/scripts/bench_summary.py" "$work"/unpacked/runs/*/results.json > "$work/summary.md"
+grep -q '^| dfaoit | .* | 1.00 (1.00) |' "$work/summary.md" || { cat "$work/summary.md" >&2; fail "bench_summary.py: no DFAOIT row at 1.00"; }
+grep -q '^- recommended / starnt-d .*chess .*tree' "$work/summary.md" || { cat "$work/summary.md" >&2; fail "bench_summary.py: no recommended / starnt-d line for both scenes"; }
+echo "check_bundle: gpu_bench.sh and bench_summary.py: ok"
 
 mkdir "$work/fake"
 printf '#!/bin/sh\nexit 0\n' > "$work/fake/ldconfig"

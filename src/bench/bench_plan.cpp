@@ -174,7 +174,7 @@ const Preset& findPreset(const std::string& name) {
         {"paper", 1920, 1080, 16, "orbit:0,30,15", {}, {"builtin:panes", "builtin:smoke", "builtin:tubes", "builtin:random"}},
         // The paper's protocol on a GPU (docs/DESIGN.md, "Benchmark"): 1080p, 8 warm-up and 64 timed
         // frames for stable means, every variant of the headline, the error on frames 0-2 and 32-34
-        // (FLIP runs on the CPU); about 6 minutes for the six headline scenes on an H100 host.
+        // (FLIP runs on the CPU); measured on an H100 host: 49-135 s a scene, about 7.5 minutes for the six.
         {"gpu", 1920, 1080, 64, "orbit:0,126,15", {"magic_stars", "chess", "tree", "hair", "hairball", "engine"},
          {"builtin:panes", "builtin:smoke", "builtin:tubes"}, 8, 32,
          {"wboit", "mboit", "mboit-t3", "dfaoit", "starnt-full", "starnt", "hybrid", "hybrid-moments", "starnt-d",
