@@ -226,6 +226,11 @@ void expectEveryJsonField(const fs::path& dir) {
         EXPECT_TRUE(r["machine"].contains(key)) << key;
     }
     EXPECT_FALSE(r["machine"]["gl_renderer"].get<std::string>().empty());
+    // The device display is tried first: any other one in use says why the device one was refused.
+    const std::string platform = r["machine"]["gl_platform"].get<std::string>();
+    EXPECT_TRUE(platform == "device" || platform == "surfaceless") << platform;
+    if (platform != "device") EXPECT_FALSE(r["machine"]["gl_displays_refused"].get<std::string>().empty());
+    EXPECT_TRUE(r["machine"]["gl_displays_refused"].is_string());
     EXPECT_FALSE(r["machine"]["commit"].get<std::string>().empty());  // a hash, or "unknown" outside git
     EXPECT_EQ(r["date"].get<std::string>().size(), 20u);              // 2025-01-31T12:34:56Z
     EXPECT_EQ(r["settings"]["width"], 128);

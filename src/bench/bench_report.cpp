@@ -103,6 +103,7 @@ void header(std::ostringstream& md, const Results& r) {
     md << "| | |\n|---|---|\n";
     md << "| date (UTC) | " << r.date << " |\n";
     md << "| GL renderer | " << m.gl.renderer << " (" << m.gl.version << ")" << (m.gl.software ? ", software rasteriser" : "") << " |\n";
+    md << "| EGL display | " << m.gl.platform << (m.gl.refused.empty() ? "" : " (refused before it: " + m.gl.refused + ")") << " |\n";
     md << "| CPU | " << m.cpuModel << ", " << m.cpuThreads << " threads"
        << (m.lpNumThreads.empty() ? "" : ", LP_NUM_THREADS=" + m.lpNumThreads) << " |\n";
     md << "| build | " << m.buildType << ", commit " << m.commit << ", " << m.compiler << " |\n";

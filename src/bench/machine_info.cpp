@@ -48,6 +48,7 @@ nlohmann::json toJson(const MachineInfo& info) {
         {"cpu_threads", info.cpuThreads},
         {"lp_num_threads", info.lpNumThreads.empty() ? nlohmann::json(nullptr) : nlohmann::json(info.lpNumThreads)},
         {"gl_platform", info.gl.platform},
+        {"gl_displays_refused", info.gl.refused},
         {"gl_vendor", info.gl.vendor},
         {"gl_renderer", info.gl.renderer},
         {"gl_version", info.gl.version},

@@ -172,6 +172,7 @@ HeadlessGlContext::HeadlessGlContext(GlApi api) : impl_(std::make_unique<Impl>()
         const GLubyte* s = glGetString(e);
         return s ? std::string(reinterpret_cast<const char*>(s)) : std::string();
     };
+    impl_->info.refused = why;
     impl_->info.vendor = str(GL_VENDOR);
     impl_->info.renderer = str(GL_RENDERER);
     impl_->info.version = str(GL_VERSION);

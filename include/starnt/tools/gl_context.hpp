@@ -22,6 +22,9 @@ const char* glApiName(GlApi api);
 
 struct GlContextInfo {
     std::string platform;  // "device" or "surfaceless"
+    // Why the displays tried before the one in use were refused ("device: eglInitialize failed; "),
+    // empty when the first worked: on a GPU machine, why the GPU's device display was not the one.
+    std::string refused;
     std::string vendor;
     std::string renderer;
     std::string version;
