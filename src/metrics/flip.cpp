@@ -40,6 +40,7 @@
 #include <cstdio>
 #include <exception>
 #include <mutex>
+#include <system_error>
 #include <cmath>
 #include <numbers>
 #include <thread>
@@ -464,7 +465,11 @@ double flipBands(const Image& reference, const Image& test, double pixelsPerDegr
     };
     const int threads = std::min(bandCount, int(std::clamp(std::thread::hardware_concurrency(), 1u, 16u)));
     std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+    try {
+        for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+    } catch (const std::system_error&) {
+        // No more threads to be had: the ones started and this one share the bands.
+    }
     worker();
     for (auto& t : pool) t.join();
     if (failure) std::rethrow_exception(failure);
