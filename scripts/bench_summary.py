@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Summarises one or more `starnt bench` results.json files (one run, or one run per scene) as the
 headline table: per variant the mean over scenes of MSE and FLIP relative to WBOIT, MSE relative to
-MBOIT (and on how many scenes below it), frame time relative to DFAOIT (mean and max), pass 2+3
+MBOIT (and on how many scenes below it), frame time relative to DFAOIT (mean and max; and the GPU
+time, a timestamp pair around each frame, where the bench recorded one), pass 2+3
 fragments relative to DFAOIT; then each acceleration against the same method without it, from the
 same files, paired as the bench pairs them (recommended against starnt-d, starnt against
 starnt-full, the K = 2 variants against starnt).
@@ -32,6 +33,12 @@ def frame_ms(m):
     return m["stats"]["frame_ms_mean"]
 
 
+def gpu_ms(m):
+    """The frame's GPU time (a timestamp pair around each frame), or None where there is none."""
+    v = m["stats"].get("frame_gpu_ms_mean")
+    return v if isinstance(v, (int, float)) else None
+
+
 def fragments(m):
     return sum(p.get("fragment_invocations", 0) for p in m["stats"].get("pass_counters", {}).values())
 
@@ -47,13 +54,16 @@ def main(paths):
     variants = []
     for _, d in scenes:
         variants += [v for v in d if v not in variants]
-    print("| variant | MSE / WBOIT | FLIP / WBOIT | MSE / MBOIT (scenes below) | time / DFAOIT (max) | fragments / DFAOIT | ms per frame (per scene) |")
-    print("|---|---|---|---|---|---|---|")
+    print("| variant | MSE / WBOIT | FLIP / WBOIT | MSE / MBOIT (scenes below) | time / DFAOIT (max) | GPU time / DFAOIT (max) "
+          "| fragments / DFAOIT | ms per frame (per scene) |")
+    print("|---|---|---|---|---|---|---|---|")
     for v in variants:
         rows = [(n, d) for n, d in scenes if v in d and all(k in d for k in ("wboit", "mboit", "dfaoit"))]
         if not rows:
             continue
         t = [frame_ms(d[v]) / frame_ms(d["dfaoit"]) for _, d in rows]
+        g = [gpu_ms(d[v]) / gpu_ms(d["dfaoit"]) for _, d in rows if gpu_ms(d[v]) and gpu_ms(d["dfaoit"])]
+        gpu = f"{statistics.mean(g):.2f} ({max(g):.2f})" if len(g) == len(rows) else "-"  # llvmpipe: none
         fr = [fragments(d[v]) / max(fragments(d["dfaoit"]), 1) for _, d in rows]
         ms = ", ".join(f"{frame_ms(d[v]):.2f}" for _, d in rows)
         q = lambda d, k, x: (d[k].get("quality") or {}).get(x)
@@ -65,7 +75,7 @@ def main(paths):
                       f"{statistics.mean(mb):.2f} ({sum(x < 1 for x in mb)}/{len(rows)})")
         else:
             errors = "- | - | -"  # no errors measured (a run that failed after its timed frames)
-        print(f"| {v} | {errors} | {statistics.mean(t):.2f} ({max(t):.2f}) | {statistics.mean(fr):.2f} | {ms} |")
+        print(f"| {v} | {errors} | {statistics.mean(t):.2f} ({max(t):.2f}) | {gpu} | {statistics.mean(fr):.2f} | {ms} |")
     print("\nEach acceleration against the same method without it (frame time ratio per scene, mean):\n")
     # The pairs the bench measures each acceleration by (src/bench/bench_plan.cpp, accelerated()).
     for faster, base, what in (("recommended", "starnt-d", "K = 4 corrected frames against K = 1"),

@@ -263,6 +263,17 @@ void expectEveryJsonField(const fs::path& dir) {
             double msSum = 0.0;
             for (const auto& f : c["frames"]) msSum += f["frame_ms"].get<double>();
             EXPECT_NEAR(c["stats"]["frame_ms_mean"].get<double>(), msSum / 3.0, 1e-9);
+            // GPU frame times (a timestamp pair around each frame) only where timestamps are GPU
+            // times; a software rasteriser's would be submission times, so none there.
+            ASSERT_TRUE(c["stats"].contains("frame_gpu_ms_mean"));
+            if (r["machine"]["gl_software"].get<bool>()) {
+                EXPECT_TRUE(c["stats"]["frame_gpu_ms_mean"].is_null());
+                for (const auto& f : c["frames"]) EXPECT_TRUE(f.at("frame_gpu_ms").is_null());
+            } else {
+                double gpuSum = 0.0;
+                for (const auto& f : c["frames"]) gpuSum += f.at("frame_gpu_ms").get<double>();
+                EXPECT_NEAR(c["stats"]["frame_gpu_ms_mean"].get<double>(), gpuSum / 3.0, 1e-9);
+            }
             EXPECT_GT(c["stats"]["memory_bytes"].get<double>(), 0.0);
             EXPECT_EQ(c["frames"].size(), 3u);  // one record per frame, each with its error
             for (const auto& f : c["frames"]) EXPECT_TRUE(f.contains("mse") && f.contains("flip"));

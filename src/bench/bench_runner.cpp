@@ -133,7 +133,7 @@ private:
                     nlohmann::json frame = record.stats;
                     // The timed run's figures for this frame, the compared run's errors.
                     const nlohmann::json& t = timedFrames.at(size_t(record.index));
-                    for (const char* key : {"frame_ms", "pass_ms", "pass_counters"}) frame[key] = t.at(key);
+                    for (const char* key : {"frame_ms", "frame_gpu_ms", "pass_ms", "pass_counters"}) frame[key] = t.at(key);
                     c.frames.push_back(std::move(frame));
                     step(record);
                 };

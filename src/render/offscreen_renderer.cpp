@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -74,7 +75,8 @@ namespace {
 class SceneRun {
 public:
     SceneRun(const SceneGpu& scene, const RenderJob& job)
-        : scene_(scene), job_(job), surface_(SceneGpu::surfaceShader()), timer_(gl::wallClockTimingNeeded()) {
+        : scene_(scene), job_(job), surface_(SceneGpu::surfaceShader()), timer_(gl::wallClockTimingNeeded()),
+          gpuFrameTimes_(!gl::wallClockTimingNeeded()) {
         checkImageSize(job.width, job.height);
         if (job.frames < 1) throw Error("--frames must be at least 1");
         method_ = createMethod(job.method, surface_, job.methodOptions);
@@ -128,9 +130,15 @@ private:
 
         glFinish();
         const auto t0 = std::chrono::steady_clock::now();
+        // On a GPU also a GL_TIMESTAMP pair around the whole frame: the GPU's time alone, without the
+        // driver's submission on the CPU that glFinish + wall clock includes (docs/DESIGN.md, "Benchmark").
+        if (gpuFrameTimes_) frameTimer_.begin("frame");
         method_->render(frame_, draw_);
+        if (gpuFrameTimes_) frameTimer_.end();
         glFinish();
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        const std::optional<double> gpuMs =
+            gpuFrameTimes_ ? std::optional<double>(frameTimer_.collect()["frame"]) : std::nullopt;
         const auto passes = timer_.collect();
         const auto counters = timer_.collectCounters();
         const FrameStats typedStats = method_->lastFrameStats();
@@ -141,7 +149,8 @@ private:
         FrameRecord record;
         record.index = i;
         record.camera = camera;
-        record.stats = {{"frame", i}, {"frame_ms", ms}, {"interpolated", interpolated}, {"pass_ms", passes},
+        record.stats = {{"frame", i}, {"frame_ms", ms}, {"frame_gpu_ms", gpuMs ? nlohmann::json(*gpuMs) : nlohmann::json(nullptr)},
+                        {"interpolated", interpolated}, {"pass_ms", passes},
                         {"pass_counters", countersJson(counters)}, {"memory_bytes", method_->gpuMemoryBytes()},
                         {"rss_bytes", residentMemoryBytes()}};
         for (const char* key : {"scale_pass2", "scale_pass3", "w_bar", "tile_levels", "probe_frame", "shading_rate_image", "shading_rate_tiles"}) {
@@ -164,6 +173,7 @@ private:
         // Without warm-up frames the first frame compiles shaders on first use: not timed then.
         if (i == 0 && job_.frames > 1 && job_.warmupFrames == 0) return;
         frameMs_.push_back(ms);
+        if (gpuMs) frameGpuMs_.push_back(*gpuMs);
         (interpolated ? interpolatedMs_ : realMs_).push_back(ms);
         for (auto& [name, value] : passes) passMs_[name].push_back(value);
         for (auto& [name, value] : counters) counterSums_[name] += value;
@@ -222,6 +232,7 @@ private:
             {"interpolated_frame_ms", nullableMedian(interpolatedMs_)},
             {"real_frame_ms_mean", nullableMean(realMs_)},
             {"interpolated_frame_ms_mean", nullableMean(interpolatedMs_)},
+            {"frame_gpu_ms_mean", nullableMean(frameGpuMs_)},  // null where timestamps are no GPU times (llvmpipe)
             {"pass_ms", passes},
             {"pass_counters", countersJson(counterSums_, frameMs_.size())},
             {"pass_counters_source", timer_.countersAvailable() ? "GL_ARB_pipeline_statistics_query, mean per timed frame"
@@ -265,10 +276,12 @@ private:
     bool compared_ = false;
     FrameDesc frame_;
     gl::GpuPassTimer timer_;
+    const bool gpuFrameTimes_;       // timestamps are GPU times (not llvmpipe's, not ES without the extension)
+    gl::GpuPassTimer frameTimer_;    // the whole frame, apart from timer_'s passes
     DrawCallback draw_;             // the last frame's, for the depth-complexity count
     Image image_, referenceImage_;  // the last frame read back, and its reference
     // Timed frames (after the warm-up): frame times, per-pass times and work counters.
-    std::vector<double> frameMs_, realMs_, interpolatedMs_;
+    std::vector<double> frameMs_, realMs_, interpolatedMs_, frameGpuMs_;
     std::map<std::string, std::vector<double>> passMs_;
     std::map<std::string, gl::PassCounters> counterSums_;
     int interpolatedFrames_ = 0;
