@@ -4,8 +4,7 @@ headline table: per variant the mean over scenes of MSE and FLIP relative to WBO
 MBOIT (and on how many scenes below it), frame time relative to DFAOIT (mean and max; and the GPU
 time, a timestamp pair around each frame, where the bench recorded one), pass 2+3
 fragments relative to DFAOIT; then each acceleration against the same method without it, from the
-same files, paired as the bench pairs them (recommended against starnt-d, starnt against
-starnt-full, the K = 2 variants against starnt).
+same files, paired as the bench pairs them (each variant's acceleration_off in results.json).
 
 Usage: scripts/bench_summary.py RESULTS.json [RESULTS.json ...]   (Markdown on stdout)
 Ratios need wboit, mboit and dfaoit in every file; a variant missing from a scene is left out there;
@@ -17,16 +16,20 @@ import sys
 
 
 def load(paths):
-    scenes, machine = [], None
+    scenes, machine, pairs = [], None, {}
     for path in paths:
         with open(path) as f:
             r = json.load(f)
         machine = machine or r.get("machine")
+        # Each accelerated variant names the same method with its acceleration off (the bench's pairs).
+        for v in r.get("variants", []):
+            if v.get("acceleration_off"):
+                pairs[v["name"]] = (v["acceleration_off"], v.get("acceleration") or "")
         for s in r["scenes"]:
             if s.get("status") == "ok" or s.get("methods"):
                 # A variant that failed after its timed run (its errors, say) still has its times.
                 scenes.append((s["scene"]["name"], {m["variant"]: m for m in s["methods"] if "frame_ms_mean" in m.get("stats", {})}))
-    return scenes, machine
+    return scenes, machine, pairs
 
 
 def frame_ms(m):
@@ -44,7 +47,7 @@ def fragments(m):
 
 
 def main(paths):
-    scenes, machine = load(paths)
+    scenes, machine, pairs = load(paths)
     if not scenes:
         sys.exit("bench_summary: no scene results in " + ", ".join(paths))
     if machine:
@@ -77,17 +80,11 @@ def main(paths):
             errors = "- | - | -"  # no errors measured (a run that failed after its timed frames)
         print(f"| {v} | {errors} | {statistics.mean(t):.2f} ({max(t):.2f}) | {gpu} | {statistics.mean(fr):.2f} | {ms} |")
     print("\nEach acceleration against the same method without it (frame time ratio per scene, mean):\n")
-    # The pairs the bench measures each acceleration by (src/bench/bench_plan.cpp, accelerated()).
-    for faster, base, what in (("recommended", "starnt-d", "K = 4 corrected frames against K = 1"),
-                               ("starnt", "starnt-full", "tiles on against tiles off"),
-                               ("starnt-vrs", "starnt", "per-tile shading rates against tiles alone"),
-                               ("starnt-total", "starnt", "K = 2 corrected frames against K = 1"),
-                               ("starnt-total-refresh", "starnt", "K = 2 refresh frames against K = 1"),
-                               ("starnt-total-warp", "starnt", "K = 2 warped frames against K = 1")):
-        pairs = [(n, frame_ms(d[faster]) / frame_ms(d[base])) for n, d in scenes if faster in d and base in d]
-        if pairs:
-            per = ", ".join(f"{n} {r:.2f}" for n, r in pairs)
-            print(f"- {faster} / {base} ({what}): {statistics.mean(r for _, r in pairs):.2f} ({per})")
+    for faster, (base, what) in pairs.items():
+        ratios = [(n, frame_ms(d[faster]) / frame_ms(d[base])) for n, d in scenes if faster in d and base in d]
+        if ratios:
+            per = ", ".join(f"{n} {r:.2f}" for n, r in ratios)
+            print(f"- {faster} / {base} ({what}): {statistics.mean(r for _, r in ratios):.2f} ({per})")
 
 
 if __name__ == "__main__":

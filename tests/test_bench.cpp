@@ -232,6 +232,17 @@ void expectEveryJsonField(const fs::path& dir) {
     if (platform != "device") EXPECT_FALSE(r["machine"]["gl_displays_refused"].get<std::string>().empty());
     EXPECT_TRUE(r["machine"]["gl_displays_refused"].is_string());
     EXPECT_FALSE(r["machine"]["commit"].get<std::string>().empty());  // a hash, or "unknown" outside git
+    // Each variant names the one its saving is measured against (scripts/bench_summary.py pairs by it).
+    bool sawRecommended = false;
+    for (const auto& v : r["variants"]) {
+        ASSERT_TRUE(v.contains("acceleration_off") && v.contains("acceleration")) << v["name"];
+        if (v["name"] == "recommended") {
+            sawRecommended = true;
+            EXPECT_EQ(v["acceleration_off"], "starnt-d");
+        }
+        if (v["name"] == "wboit") EXPECT_TRUE(v["acceleration_off"].is_null());
+    }
+    EXPECT_TRUE(sawRecommended);
     EXPECT_EQ(r["date"].get<std::string>().size(), 20u);              // 2025-01-31T12:34:56Z
     EXPECT_EQ(r["settings"]["width"], 128);
     EXPECT_EQ(r["settings"]["frames"], 3);

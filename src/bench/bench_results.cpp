@@ -27,7 +27,10 @@ json variantJson(const Variant& v) {
             {"spatial", v.options.neural.spatial ? json(*v.options.neural.spatial) : json(nullptr)},
             {"scales", scalesText(v.options)},
             {"inference", v.options.neural.inference == NeuralOptions::Inference::Corners ? "corners" : "full"},
-            {"temporal", temporalText(v.options)}};
+            {"temporal", temporalText(v.options)},
+            // The variant its saving is measured against (report.md, "Against itself"), or null.
+            {"acceleration_off", v.accelerationOff.empty() ? json(nullptr) : json(v.accelerationOff)},
+            {"acceleration", v.acceleration.empty() ? json(nullptr) : json(v.acceleration)}};
 }
 
 json sceneSpecJson(const SceneSpec& s) {
@@ -183,7 +186,9 @@ json toJson(const Results& r) {
           {"timing", "mean over the timed frames, after untimed warm-up frames, in a run of the path without readbacks "
                      "or error measurement between frames (frame_ms_mean_with_comparison: the run that measured the "
                      "errors); glFinish + wall clock per frame"},
-          {"quality", "mean over every frame of MSE (sRGB) and LDR-FLIP mean (67.02 px/deg) against the ground truth"},
+          {"quality", "mean over every compared frame (every frame, or those with i mod quality_every < 3) of MSE (sRGB) "
+                      "and LDR-FLIP mean (67.02 px/deg) against the ground truth"},
+          {"quality_every", r.plan.qualityEvery},
           {"q_metric", "Q = (MSE_unsorted - MSE_method) / (frame_ms * MSE_unsorted) * 100, % per ms"}}},
         {"variants", variants},
         {"scenes", scenes},
