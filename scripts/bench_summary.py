@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """Summarises one or more `starnt bench` results.json files (one run, or one run per scene) as the
 headline table: per variant the mean over scenes of MSE and FLIP relative to WBOIT, MSE relative to
-MBOIT (and on how many scenes below it), frame time relative to DFAOIT (mean and max; and the GPU
-time, a timestamp pair around each frame, where the bench recorded one), pass 2+3
+MBOIT (and on how many scenes below it), frame time relative to DFAOIT (mean and max; the bench's
+long-run frame time, where temporal variants weigh real and interpolated frames by their shares in
+the schedule, and beside it the plain mean of the timed frames; and the GPU time, a timestamp pair
+around each frame, where the bench recorded one), pass 2+3
 fragments relative to DFAOIT; then each acceleration against the same method without it, from the
 same files, paired as the bench pairs them (each variant's acceleration_off in results.json).
 
@@ -33,12 +35,21 @@ def load(paths):
 
 
 def frame_ms(m):
+    """The long-run frame time the bench compares (results from before it: the plain mean)."""
+    v = m["stats"].get("frame_ms_long_run")
+    return v if isinstance(v, (int, float)) else m["stats"]["frame_ms_mean"]
+
+
+def window_ms(m):
+    """The plain mean of the timed frames."""
     return m["stats"]["frame_ms_mean"]
 
 
 def gpu_ms(m):
     """The frame's GPU time (a timestamp pair around each frame), or None where there is none."""
-    v = m["stats"].get("frame_gpu_ms_mean")
+    v = m["stats"].get("frame_gpu_ms_long_run")
+    if not isinstance(v, (int, float)):
+        v = m["stats"].get("frame_gpu_ms_mean")
     return v if isinstance(v, (int, float)) else None
 
 
@@ -57,14 +68,15 @@ def main(paths):
     variants = []
     for _, d in scenes:
         variants += [v for v in d if v not in variants]
-    print("| variant | MSE / WBOIT | FLIP / WBOIT | MSE / MBOIT (scenes below) | time / DFAOIT (max) | GPU time / DFAOIT (max) "
-          "| fragments / DFAOIT | ms per frame (per scene) |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("| variant | MSE / WBOIT | FLIP / WBOIT | MSE / MBOIT (scenes below) | time / DFAOIT (max) | window time / DFAOIT (max) "
+          "| GPU time / DFAOIT (max) | fragments / DFAOIT | ms per frame (per scene) |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for v in variants:
         rows = [(n, d) for n, d in scenes if v in d and all(k in d for k in ("wboit", "mboit", "dfaoit"))]
         if not rows:
             continue
         t = [frame_ms(d[v]) / frame_ms(d["dfaoit"]) for _, d in rows]
+        w = [window_ms(d[v]) / window_ms(d["dfaoit"]) for _, d in rows]
         g = [gpu_ms(d[v]) / gpu_ms(d["dfaoit"]) for _, d in rows if gpu_ms(d[v]) and gpu_ms(d["dfaoit"])]
         gpu = f"{statistics.mean(g):.2f} ({max(g):.2f})" if len(g) == len(rows) else "-"  # llvmpipe: none
         fr = [fragments(d[v]) / max(fragments(d["dfaoit"]), 1) for _, d in rows]
@@ -78,7 +90,7 @@ def main(paths):
                       f"{statistics.mean(mb):.2f} ({sum(x < 1 for x in mb)}/{len(rows)})")
         else:
             errors = "- | - | -"  # no errors measured (a run that failed after its timed frames)
-        print(f"| {v} | {errors} | {statistics.mean(t):.2f} ({max(t):.2f}) | {gpu} | {statistics.mean(fr):.2f} | {ms} |")
+        print(f"| {v} | {errors} | {statistics.mean(t):.2f} ({max(t):.2f}) | {statistics.mean(w):.2f} ({max(w):.2f}) | {gpu} | {statistics.mean(fr):.2f} | {ms} |")
     print("\nEach acceleration against the same method without it (frame time ratio per scene, mean):\n")
     for faster, (base, what) in pairs.items():
         ratios = [(n, frame_ms(d[faster]) / frame_ms(d[base])) for n, d in scenes if faster in d and base in d]

@@ -274,6 +274,28 @@ void expectEveryJsonField(const fs::path& dir) {
             double msSum = 0.0;
             for (const auto& f : c["frames"]) msSum += f["frame_ms"].get<double>();
             EXPECT_NEAR(c["stats"]["frame_ms_mean"].get<double>(), msSum / 3.0, 1e-9);
+            // The compared time is the long-run one: each kind of frame's mean weighted by its share
+            // in the schedule (1/K real), not by its share of these 3 frames (1 real, 2 interpolated at K = 4).
+            {
+                double real = 0.0, interp = 0.0;
+                int realCount = 0, interpCount = 0;
+                for (const auto& f : c["frames"]) {
+                    (f["interpolated"].get<bool>() ? interp : real) += f["frame_ms"].get<double>();
+                    ++(f["interpolated"].get<bool>() ? interpCount : realCount);
+                }
+                const double share = c["stats"]["real_frame_share"].get<double>();
+                const double longRun = c["stats"]["frame_ms_long_run"].get<double>();
+                if (c["variant"] == "recommended") {
+                    EXPECT_DOUBLE_EQ(share, 1.0 / kRecommendedTemporalInterval);
+                    ASSERT_EQ(realCount, 1);
+                    ASSERT_EQ(interpCount, 2);
+                    EXPECT_NEAR(longRun, share * real + (1.0 - share) * interp / 2.0, 1e-9);
+                    EXPECT_LT(longRun, c["stats"]["frame_ms_mean"].get<double>());  // a real frame costs more
+                } else if (interpCount == 0) {
+                    EXPECT_DOUBLE_EQ(share, 1.0);
+                    EXPECT_NEAR(longRun, msSum / 3.0, 1e-9);
+                }
+            }
             // GPU frame times (a timestamp pair around each frame) only where timestamps are GPU
             // times; a software rasteriser's would be submission times, so none there.
             ASSERT_TRUE(c["stats"].contains("frame_gpu_ms_mean"));
@@ -293,7 +315,7 @@ void expectEveryJsonField(const fs::path& dir) {
             for (const auto& f : c["frames"]) mseSum += f["mse"].get<double>();
             EXPECT_NEAR(c["quality"]["mse"].get<double>(), mseSum / 3.0, 1e-15);
             // Q recomputed from the figures beside it.
-            const double uMse = (*unsorted)["quality"]["mse"], mse = c["quality"]["mse"], ms = c["stats"]["frame_ms_mean"];
+            const double uMse = (*unsorted)["quality"]["mse"], mse = c["quality"]["mse"], ms = c["stats"]["frame_ms_long_run"];
             if (uMse > 0.0) EXPECT_NEAR(c["q_percent_per_ms"].get<double>(), (uMse - mse) / (ms * uMse) * 100.0, 1e-9);
         }
     }

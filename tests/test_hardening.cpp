@@ -629,4 +629,9 @@ TEST(Hardening, LongRendersShowProgressAndTemporalMeans) {
     const json stats = json::parse(f);
     EXPECT_TRUE(stats["real_frame_ms_mean"].is_number());
     EXPECT_TRUE(stats["interpolated_frame_ms_mean"].is_number());
+    // 6 timed frames of K = 2 hold 3 real ones, their share in the schedule: the long-run mean is the plain one.
+    EXPECT_DOUBLE_EQ(stats["real_frame_share"].get<double>(), 0.5);
+    EXPECT_NEAR(stats["frame_ms_long_run"].get<double>(),
+                0.5 * (stats["real_frame_ms_mean"].get<double>() + stats["interpolated_frame_ms_mean"].get<double>()), 1e-9);
+    EXPECT_CONTAINS(t.out, "a frame over a long run");
 }

@@ -238,12 +238,12 @@ void runRender(const RenderArgs& a) {
         // Temporal run: the median lands on interpolated frames; give the means instead.
         const size_t timed = timedMs[0].size() + timedMs[1].size();
         std::printf("%s: %s %dx%d, frame %.2f ms (mean of %zu), real frames %.2f ms (mean of %zu), interpolated "
-                    "%.2f ms (mean of %zu), max %u fragments/pixel -> %s\n",
+                    "%.2f ms (mean of %zu), %.2f ms a frame over a long run, max %u fragments/pixel -> %s\n",
                     a.method.c_str(), a.scene.c_str(), a.width, a.height,
                     (meanOf(timedMs[0]) * double(timedMs[0].size()) + meanOf(timedMs[1]) * double(timedMs[1].size())) /
                         double(timed),
                     timed, meanOf(timedMs[0]), timedMs[0].size(), meanOf(timedMs[1]), timedMs[1].size(),
-                    out.stats["max_fragments"].get<unsigned>(), a.out.c_str());
+                    out.stats["frame_ms_long_run"].get<double>(), out.stats["max_fragments"].get<unsigned>(), a.out.c_str());
     } else {
         std::printf("%s: %s %dx%d, frame %.2f ms (median of %d), max %u fragments/pixel -> %s\n", a.method.c_str(),
                     a.scene.c_str(), a.width, a.height, out.stats["frame_ms"].get<double>(),

@@ -39,7 +39,8 @@ struct CaseResult {
     std::optional<double> mseReductionVsWboit;    // percent, positive = lower error than wboit
     std::optional<double> flipReductionVsWboit;   // percent
     std::optional<double> speedupVsDfaoit;        // percent of frame time saved against dfaoit
-    double frameMs() const;                       // stats.frame_ms, NaN when absent
+    double frameMs() const;                       // stats.frame_ms_long_run (the compared time), NaN when absent
+    double windowFrameMs() const;                 // stats.frame_ms_mean: the plain mean of the timed frames
 };
 
 struct SceneResult {

@@ -1,5 +1,6 @@
 #include "render/offscreen_renderer.hpp"
 #include "render/frame_stats_json.hpp"
+#include "render/long_run_frame_time.hpp"
 #include "io/texture_readback.hpp"
 
 #include <algorithm>
@@ -175,6 +176,8 @@ private:
         frameMs_.push_back(ms);
         if (gpuMs) frameGpuMs_.push_back(*gpuMs);
         (interpolated ? interpolatedMs_ : realMs_).push_back(ms);
+        if (gpuMs) (interpolated ? interpolatedGpuMs_ : realGpuMs_).push_back(*gpuMs);
+        realShareSum_ += typedStats.neural ? 1.0 / double(std::max(typedStats.neural->temporalInterval, 1)) : 1.0;
         for (auto& [name, value] : passes) passMs_[name].push_back(value);
         for (auto& [name, value] : counters) counterSums_[name] += value;
     }
@@ -233,6 +236,10 @@ private:
             {"real_frame_ms_mean", nullableMean(realMs_)},
             {"interpolated_frame_ms_mean", nullableMean(interpolatedMs_)},
             {"frame_gpu_ms_mean", nullableMean(frameGpuMs_)},  // null where timestamps are no GPU times (llvmpipe)
+            // The long-run cost per frame (long_run_frame_time.hpp): what a bench compares.
+            {"real_frame_share", frameMs_.empty() ? nlohmann::json(nullptr) : nlohmann::json(realShareSum_ / double(frameMs_.size()))},
+            {"frame_ms_long_run", longRunOrWindowMean(realMs_, interpolatedMs_, frameMs_)},
+            {"frame_gpu_ms_long_run", longRunOrWindowMean(realGpuMs_, interpolatedGpuMs_, frameGpuMs_)},
             {"pass_ms", passes},
             {"pass_counters", countersJson(counterSums_, frameMs_.size())},
             {"pass_counters_source", timer_.countersAvailable() ? "GL_ARB_pipeline_statistics_query, mean per timed frame"
@@ -281,7 +288,15 @@ private:
     DrawCallback draw_;             // the last frame's, for the depth-complexity count
     Image image_, referenceImage_;  // the last frame read back, and its reference
     // Timed frames (after the warm-up): frame times, per-pass times and work counters.
-    std::vector<double> frameMs_, realMs_, interpolatedMs_, frameGpuMs_;
+    std::vector<double> frameMs_, realMs_, interpolatedMs_, frameGpuMs_, realGpuMs_, interpolatedGpuMs_;
+    double realShareSum_ = 0.0;  // sum over the timed frames of 1 / K
+
+    nlohmann::json longRunOrWindowMean(const std::vector<double>& real, const std::vector<double>& interpolated,
+                                       const std::vector<double>& all) const {
+        if (all.empty()) return nullptr;
+        const std::optional<double> v = longRunFrameMs(real, interpolated, realShareSum_ / double(frameMs_.size()));
+        return v ? *v : mean(all);
+    }
     std::map<std::string, std::vector<double>> passMs_;
     std::map<std::string, gl::PassCounters> counterSums_;
     int interpolatedFrames_ = 0;
