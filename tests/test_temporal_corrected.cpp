@@ -339,8 +339,8 @@ TEST(TemporalCorrected, PassThreeSumsTheMomentsBehindTheReference) {
                 float t = 1.0f;
                 for (const Fragment& f : list) t *= 1.0f - f.alpha;
                 behind += want.moment1.a > 0.0f;
-                // sum a u^2 and, beside it, the transmittance.
-                const bool near = momentsNear(first[i], second[i].r, want) && std::abs(second[i].a - t) <= 1e-4f + 1e-3f * t;
+                // sum a u^2 and, beside it, the transmittance as an optical depth.
+                const bool near = momentsNear(first[i], second[i].r, want) && std::abs(std::exp(-second[i].g) - t) <= 1e-4f + 1e-3f * t;
                 off += !near;
             }
         EXPECT_GT(behind, size_t(200)) << "pixels with fragments behind the reference";
@@ -391,8 +391,11 @@ static void expectOrderedFrameMatchesCpu(bool packed, int w, int h, unsigned see
                 }
             }
             glm::vec4 s(0.0f);
-            float t = 1.0f;
-            for (const Fragment& f : list) s += glm::vec4(f.color * f.alpha, f.alpha), t *= 1.0f - f.alpha;
+            float t = 1.0f, opticalDepth = 0.0f;
+            for (const Fragment& f : list) {
+                s += glm::vec4(f.color * f.alpha, f.alpha), t *= 1.0f - f.alpha;
+                opticalDepth -= std::log(std::max(1.0f - f.alpha, float(STARNT_ORDERED_MIN_OPENNESS)));
+            }
             const OrderedBehind m = behindMomentsOf(list, referenceAt(reference, w, x, y));
             nearest.push_back(list.empty() ? glm::vec4(0.0f) : glm::vec4(list[0].color, list[0].alpha));
             depth.push_back(list.empty() ? 1.0f : list[0].depth);
@@ -400,7 +403,7 @@ static void expectOrderedFrameMatchesCpu(bool packed, int w, int h, unsigned see
             sums.push_back(s);
             transmittance.push_back(t);
             first.push_back(m.moment1);
-            second.push_back(glm::vec4(m.moment2, 0.0f, 0.0f, t));  // the transmittance beside sum a u^2
+            second.push_back(glm::vec4(m.moment2, opticalDepth, 0.0f, 0.0f));  // the transmittance beside sum a u^2
         }
     std::vector<glm::vec4> composite(real.nearest.size(), glm::vec4(0.5f, 0.5f, 0.5f, 1.0f));
     gl::Texture2D rc = uploadRgba(composite, w, h), rd = uploadDepth(real.depth, w, h), rn = uploadRgba(real.nearest, w, h);

@@ -184,16 +184,35 @@ void NeuralPasses::resize(int width, int height) {
         tailMoment2_ = gl::Texture2D(GL_RGBA32F, width, height);
     }
     makePass3Framebuffer();
-    // Corrected frames' sums: the tail-moment methods keep the transmittance beside sum a u^2 in their
-    // second moment target (pass3_accumulate.frag.glsl), free in an interpolated frame.
-    sumsFb_ = tailMoments_ ? gl::makeFramebuffer({&alphaColor_, &tailMoment2_, &tailMoment1_})
-                           : gl::makeFramebuffer({&alphaColor_, &transmittance_});
+    makeSumsFramebuffer();
     packedFb_.reset();  // runPackedNearestAndSums makes it again around the new targets
     pass3BehindFb_.reset();
     pass3TailFb_.reset();
     nearestOnlyFb_ = gl::makeFramebuffer({&nearest_});
     secondOnlyFb_ = gl::makeFramebuffer({&second_});
     alphaColorOnlyFb_ = gl::makeFramebuffer({&alphaColor_});
+}
+
+void NeuralPasses::makeSumsFramebuffer() {
+    // Corrected frames' sums: the tail-moment methods sum a u^2 and the optical depth into the
+    // count's target once it is two channels wide (widenCountBesideBehind), the moments into their
+    // first moment target, both free in an interpolated frame (pass3_accumulate.frag.glsl).
+    sumsFb_ = tailMoments_ ? gl::makeFramebuffer({&alphaColor_, &colorCount_, &tailMoment1_})
+                           : gl::makeFramebuffer({&alphaColor_, &transmittance_});
+}
+
+void NeuralPasses::widenCountBesideBehind() {
+    if (countBesideBehind_) return;
+    // RG32F from now on: beside the count, sum a v^2 in a real frame and, in an interpolated frame,
+    // sum a v^2 and the optical depth; 32-bit, as the spread the closed form takes from the moments
+    // (m2 / a - mean^2) needs it.
+    countBesideBehind_ = true;
+    colorCount_ = gl::Texture2D(GL_RG32F, width_, height_, GL_LINEAR);
+    makePass3Framebuffer();
+    makeSumsFramebuffer();
+    packedFb_.reset();
+    pass3BehindFb_.reset();
+    pass3TailFb_.reset();
 }
 
 void NeuralPasses::makePass3Framebuffer() {
@@ -308,15 +327,7 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
     if (behindSummed_) {
         prepareRealBehindMoments();
         allocatePackedNearest();
-        if (!countBesideBehind_) {
-            // sum a v^2 beside the count (pass3_accumulate.frag.glsl): RG32F from now on, as 32-bit
-            // sums keep the spread that the closed form takes from it (m2 / a - mean^2).
-            countBesideBehind_ = true;
-            colorCount_ = gl::Texture2D(GL_RG32F, width_, height_, GL_LINEAR);
-            makePass3Framebuffer();
-            pass3BehindFb_.reset();
-            pass3TailFb_.reset();
-        }
+        widenCountBesideBehind();  // sum a v^2 beside the count (pass3_accumulate.frag.glsl)
         if (!pass3BehindFb_.id()) {
             pass3BehindFb_ =
                 gl::makeFramebuffer({&alphaColor_, &colorCount_, &transmittance_, &tailMoment1_, &tailMoment2_, &packedNearest_});
@@ -398,11 +409,12 @@ void NeuralPasses::prepareNearestAndSums() {
 void NeuralPasses::runNearestAndSums(const FrameDesc& frame, const DrawCallback& draw, GLuint reference) {
     runNearest(frame, draw);
     prepareNearestAndSums();
+    if (tailMoments_) widenCountBesideBehind();
     pass3Size_ = {width_, height_};
     gl::ScopedPass timing(frame.timing, "pass3");
     beginSumAndProduct(sumsFb_.id(), width_, height_, opaque_, GL_ONE_MINUS_SRC_ALPHA);  // sum a C, sum a; prod (1 - a)
     if (tailMoments_) {
-        beginSecondMomentAndProduct(1);
+        beginSecondMomentAndOpticalDepth(1);
         beginBehindMoment(2, reference);
     }
     MethodBase::runGeometryPass("pass3", pass3Sums_, frame, draw);
@@ -425,23 +437,24 @@ void NeuralPasses::beginBehindMoment(GLuint target, GLuint reference) {
     gl::bindTexture(1, reference);  // pass3_accumulate.frag.glsl's u_reference
 }
 
-void NeuralPasses::beginSecondMomentAndProduct(GLuint target) {
-    const float empty[4] = {0, 0, 0, 1};
-    glClearBufferfv(GL_COLOR, GLint(target), empty);
-    glBlendFuncSeparatei(target, GL_ONE, GL_ONE, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);  // sum a u^2; prod (1 - a)
+void NeuralPasses::beginSecondMomentAndOpticalDepth(GLuint target) {
+    const float zero[4] = {0, 0, 0, 0};
+    glClearBufferfv(GL_COLOR, GLint(target), zero);
+    glBlendFunci(target, GL_ONE, GL_ONE);  // sum a u^2; sum -ln(1 - a)
 }
 
 void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCallback& draw, GLuint reference) {
     resize(frame.width, frame.height);
     preparePackedNearestAndSums();
     allocatePackedNearest();
+    if (tailMoments_) widenCountBesideBehind();
     if (!packedFb_.id()) {
         // Pass 1's depth target, free in an interpolated frame, records which pixels any fragment
         // covered (depth test ALWAYS: the last fragment's depth, < 1 where anything is) for the
         // composite's early empty-pixel test; so the opaque clip runs in the shader, as in pass 1.
-        // The tail-moment methods sum their moments behind the nearest layer into their own
-        // moment targets, free in an interpolated frame, the transmittance beside sum a u^2.
-        packedFb_ = tailMoments_ ? gl::makeFramebuffer({&alphaColor_, &tailMoment2_, &packedNearest_, &tailMoment1_}, &nearestDepth_)
+        // The tail-moment methods sum their moments behind the nearest layer into their first
+        // moment target and the count's, free in an interpolated frame (makeSumsFramebuffer).
+        packedFb_ = tailMoments_ ? gl::makeFramebuffer({&alphaColor_, &colorCount_, &packedNearest_, &tailMoment1_}, &nearestDepth_)
                                  : gl::makeFramebuffer({&alphaColor_, &transmittance_, &packedNearest_}, &nearestDepth_);
     }
     pass3Size_ = {width_, height_};
@@ -463,7 +476,7 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
     glClearBufferfv(GL_COLOR, 2, empty);
     glBlendEquationi(2, GL_MIN);  // blend factors do not apply to MIN
     if (tailMoments_) {
-        beginSecondMomentAndProduct(1);
+        beginSecondMomentAndOpticalDepth(1);
         beginBehindMoment(3, reference);
     }
     glUseProgram(pass3Packed_.id());

@@ -137,9 +137,9 @@ public:
     void runNearest(const FrameDesc& frame, const DrawCallback& draw);
     // Pass 1 and pass 3, both at full resolution (alphaColor() and transmittance() hold the sums
     // over every fragment), for corrected interpolated frames (no pass 2, no tail resolve).
-    // The tail-moment methods sum their moments behind `reference` too, the transmittance then in
-    // behindMoment2()'s alpha rather than in transmittance() (ordered_behind.glsl: behindMoment1(),
-    // behindMoment2(); `reference` the corrected frames' reference depth,
+    // The tail-moment methods sum their moments behind `reference` too, the transmittance then as
+    // an optical depth in behindMoment2()'s .g rather than in transmittance() (ordered_behind.glsl:
+    // behindMoment1(), behindMoment2(); `reference` the corrected frames' reference depth,
     // CorrectedFrames::reference()).
     void runNearestAndSums(const FrameDesc& frame, const DrawCallback& draw, GLuint reference = 0);
     // Compiles runNearestAndSums' pass 3 now rather than in the first frame that needs it.
@@ -152,12 +152,12 @@ public:
     void runPackedNearestAndSums(const FrameDesc& frame, const DrawCallback& draw, GLuint reference = 0);
     void preparePackedNearestAndSums();
     GLuint packedNearest() const { return packedNearest_.id(); }
-    // The moments an interpolated frame of a tail-moment method summed behind its reference (the
-    // tail-moment targets, which its real frames' inference has read by then): (sum a C u, sum a u),
-    // and sum a u^2 in .r with the transmittance in .a (its transmittance() is not written then);
-    // 0 for the others.
+    // The moments an interpolated frame of a tail-moment method summed behind its reference (targets
+    // its real frames' inference has read by then): (sum a C u, sum a u) in the first tail-moment
+    // target, and in the count's (RG32F) sum a u^2 in .r and the optical depth sum -ln(1 - a) in .g
+    // (its transmittance() is not written then; ordered_behind.glsl); 0 for the others.
     GLuint behindMoment1() const { return tailMoments_ ? tailMoment1_.id() : 0; }
-    GLuint behindMoment2() const { return tailMoments_ ? tailMoment2_.id() : 0; }
+    GLuint behindMoment2() const { return tailMoments_ ? colorCount_.id() : 0; }
     // Binds the pass outputs to the NeuralInputUnit units and sets the upsample uniforms of
     // `program` (which includes neural_inputs.glsl).
     void bindInputs(const gl::Program& program) const;
@@ -195,9 +195,13 @@ private:
     void runSums(const FrameDesc& frame, const DrawCallback& draw, Size2 pass3Size, GLuint behindReference = 0);  // pass 3
     // The moments behind the reference (pass3_accumulate.frag.glsl, STARNT_BEHIND_MOMENTS): clears and
     // blends `target` of the bound framebuffer for (sum a C u, sum a u), binds `reference`;
-    // beginSecondMomentAndProduct the interpolated frames' target of sum a u^2 and prod (1 - a).
+    // beginSecondMomentAndOpticalDepth the interpolated frames' target of sum a u^2 and sum -ln(1 - a).
     void beginBehindMoment(GLuint target, GLuint reference);
-    void beginSecondMomentAndProduct(GLuint target);
+    void beginSecondMomentAndOpticalDepth(GLuint target);
+    void makeSumsFramebuffer();
+    // The count's target made RG32F (once; it stays so through resizes): the moments behind the
+    // reference use its second channel (pass3_accumulate.frag.glsl).
+    void widenCountBesideBehind();
     const char* behindMomentsDefine() const { return tailMoments_ ? "#define STARNT_BEHIND_MOMENTS\n" : ""; }
     OpaqueScene& opaque_;
     gl::Program pass1_;

@@ -15,8 +15,8 @@
 //   target 2 (RGBA32F, blend equation GL_MIN):        the nearest fragment (packed_nearest.glsl)
 //   and with STARNT_BEHIND_MOMENTS (corrected frames of the tail-moment methods), u a fragment's
 //   depth behind the reference depth (ordered_behind.glsl), over every fragment:
-//   target 1 (RGBA32F, blend ONE/ONE on rgb, ZERO/ONE_MINUS_SRC_ALPHA on alpha):
-//                                                      sum a u^2 in r, prod (1 - a) in a
+//   target 1 (the count's, RG32F, blend ONE/ONE):      sum a u^2, sum -ln(1 - a) (the optical
+//                                                      depth in place of prod (1 - a): both added)
 //   the next target (2, or 3 after the packed layer) (RGBA32F, blend ONE/ONE): sum a C u, sum a u
 //   Their real frames (with the tail moments, not STARNT_SUMS_ONLY) sum the same over every
 //   fragment, the same float operations, so that their composite recentres them as the
@@ -73,7 +73,7 @@ void main() {
 #ifdef STARNT_BEHIND_BESIDE_COUNT
     outColorCount.g = outBehindMoment1.a * behind;
 #else
-    outTransmittance.r = outBehindMoment1.a * behind;
+    outTransmittance = vec4(outBehindMoment1.a * behind, opticalDepthOf(s.a), 0.0, 0.0);
 #endif
 #endif
 #ifdef STARNT_TAIL_MOMENTS

@@ -8,7 +8,8 @@
 // the nearest fragment and its depth come from pass 3's MIN-blended target (packed_nearest.glsl).
 // With STARNT_ORDERED_BEHIND (the tail-moment methods) the closed form weighs what lies behind the
 // nearest layer by depth (ordered_behind.glsl), from pass 3's moments; the transmittance then comes
-// with sum a u^2 in one target (pass3_accumulate.frag.glsl), unit 6, and unit 3 is not read.
+// as an optical depth beside sum a u^2 in one target (pass3_accumulate.frag.glsl), unit 6, and unit
+// 3 is not read.
 #include "methods/neural/temporal/reprojection_constants.h"
 #include "methods/neural/temporal/closed_form_behind.glsl"
 #include "methods/neural/half_targets.glsl"
@@ -27,7 +28,7 @@ layout(binding = 4) uniform highp sampler2D u_correction;     // reprojection_be
 // The tail-moment methods: what lies behind the nearest layer weighted by depth (ordered_behind.glsl).
 #include "methods/neural/temporal/ordered_behind.glsl"
 layout(binding = 5) uniform highp sampler2D u_behindMoment1;  // fresh pass 3: sum a C u, sum a u
-layout(binding = 6) uniform highp sampler2D u_behindMoment2;  // fresh pass 3: sum a u^2 in r, prod (1 - a) in a
+layout(binding = 6) uniform highp sampler2D u_behindMoment2;  // fresh pass 3: sum a u^2, sum -ln(1 - a)
 layout(binding = 7) uniform highp sampler2D u_reference;      // reference_depth.frag.glsl, one texel a tile
 #endif
 uniform ivec2 u_size;
@@ -53,8 +54,8 @@ void main() {
     if (fresh.a > 0.0) {
         float open = 1.0 - fresh.a;
 #ifdef STARNT_ORDERED_BEHIND
-        vec2 secondAndTransmittance = texelFetch(u_behindMoment2, p, 0).ra;
-        transmittance = secondAndTransmittance.y;
+        vec2 secondAndTransmittance = texelFetch(u_behindMoment2, p, 0).rg;
+        transmittance = transmittanceOfOpticalDepth(secondAndTransmittance.y);
 #else
         transmittance = texelFetch(u_transmittance, p, 0).r;
 #endif

@@ -16,6 +16,12 @@
 #include "methods/neural/temporal/packed_nearest.glsl"
 #include "methods/hybrid_moments/moment_weighted_color.glsl"
 
+// An interpolated frame sums the transmittance as an optical depth, so that it shares one additive
+// two-channel target with sum a u^2 (pass3_accumulate.frag.glsl): a target fewer than a product
+// beside it needs, measured 0.5-3 ms less a frame at 720p on llvmpipe (docs/DESIGN.md).
+float opticalDepthOf(float alpha) { return -log(max(1.0 - alpha, float(STARNT_ORDERED_MIN_OPENNESS))); }
+float transmittanceOfOpticalDepth(float depth) { return exp(-depth); }
+
 // u of a fragment at window depth z behind the reference r (0 where no reference: r = 1).
 float depthBehindReference(float z, float reference) {
     if (!(reference < 1.0)) return 0.0;

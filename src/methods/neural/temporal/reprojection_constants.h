@@ -35,5 +35,9 @@
 // a spread of fragments behind from one (ordered_behind.glsl): four steps of the packed layer's
 // 11-bit alpha, above a 16-bit float's rounding of any alpha.
 #define STARNT_ORDERED_ALPHA_ROUNDING 1e-3
+// Their interpolated frames sum the transmittance as an optical depth, -ln(1 - a) per fragment
+// (ordered_behind.glsl), with 1 - a at least this: an opaque fragment adds 39.1, a transmittance
+// of 1e-17, so no sum reaches infinity.
+#define STARNT_ORDERED_MIN_OPENNESS 1e-17
 
 #endif
