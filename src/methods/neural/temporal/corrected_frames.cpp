@@ -65,7 +65,7 @@ void CorrectedFrames::capture(GLuint composite, GLuint depth, GLuint nearest, GL
     referenceFresh_ = false;
     if (!hasCorrection_) return;
     if (correction_.width() != width || correction_.height() != height || correction_.format() != format) {
-        correction_ = gl::Texture2D(format, width, height);
+        correction_ = gl::Texture2D(format, width, height, GL_LINEAR);  // the composite's filtered fetch
     }
     drawIntoTexture(framebuffer_, correction_.id(), width_, height_);
     glUseProgram(capture_.id());
@@ -86,7 +86,7 @@ CorrectedFrames::FusedTargets CorrectedFrames::beginFusedCapture(GLenum composit
         throw Error("corrected frames: the composite must be RGBA32F or RGBA16F");
     }
     if (correction_.width() != width || correction_.height() != height || correction_.format() != compositeFormat) {
-        correction_ = gl::Texture2D(compositeFormat, width, height);
+        correction_ = gl::Texture2D(compositeFormat, width, height, GL_LINEAR);  // the composite's filtered fetch
     }
     if (coverDepth_.width() != width || coverDepth_.height() != height) {
         coverDepth_ = gl::Texture2D(GL_DEPTH_COMPONENT32F, width, height);
@@ -174,6 +174,8 @@ void CorrectedFrames::setCompositeUniforms(const gl::Program& program, const glm
     background.bindBackground(program);
     glUniform1i(program.uniform("u_halfOutput"), halfOutput);
     glUniform1i(program.uniform("u_useCorrection"), hasCorrection_);
+    // RGBA16F filters everywhere, RGBA32F on desktop GL (ES: only with OES_texture_float_linear).
+    glUniform1i(program.uniform("u_filteredCorrection"), correction_.format() == GL_RGBA16F || !gl::isEs());
 }
 
 }  // namespace starnt::temporal

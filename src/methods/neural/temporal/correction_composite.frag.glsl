@@ -37,6 +37,13 @@ uniform vec4 u_sourceScale;     // row 3 of inverse(oldViewProj)
 #include "methods/common/background.glsl"
 uniform bool u_halfOutput;
 uniform bool u_useCorrection;  // false: the last real frame kept no correction (pass 3 ran reduced)
+uniform bool u_filteredCorrection;  // u_correction filters linearly (not RGBA32F on ES without OES_texture_float_linear)
+
+// True where texel t of the kept correction holds the same surface as the source point, whose
+// inverse view depth is `reference` (d.a: the texel's, <= 0 where it kept none).
+bool sameSurface(float keptInverseDepth, float reference) {
+    return keptInverseDepth > 0.0 && abs(keptInverseDepth / reference - 1.0) <= float(STARNT_TEMPORAL_SAME_SURFACE);
+}
 
 out vec4 o_color;
 
@@ -77,18 +84,33 @@ void main() {
                 if (reference > 0.0 && f.x > -1.0 && f.y > -1.0 && f.x < float(u_size.x) && f.y < float(u_size.y)) {
                     ivec2 base = ivec2(floor(f));
                     vec2 w = f - vec2(base);
-                    vec3 sum = vec3(0.0);
-                    float weight = 0.0;
-                    for (int k = 0; k < 4; ++k) {
-                        ivec2 t = base + ivec2(k & 1, k >> 1);
-                        if (t.x < 0 || t.y < 0 || t.x >= u_size.x || t.y >= u_size.y) continue;
-                        vec4 d = texelFetch(u_correction, t, 0);
-                        if (!(d.a > 0.0) || abs(d.a / reference - 1.0) > float(STARNT_TEMPORAL_SAME_SURFACE)) continue;
-                        float wk = ((k & 1) != 0 ? w.x : 1.0 - w.x) * ((k >> 1) != 0 ? w.y : 1.0 - w.y);
-                        sum += wk * d.rgb;
-                        weight += wk;
+                    // Where all four taps lie inside and hold the source's surface (most pixels), the
+                    // weights are plain bilinear: one gather of their depths and one filtered fetch
+                    // instead of four fetches (docs/DESIGN.md, "Corrected frames"). The gather at
+                    // the taps' shared corner returns (i0, j1), (i1, j1), (i1, j0), (i0, j0).
+                    bool inside = base.x >= 0 && base.y >= 0 && base.x + 1 < u_size.x && base.y + 1 < u_size.y;
+                    bool bilinear = false;
+                    if (u_filteredCorrection && inside) {
+                        vec4 kept = textureGather(u_correction, (vec2(base) + 1.0) / vec2(u_size), 3);
+                        bilinear = sameSurface(kept.x, reference) && sameSurface(kept.y, reference) &&
+                                   sameSurface(kept.z, reference) && sameSurface(kept.w, reference);
                     }
-                    if (weight > 0.0) behind += sum / weight;
+                    if (bilinear) {
+                        behind += texture(u_correction, (f + 0.5) / vec2(u_size)).rgb;
+                    } else {
+                        vec3 sum = vec3(0.0);
+                        float weight = 0.0;
+                        for (int k = 0; k < 4; ++k) {
+                            ivec2 t = base + ivec2(k & 1, k >> 1);
+                            if (t.x < 0 || t.y < 0 || t.x >= u_size.x || t.y >= u_size.y) continue;
+                            vec4 d = texelFetch(u_correction, t, 0);
+                            if (!sameSurface(d.a, reference)) continue;
+                            float wk = ((k & 1) != 0 ? w.x : 1.0 - w.x) * ((k >> 1) != 0 ? w.y : 1.0 - w.y);
+                            sum += wk * d.rgb;
+                            weight += wk;
+                        }
+                        if (weight > 0.0) behind += sum / weight;
+                    }
                 }
             }
         }
