@@ -134,17 +134,14 @@ void frameTimeTable(std::ostringstream& md, const Results& r) {
     sceneByVariantTable(
         md, r, [](const CaseResult& c) { return ms(c.frameMs()); },
         [](const CaseResult& c) { return std::optional(c.frameMs()); }, [](double v) { return ms(v); });
-    // On a GPU: the same frames timed by a GL_TIMESTAMP pair around each (the GPU's time alone).
-    const auto gpuMs = [](const CaseResult& c) -> std::optional<double> {
-        const auto it = c.stats.find("frame_gpu_ms_mean");
-        if (it == c.stats.end() || !it->is_number()) return std::nullopt;
-        return it->get<double>();
-    };
+    // On a GPU: the same frames timed by a GL_TIMESTAMP pair around each (the GPU's time alone),
+    // long-run means as the table above.
+    const auto gpuMs = [](const CaseResult& c) { return c.gpuFrameMs(); };
     bool any = false;
     for (const auto& s : r.scenes)
         for (const auto& c : s.cases) any = any || (c.ok && gpuMs(c));
     if (!any) return;
-    md << "GPU time per frame (ms): a GL_TIMESTAMP pair around each timed frame, means; without the "
+    md << "GPU time per frame (ms): a GL_TIMESTAMP pair around each timed frame, long-run means; without the "
           "driver's work on the CPU that the table above includes.\n\n";
     sceneByVariantTable(
         md, r, [&](const CaseResult& c) { return gpuMs(c) ? ms(*gpuMs(c)) : std::string(kMissing); }, gpuMs,

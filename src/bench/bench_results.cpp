@@ -101,6 +101,11 @@ double CaseResult::frameMs() const {
     return v ? *v : std::numeric_limits<double>::quiet_NaN();
 }
 
+std::optional<double> CaseResult::gpuFrameMs() const {
+    auto v = statNumber(stats, "frame_gpu_ms_long_run");
+    return v ? v : statNumber(stats, "frame_gpu_ms_mean");  // results written before the long-run mean
+}
+
 double CaseResult::windowFrameMs() const {
     auto v = statNumber(stats, "frame_ms_mean");
     return v ? *v : std::numeric_limits<double>::quiet_NaN();

@@ -41,6 +41,7 @@ struct CaseResult {
     std::optional<double> speedupVsDfaoit;        // percent of frame time saved against dfaoit
     double frameMs() const;                       // stats.frame_ms_long_run (the compared time), NaN when absent
     double windowFrameMs() const;                 // stats.frame_ms_mean: the plain mean of the timed frames
+    std::optional<double> gpuFrameMs() const;     // the same long-run time from GL_TIMESTAMP pairs; empty off a GPU
 };
 
 struct SceneResult {

@@ -18,7 +18,8 @@
 
 // An interpolated frame sums the transmittance as an optical depth, so that it shares one additive
 // two-channel target with sum a u^2 (pass3_accumulate.frag.glsl): a target fewer than a product
-// beside it needs, measured 0.5-3 ms less a frame at 720p on llvmpipe (docs/DESIGN.md).
+// beside it needs, 0.4-0.8 ms less an interpolated frame at 720p on llvmpipe (docs/DESIGN.md,
+// "Corrected frames: depth order behind the nearest layer").
 float opticalDepthOf(float alpha) { return -log(max(1.0 - alpha, float(STARNT_ORDERED_MIN_OPENNESS))); }
 float transmittanceOfOpticalDepth(float depth) { return exp(-depth); }
 
