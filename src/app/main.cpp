@@ -3,6 +3,9 @@
 #include <exception>
 #include <new>
 #include <string>
+#ifdef __GLIBC__  // defined by the C library's headers above
+#include <malloc.h>
+#endif
 
 #include "app/commands.hpp"
 #include "starnt/error.hpp"
@@ -11,6 +14,14 @@
 #include "starnt/tools/scene.hpp"
 
 int main(int argc, char** argv) {
+#ifdef __GLIBC__
+    // Keep freed heap memory in the process: glibc returns the top of the heap to the system once
+    // 128 KiB of it is free, and llvmpipe frees and reallocates its per-scene memory many times a
+    // frame, so every frame faulted tens of MB back in (docs/DESIGN.md, "Findings on Mesa
+    // llvmpipe": chess at 720p, DFAOIT 128 -> 52 ms a frame). Process-wide, so the tool sets it and
+    // the libraries do not (docs/INTEGRATION.md).
+    mallopt(M_TRIM_THRESHOLD, 512 << 20);
+#endif
     // The libraries never write to stderr themselves: their notes and warnings come here.
     starnt::setLogCallback([](starnt::LogLevel level, const std::string& message) {
         std::fprintf(stderr, "starnt: %s: %s\n", level == starnt::LogLevel::Warning ? "warning" : "note", message.c_str());
