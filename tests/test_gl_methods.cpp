@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "gl/gl_util.hpp"
+#include "gl/target_clears.hpp"
 #include "reference/cpu_raster.hpp"
 #include "reference/fragment_capture.hpp"
 #include "render/offscreen_renderer.hpp"
@@ -203,5 +204,65 @@ TEST(GlMethods, StatsReportMemoryAndFragments) {
         RenderOutput out = render(s, m);
         EXPECT_GE(out.stats["memory_bytes"].get<size_t>(), size_t(kW) * kH * 16) << m;
         EXPECT_EQ(out.stats["max_fragments"].get<size_t>(), cpuReference(s).frame.maxDepthComplexity()) << m;
+    }
+}
+
+// gl::TargetClears: on llvmpipe a clear of a 16-byte target becomes copies from a strip
+// (docs/DESIGN.md, "Findings on Mesa llvmpipe": clears). The copies must write exactly what
+// glClearBufferfv writes under the same state: the scissor box (or the whole target), the value as
+// the clear converts it, nothing else; and leave the bindings as they were.
+TEST(TargetClears, CopiesWriteWhatTheClearWrites) {
+    test::glContext();
+    constexpr int w = 70, h = 37;  // not a multiple of the strip (16 x 4 below): partial strips
+    std::vector<float> garbage(size_t(w) * h * 4);
+    for (size_t i = 0; i < garbage.size(); ++i) garbage[i] = float(i % 97) * 0.25f - 3.0f;
+    const float packedEmpty[4] = {1.5e9f, -2.0f, 0.125f, 7.0f};
+    struct Case {
+        GLenum format;
+        bool scissor;
+        bool mask;  // a colour mask on the cleared buffer
+    } cases[] = {{GL_RGBA32F, true, false}, {GL_RGBA32F, false, false}, {GL_RGBA32F, true, true}, {GL_RGBA16F, true, false}};
+    for (const Case& c : cases) {
+        SCOPED_TRACE(testing::Message() << "format 0x" << std::hex << c.format << " scissor " << c.scissor << " mask " << c.mask);
+        gl::Texture2D targets[2] = {gl::Texture2D(c.format, w, h), gl::Texture2D(c.format, w, h)};
+        gl::TargetClears clears[2] = {gl::TargetClears(gl::TargetClears::Path::Copy, 16, 4),
+                                      gl::TargetClears(gl::TargetClears::Path::Clear)};
+        gl::Texture2D other(GL_RGBA8, w, h), bound(GL_RGBA8, 4, 4);
+        for (int k = 0; k < 2; ++k) {
+            gl::uploadTexture(targets[k].id(), w, h, GL_RGBA, GL_FLOAT, garbage.data());
+            const gl::FramebufferHandle fb = gl::makeFramebuffer({&other, &targets[k]});  // the target at draw buffer 1
+            glBindFramebuffer(GL_FRAMEBUFFER, fb.id());
+            glActiveTexture(GL_TEXTURE3);  // the active unit's binding, which the copy must leave
+            glBindTexture(GL_TEXTURE_2D, bound.id());
+            if (c.scissor) {
+                glEnable(GL_SCISSOR_TEST);
+                glScissor(5, 3, 50, 30);
+            }
+            if (c.mask) glColorMaski(1, GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
+            clears[k].color(1, packedEmpty);
+            GLint drawFb = 0, unitBinding = 0;
+            glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFb);
+            glGetIntegerv(GL_TEXTURE_BINDING_2D, &unitBinding);
+            EXPECT_EQ(GLuint(drawFb), fb.id());
+            EXPECT_EQ(GLuint(unitBinding), bound.id());
+            EXPECT_EQ(bool(glIsEnabled(GL_SCISSOR_TEST)), c.scissor);
+            glColorMaski(1, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+            glDisable(GL_SCISSOR_TEST);
+            glActiveTexture(GL_TEXTURE0);
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        }
+        const std::vector<float> copied = gl::readTextureFloats(targets[0].id(), w, h, 4);
+        const std::vector<float> cleared = gl::readTextureFloats(targets[1].id(), w, h, 4);
+        size_t differ = 0, changed = 0;
+        for (size_t i = 0; i < copied.size(); ++i) {
+            differ += copied[i] != cleared[i];
+            changed += cleared[i] != garbage[i];
+        }
+        EXPECT_EQ(differ, 0u);
+        EXPECT_GT(changed, 0u);  // the clear wrote something, so the comparison means something
+        // Strips only where the copy stands in: 16-byte texels without a colour mask.
+        const bool copiedByStrip = c.format == GL_RGBA32F && !c.mask;
+        EXPECT_EQ(clears[0].bytes(), copiedByStrip ? size_t(16 * 4 * 16) : size_t(0));
+        EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
     }
 }

@@ -91,12 +91,13 @@ void MethodBase::bindOutputFramebuffer() const {
     glViewport(0, 0, width_, height_);
 }
 
-void beginSumAndProduct(GLuint framebuffer, int width, int height, OpaqueScene& opaque, GLenum productFactor) {
+void beginSumAndProduct(GLuint framebuffer, int width, int height, OpaqueScene& opaque, GLenum productFactor,
+                        gl::TargetClears& clears) {
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     glViewport(0, 0, width, height);
     const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1};
-    glClearBufferfv(GL_COLOR, 0, zero);
-    glClearBufferfv(GL_COLOR, 1, one);
+    clears.color(0, zero);
+    clears.color(1, one);
     opaque.beginDepthTest(framebuffer, width, height, width, height);
     glEnable(GL_BLEND);
     glBlendFunci(0, GL_ONE, GL_ONE);

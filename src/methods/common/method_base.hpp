@@ -4,6 +4,7 @@
 #include "gl/gl_util.hpp"
 #include "gl/gpu_timer.hpp"
 #include "gl/shader.hpp"
+#include "gl/target_clears.hpp"
 #include "methods/common/opaque_scene.hpp"
 #include "starnt/oit_method.hpp"
 
@@ -60,13 +61,15 @@ protected:
     gl::FramebufferHandle outputFb_;
     gl::VertexArrayHandle fullscreenVao_;
     OpaqueScene opaque_;  // this frame's opaque depth and background
+    gl::TargetClears clears_;  // the targets' clears (gl/target_clears.hpp: copies on llvmpipe)
 };
 
 // Starts a pass that accumulates into `framebuffer` (width x height, from the origin): draw buffer 0
 // a sum (cleared to 0, blend ONE, ONE), draw buffer 1 a product (cleared to 1, blend ZERO,
 // `productFactor`), clipped by the frame's opaque depth. End it with opaque.endDepthTest and
 // resetPassState. WBOIT's accumulation and the corrected frames' sums.
-void beginSumAndProduct(GLuint framebuffer, int width, int height, OpaqueScene& opaque, GLenum productFactor);
+void beginSumAndProduct(GLuint framebuffer, int width, int height, OpaqueScene& opaque, GLenum productFactor,
+                        gl::TargetClears& clears);
 
 // Restores the GL state every pass may change to the defaults the methods assume (the depth range
 // of the current frame's depth convention).

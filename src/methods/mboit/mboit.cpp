@@ -80,7 +80,7 @@ public:
             gl::ScopedPass timing(frame.timing, "moments");
             glBindFramebuffer(GL_FRAMEBUFFER, momentsFb_.id());
             glViewport(0, 0, width_, height_);
-            for (int i = 0; i < (extra_ ? 3 : 2); ++i) glClearBufferfv(GL_COLOR, i, zero);
+            for (int i = 0; i < (extra_ ? 3 : 2); ++i) clears_.color(i, zero);
             opaque_.beginDepthTest(momentsFb_.id(), width_, height_, width_, height_);
             glEnable(GL_BLEND);
             glBlendFunc(GL_ONE, GL_ONE);
@@ -95,7 +95,7 @@ public:
             gl::ScopedPass timing(frame.timing, "shade");
             glBindFramebuffer(GL_FRAMEBUFFER, accumFb_.id());
             glViewport(0, 0, width_, height_);
-            glClearBufferfv(GL_COLOR, 0, zero);
+            clears_.color(0, zero);
             opaque_.beginDepthTest(accumFb_.id(), width_, height_, width_, height_);
             glEnable(GL_BLEND);
             glBlendFunc(GL_ONE, GL_ONE);

@@ -231,13 +231,14 @@ void NeuralPasses::addMemoryTargets(OitMethod::MemoryTargets& out) const {
                            {"layer_alphas", layerAlpha_.bytes()},
                            {"pass3_tail_moments", tailMoment1_.bytes() + tailMoment2_.bytes()},
                            {"corrected_packed_nearest", packedNearest_.bytes()},
-                           {"pass3_resolve_copies_es", esResolveCopies_.bytes()}});
+                           {"pass3_resolve_copies_es", esResolveCopies_.bytes()},
+                           {"clear_strips", clears_.bytes()}});
 }
 
 size_t NeuralPasses::gpuMemoryBytes() const {
     return nearest_.bytes() + nearestDepth_.bytes() + second_.bytes() + secondDepth_.bytes() +
            alphaColor_.bytes() + colorCount_.bytes() + transmittance_.bytes() + layerAlpha_.bytes() +
-           tailMoment1_.bytes() + tailMoment2_.bytes() + packedNearest_.bytes() + esResolveCopies_.bytes();
+           tailMoment1_.bytes() + tailMoment2_.bytes() + packedNearest_.bytes() + esResolveCopies_.bytes() + clears_.bytes();
 }
 
 void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) {
@@ -247,11 +248,11 @@ void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) 
     gl::ScopedPass timing(frame.timing, "pass1");
     useRectangle({width_, height_});
     glBindFramebuffer(GL_FRAMEBUFFER, pass1Fb_.id());
-    glClearBufferfv(GL_COLOR, 0, zero);
+    clears_.color(0, zero);
     const float farDepth = 1.0f;
     glClearBufferfv(GL_DEPTH, 0, &farDepth);
     if (narrowLayers_) {
-        glClearBufferfv(GL_COLOR, 1, zero);                        // both alphas (before the mask)
+        clears_.color(1, zero);                                    // both alphas (before the mask)
         glColorMaski(1, GL_TRUE, GL_FALSE, GL_FALSE, GL_FALSE);  // pass 1 writes a1 alone
     }
     glEnable(GL_DEPTH_TEST);
@@ -274,7 +275,7 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
         gl::ScopedPass timing(frame.timing, "pass2");
         useReducedRectangle(pass2Size, full);
         glBindFramebuffer(GL_FRAMEBUFFER, pass2Fb_.id());
-        glClearBufferfv(GL_COLOR, 0, zero);
+        clears_.color(0, zero);
         const float farDepth = 1.0f;
         glClearBufferfv(GL_DEPTH, 0, &farDepth);
         if (narrowLayers_) glColorMaski(1, GL_FALSE, GL_TRUE, GL_FALSE, GL_FALSE);  // a2 beside pass 1's a1
@@ -344,9 +345,9 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
         framebuffer = pass3TailFb_.id();
     }
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-    glClearBufferfv(GL_COLOR, 0, zero);
-    glClearBufferfv(GL_COLOR, 1, zero);
-    glClearBufferfv(GL_COLOR, 2, one);
+    clears_.color(0, zero);
+    clears_.color(1, zero);
+    clears_.color(2, one);
     if (pass3HoldsTails_) {
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_GREATER);  // behind the second layer, which pass 2's depth holds (1 where none)
@@ -362,8 +363,8 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
     glBlendFunci(1, GL_ONE, GL_ONE);
     glBlendFunci(2, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
     if (tailMoments_) {
-        glClearBufferfv(GL_COLOR, 3, zero);
-        glClearBufferfv(GL_COLOR, 4, zero);
+        clears_.color(3, zero);
+        clears_.color(4, zero);
         glBlendFunci(3, GL_ONE, GL_ONE);
         glBlendFunci(4, GL_ONE, GL_ONE);
         gl::bindTexture(0, secondDepth_.id());  // z2 (tail moments run at full resolution only)
@@ -412,7 +413,7 @@ void NeuralPasses::runNearestAndSums(const FrameDesc& frame, const DrawCallback&
     if (tailMoments_) widenCountBesideBehind();
     pass3Size_ = {width_, height_};
     gl::ScopedPass timing(frame.timing, "pass3");
-    beginSumAndProduct(sumsFb_.id(), width_, height_, opaque_, GL_ONE_MINUS_SRC_ALPHA);  // sum a C, sum a; prod (1 - a)
+    beginSumAndProduct(sumsFb_.id(), width_, height_, opaque_, GL_ONE_MINUS_SRC_ALPHA, clears_);  // sum a C, sum a; prod (1 - a)
     if (tailMoments_) {
         beginSecondMomentAndOpticalDepth(1);
         beginBehindMoment(2, reference);
@@ -432,14 +433,14 @@ void NeuralPasses::preparePackedNearestAndSums() {
 
 void NeuralPasses::beginBehindMoment(GLuint target, GLuint reference) {
     const float zero[4] = {0, 0, 0, 0};
-    glClearBufferfv(GL_COLOR, GLint(target), zero);
+    clears_.color(GLint(target), zero);
     glBlendFunci(target, GL_ONE, GL_ONE);
     gl::bindTexture(1, reference);  // pass3_accumulate.frag.glsl's u_reference
 }
 
 void NeuralPasses::beginSecondMomentAndOpticalDepth(GLuint target) {
     const float zero[4] = {0, 0, 0, 0};
-    glClearBufferfv(GL_COLOR, GLint(target), zero);
+    clears_.color(GLint(target), zero);
     glBlendFunci(target, GL_ONE, GL_ONE);  // sum a u^2; sum -ln(1 - a)
 }
 
@@ -463,8 +464,8 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
     glBindFramebuffer(GL_FRAMEBUFFER, packedFb_.id());
     glViewport(0, 0, width_, height_);
     const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1}, farDepth = 1.0f;
-    glClearBufferfv(GL_COLOR, 0, zero);
-    glClearBufferfv(GL_COLOR, 1, one);
+    clears_.color(0, zero);
+    clears_.color(1, one);
     glClearBufferfv(GL_DEPTH, 0, &farDepth);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_ALWAYS);
@@ -473,7 +474,7 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
     glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);  // prod (1 - a)
     const float emptyPixel = std::bit_cast<float>(STARNT_PACKED_EMPTY_BITS);
     const float empty[4] = {emptyPixel, emptyPixel, emptyPixel, emptyPixel};
-    glClearBufferfv(GL_COLOR, 2, empty);
+    clears_.color(2, empty);
     glBlendEquationi(2, GL_MIN);  // blend factors do not apply to MIN
     if (tailMoments_) {
         beginSecondMomentAndOpticalDepth(1);

@@ -218,6 +218,7 @@ private:
     bool pass3TailsOnly_ = false, pass3HoldsTails_ = false;
     gl::FramebufferHandle pass3TailFb_;        // pass 3's targets over pass 2's depth
     TailResolveCopies esResolveCopies_;  // OpenGL ES only: what the tail resolve reads
+    gl::TargetClears clears_;            // gl/target_clears.hpp: copies on llvmpipe
     bool colorSums_ = true;
     NeuralOptions::Targets targets_;
     bool narrowLayers_ = false;

@@ -50,7 +50,7 @@ public:
         glBindFramebuffer(GL_FRAMEBUFFER, accumFb_.id());
         glViewport(0, 0, width_, height_);
         const float start[4] = {0, 0, 0, 1};
-        glClearBufferfv(GL_COLOR, 0, start);
+        clears_.color(0, start);
 
         const int limit = layersWanted_ > 0 ? layersWanted_ : kMaxLayers;
         layersRendered_ = 0;
@@ -62,7 +62,7 @@ public:
                 glBindFramebuffer(GL_FRAMEBUFFER, layerFb_[cur].id());
                 const float clearColor[4] = {0, 0, 0, 0};
                 const float clearDepth = 1.0f;
-                glClearBufferfv(GL_COLOR, 0, clearColor);
+                clears_.color(0, clearColor);
                 glClearBufferfv(GL_DEPTH, 0, &clearDepth);
                 glEnable(GL_DEPTH_TEST);
                 glDepthFunc(GL_LESS);

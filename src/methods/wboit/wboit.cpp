@@ -37,7 +37,7 @@ public:
         resetPassState();
         {
             gl::ScopedPass timing(frame.timing, "accumulate");
-            beginSumAndProduct(fb_.id(), width_, height_, opaque_, GL_ONE_MINUS_SRC_COLOR);  // weighted sums; revealage
+            beginSumAndProduct(fb_.id(), width_, height_, opaque_, GL_ONE_MINUS_SRC_COLOR, clears_);  // weighted sums; revealage
             glUseProgram(accumulate_.id());
             glUniform1i(accumulate_.uniform("u_weightFunction"), weightFunction_);
             glUniform2f(accumulate_.uniform("u_projZ"), frame.projection[2][2], frame.projection[3][2]);
