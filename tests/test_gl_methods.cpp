@@ -265,4 +265,20 @@ TEST(TargetClears, CopiesWriteWhatTheClearWrites) {
         EXPECT_EQ(clears[0].bytes(), copiedByStrip ? size_t(16 * 4 * 16) : size_t(0));
         EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
     }
+    // A caller whose clear values keep changing reuses strips instead of growing the list; the
+    // last value is still the one written.
+    gl::Texture2D target(GL_RGBA32F, w, h);
+    const gl::FramebufferHandle fb = gl::makeFramebuffer({&target});
+    glBindFramebuffer(GL_FRAMEBUFFER, fb.id());
+    gl::TargetClears changing(gl::TargetClears::Path::Copy, 16, 4);
+    for (int i = 0; i < 9; ++i) {
+        const float value[4] = {float(i), 0.5f, -float(i), 1.0f};
+        changing.color(0, value);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    EXPECT_EQ(changing.bytes(), size_t(4 * 16 * 4 * 16));
+    const std::vector<float> last = gl::readTextureFloats(target.id(), w, h, 4);
+    size_t wrong = 0;
+    for (size_t i = 0; i < last.size(); i += 4) wrong += last[i] != 8.0f || last[i + 1] != 0.5f || last[i + 2] != -8.0f || last[i + 3] != 1.0f;
+    EXPECT_EQ(wrong, 0u);
 }

@@ -74,6 +74,9 @@ const TargetClears::Strip& TargetClears::strip(GLenum format, const float value[
     for (const Strip& s : strips_) {
         if (s.format == format && s.value == key) return s;
     }
+    // A handful of constant values in practice; a caller whose values keep changing reuses the
+    // oldest strip rather than growing the list.
+    if (strips_.size() >= kMaxStrips) strips_.erase(strips_.begin());
     Strip s{format, key, Texture2D(format, stripWidth_, stripRows_)};
     // Filled once by the clear it stands in for, so that the value converts as that clear's does.
     GLint drawFramebuffer = 0, readFramebuffer = 0;  // makeFramebuffer binds both on ES

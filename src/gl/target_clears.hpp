@@ -44,6 +44,7 @@ private:
     bool copyTo(GLuint texture, GLuint activeUnit, const float value[4]);
     const Strip& strip(GLenum format, const float value[4]);
 
+    static constexpr size_t kMaxStrips = 4;
     Path path_;
     int stripWidth_, stripRows_;
     int software_ = -1;  // unknown until the first clear (a context is current then)

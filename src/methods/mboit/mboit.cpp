@@ -36,11 +36,11 @@ public:
 
     std::string name() const override { return "mboit"; }
     size_t gpuMemoryBytes() const override {
-        return outputBytes() + b0_.bytes() + moments_tex_.bytes() + extra_.bytes() + accum_.bytes();
+        return outputBytes() + b0_.bytes() + moments_tex_.bytes() + extra_.bytes() + accum_.bytes() + clears_.bytes();
     }
     MemoryTargets gpuMemoryTargets() const override {
         return {{"output", outputBytes()}, {"b0", b0_.bytes()}, {"moments", moments_tex_.bytes()},
-                {"moments_extra", extra_.bytes()}, {"accum", accum_.bytes()}};
+                {"moments_extra", extra_.bytes()}, {"accum", accum_.bytes()}, {"clear_strips", clears_.bytes()}};
     }
     FrameStats lastFrameStats() const override {
         FrameStats stats;

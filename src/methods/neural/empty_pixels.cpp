@@ -50,9 +50,9 @@ bool EmptyPixelSkip::clearToBackground(const OpaqueScene& background, bool halfO
     std::optional<glm::vec4> value = background.uniformBackground();
     if (!value) return false;
     if (halfOutput) *value = glm::vec4(nearestHalf(value->r), nearestHalf(value->g), nearestHalf(value->b), nearestHalf(value->a));
-    clears_.color(0, &(*value)[0]);
+    glClearBufferfv(GL_COLOR, 0, &(*value)[0]);
     const float hidden[4] = {0.0f, 0.0f, 0.0f, -1.0f};  // infer_background.frag.glsl's second output
-    if (second_) clears_.color(1, hidden);
+    if (second_) glClearBufferfv(GL_COLOR, 1, hidden);
     cleared_ = true;
     return true;
 }

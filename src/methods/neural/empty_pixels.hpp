@@ -19,7 +19,6 @@
 
 #include "gl/gl_util.hpp"
 #include "gl/shader.hpp"
-#include "gl/target_clears.hpp"
 #include "methods/common/opaque_scene.hpp"
 
 namespace starnt {
@@ -52,7 +51,6 @@ private:
     gl::FramebufferHandle framebuffer_;
     bool second_ = false;  // a second target is attached
     bool cleared_ = false;  // clearToBackground wrote the empty pixels of this composite
-    gl::TargetClears clears_;
 };
 
 }  // namespace starnt

@@ -28,7 +28,7 @@ public:
 
     std::string name() const override { return "peel"; }
     size_t gpuMemoryBytes() const override {
-        return outputBytes() + layerColor_.bytes() + depth_[0].bytes() + depth_[1].bytes() + accum_.bytes();
+        return outputBytes() + layerColor_.bytes() + depth_[0].bytes() + depth_[1].bytes() + accum_.bytes() + clears_.bytes();
     }
     FrameStats lastFrameStats() const override {
         FrameStats stats;

@@ -23,9 +23,9 @@ public:
           composite_(buildFullscreenProgram("wboit_composite", "methods/wboit/wboit_composite.frag.glsl")) {}
 
     std::string name() const override { return "wboit"; }
-    size_t gpuMemoryBytes() const override { return outputBytes() + accum_.bytes() + reveal_.bytes(); }
+    size_t gpuMemoryBytes() const override { return outputBytes() + accum_.bytes() + reveal_.bytes() + clears_.bytes(); }
     MemoryTargets gpuMemoryTargets() const override {
-        return {{"output", outputBytes()}, {"accum", accum_.bytes()}, {"revealage", reveal_.bytes()}};
+        return {{"output", outputBytes()}, {"accum", accum_.bytes()}, {"revealage", reveal_.bytes()}, {"clear_strips", clears_.bytes()}};
     }
 
     void renderFrame(const FrameDesc& frame, const DrawCallback& draw) override {
