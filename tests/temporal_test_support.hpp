@@ -29,6 +29,13 @@ inline std::vector<glm::vec4> readRgba(GLuint texture, int w, int h) {
     return out;
 }
 
+// An RGBA32UI texture's texels in GL order.
+inline std::vector<glm::uvec4> readRgbaUint(GLuint texture, int w, int h) {
+    std::vector<glm::uvec4> out(size_t(w) * size_t(h));
+    gl::readTexture(texture, w, h, GL_RGBA_INTEGER, GL_UNSIGNED_INT, out.data(), out.size() * sizeof(glm::uvec4));
+    return out;
+}
+
 // A camera 4 units from the origin turned by `yawDeg` about +Y.
 inline glm::mat4 turnedViewProj(int w, int h, float yawDeg) {
     const glm::mat4 proj = glm::perspective(glm::radians(50.0f), float(w) / float(h), 0.5f, 20.0f);

@@ -485,9 +485,13 @@ TEST(TemporalCorrected, OnePassGivesTheTwoPassFrames) {
     test::TestScene c(makeBuiltinScene("tubes", 3), 96, 64, 30.0f, 15.0f, kBackground);
     MethodOptions twoPasses = correctedOptions();
     twoPasses.neural.correctedOnePass = false;
+    // The nearest layer alone in both (the one-pass frames of the tail-moment methods find the
+    // second too where the driver has framebuffer fetch: PackedLayers below).
+    MethodOptions onePass = correctedOptions();
+    onePass.neural.correctedLayers = NeuralOptions::CorrectedLayers::One;
     for (const char* method : {"starnt", "recommended"}) {
         const std::vector<float> yaws = {0.0f, 2.0f, 4.0f, 6.0f};
-        const auto one = renderSequence(c, correctedOptions(), yaws, method);
+        const auto one = renderSequence(c, onePass, yaws, method);
         const auto two = renderSequence(c, twoPasses, yaws, method);
         for (size_t f = 0; f < yaws.size(); ++f) {
             size_t off = 0, far = 0;
@@ -573,7 +577,9 @@ TEST(TemporalCorrected, StillCameraGivesTheRealFrame) {
         if (std::string(method) == "starnt") {
             EXPECT_EQ(off, 0u) << method;
         } else {
-            // Measured on llvmpipe (tubes, 96x64): 4 pixels of 6,144, largest 0.016, mean 1.5e-5.
+            // Measured on llvmpipe (tubes, 96x64): 4 pixels of 6,144, largest 0.016, mean 1.5e-5;
+            // with the second layer found by framebuffer fetch (the default there), 6 pixels, largest
+            // 0.065, mean 4.6e-5 (the packed second layer's 11-bit colours).
             // (Against hybrid-moments' composite instead, the first version: 615 pixels, largest 0.133.)
             EXPECT_LE(off, frames[0].size() / 200) << method;
             EXPECT_LE(mean, 1e-4) << method;
@@ -662,5 +668,166 @@ TEST(TemporalCorrected, FusedCaptureEqualsTheCapturePass) {
             EXPECT_LE(largest, 1.0f / 1024.0f) << method << " frame " << f;  // 0 on llvmpipe, a 16-bit step at most
         }
         EXPECT_NE(a[1], a[0]) << method << ": the camera moved";
+    }
+}
+
+// Corrected frames of the tail-moment methods where framebuffer fetch exists: pass 3 keeps the
+// nearest two fragments in one RGBA32UI texel (packed_nearest.h), which decode to pass 1's and
+// pass 2's layers, bit for bit the CPU fold of the captured fragments (temporal::insertLayer).
+TEST(PackedLayers, PassThreeFindsPassOneAndPassTwosFragments) {
+    test::glContext();
+    if (!epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) GTEST_SKIP() << "no GL_EXT_shader_framebuffer_fetch";
+    const int w = 64, h = 48;
+    const test::TestScene scene(loadScene("builtin:tubes"), w, h, 30.0f, 20.0f, kBackground);
+    const FrameDesc frame = scene.frame();
+    const DrawCallback draw = scene.gpu->callback(frame.view, frame.projection, SurfaceOptions{});
+    OpaqueScene opaque(kBackground);
+    opaque.begin(frame);
+    NeuralPasses passes(SceneGpu::surfaceShader(), opaque, false, NeuralOptions::Targets::Float32, false, true);
+    passes.findTwoLayers();
+    passes.run(frame, draw, NeuralPasses::kDefaultPeelEpsilon, {w, h}, {w, h});
+    const std::vector<glm::vec4> layer1 = readRgba(passes.nearest().id(), w, h), layer2 = readRgba(passes.second().id(), w, h);
+    const std::vector<float> depth1 = readDepth(passes.nearestDepth().id(), w, h);
+    passes.runPackedNearestAndSums(frame, draw);
+    ASSERT_EQ(gl::textureInternalFormat(passes.packedNearest()), GLenum(GL_RGBA32UI));
+    const std::vector<glm::uvec4> packed = test::readRgbaUint(passes.packedNearest(), w, h);
+    const CapturedFrame fragments = scene.capture();
+    size_t covered = 0, twoDeep = 0, firstOff = 0, secondOff = 0, bitsOff = 0;
+    auto near = [](const glm::vec4& got, const glm::vec4& want) {
+        bool ok = std::abs(got.a - want.a) <= 1e-3f;
+        for (int k = 0; k < 3; ++k) ok = ok && std::abs(got[k] - want[k]) <= (k == 2 ? 8e-3f : 4e-3f);
+        return ok;
+    };
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * size_t(w) + size_t(x);
+            float z1 = 0.0f, z2 = 0.0f;
+            const glm::vec4 got1 = unpackLayer(glm::uvec2(packed[i].x, packed[i].y), z1);
+            const glm::vec4 got2 = unpackLayer(glm::uvec2(packed[i].z, packed[i].w), z2);
+            if (layer1[i].a == 0.0f) {
+                ASSERT_EQ(packed[i], packedLayersEmpty()) << x << "," << y;
+                continue;
+            }
+            ++covered;
+            // (No depth read-back on ES: readDepth is empty there.)
+            firstOff += !near(got1, layer1[i]) ||
+                        (!depth1.empty() && std::abs((1.0f - z1) - (1.0f - depth1[i])) > (1.0f - depth1[i]) * std::exp2(-12.0f));
+            if (layer2[i].a > 0.0f) {
+                ++twoDeep;
+                secondOff += !near(got2, layer2[i]) || !(z2 > z1);
+            } else {
+                secondOff += got2.a != 0.0f;
+            }
+            glm::uvec4 fold = packedLayersEmpty();
+            for (const Fragment& f : nn::preparedFragments(fragments.at(x, h - 1 - y))) {
+                fold = insertLayer(fold, packLayer(f.depth, glm::vec4(f.color, f.alpha)));
+            }
+            bitsOff += fold != packed[i];
+        }
+    }
+    std::printf("covered %zu, two deep %zu; layer 1 off %zu, layer 2 off %zu, bits off the CPU fold %zu\n", covered, twoDeep,
+                firstOff, secondOff, bitsOff);
+    EXPECT_GT(covered, size_t(300));
+    EXPECT_GT(twoDeep, covered / 4);
+    EXPECT_LE(firstOff, covered / 100) << "pixels whose packed nearest fragment is not pass 1's";
+    EXPECT_LE(secondOff, covered / 50) << "pixels whose packed second fragment is not pass 2's";
+    EXPECT_LE(bitsOff, covered / 50) << "pixels whose packed bits differ from the CPU fold";
+}
+
+// The closed form behind two exact layers: with one fragment behind the second it is exact, and
+// from the moments in u over every fragment (an interpolated frame's) it equals what the moments
+// summed behind the second layer in v = u - u2 give (a real frame's), up to rounding.
+TEST(PackedLayers, TwoLayerClosedFormIsExactForOneFragmentBehindAndAgreesBetweenFrames) {
+    const float reference = 0.4f;
+    auto check = [&](const std::vector<Fragment>& all, bool exact) {
+        const glm::vec4 l1(all[0].color, all[0].alpha), l2(all[1].color, all[1].alpha);
+        glm::vec4 sums(0.0f), behindSecond(0.0f);
+        float t = 1.0f, behindSecond2 = 0.0f;
+        const float u2 = depthBehindReference(all[1].depth, reference);
+        for (size_t k = 0; k < all.size(); ++k) {
+            const Fragment& f = all[k];
+            sums += glm::vec4(f.color * f.alpha, f.alpha);
+            t *= 1.0f - f.alpha;
+            if (k < 2) continue;
+            const float v = depthBehindReference(f.depth, reference) - u2;
+            behindSecond += glm::vec4(f.color * f.alpha, f.alpha) * v;
+            behindSecond2 += f.alpha * v * v;
+        }
+        const glm::vec3 interpolated =
+            orderedClosedFormBehindTwoLayers(l1, all[0].depth, l2, all[1].depth, sums, t, behindMomentsOf(all, reference), kBackground);
+        const glm::vec3 real = orderedClosedFormBehindSecondFromMoments(l1, l2, sums, t, behindSecond, behindSecond2, kBackground);
+        const std::vector<Fragment> behind(all.begin() + 1, all.end());
+        const glm::vec3 want = compositeOver(behind, kBackground);
+        for (int ch = 0; ch < 3; ++ch) {
+            EXPECT_NEAR(interpolated[ch], real[ch], 2e-4f) << ch;
+            if (exact) EXPECT_NEAR(interpolated[ch], want[ch], 1e-4f) << ch;
+        }
+        return glm::length(interpolated - want);
+    };
+    check({{glm::vec3(0.2f, 0.4f, 0.6f), 0.5f, 0.5f}, {glm::vec3(0.9f, 0.1f, 0.3f), 0.4f, 0.6f}, {glm::vec3(0.1f, 0.8f, 0.2f), 0.3f, 0.8f}},
+          true);
+    // Two behind the second, a red one near and a blue one far: nearer the exact over-composite
+    // than their plain mean under the same layers.
+    const std::vector<Fragment> deep = {{glm::vec3(0.2f, 0.4f, 0.6f), 0.5f, 0.5f},
+                                        {glm::vec3(0.5f, 0.5f, 0.5f), 0.3f, 0.55f},
+                                        {glm::vec3(1.0f, 0.0f, 0.0f), 0.6f, 0.6f},
+                                        {glm::vec3(0.0f, 0.0f, 1.0f), 0.6f, 0.95f}};
+    const float ordered = check(deep, false);
+    const glm::vec3 meanBehind = (glm::vec3(0.6f, 0.0f, 0.0f) + glm::vec3(0.0f, 0.0f, 0.6f)) / 1.2f;
+    const glm::vec3 plain = 0.3f * glm::vec3(0.5f) + 0.7f * ((1.0f - 0.16f) * meanBehind + 0.16f * kBackground);
+    const std::vector<Fragment> behind(deep.begin() + 1, deep.end());
+    EXPECT_LT(ordered, 0.5f * glm::length(plain - compositeOver(behind, kBackground)));
+}
+
+// End to end (tubes, turning 2 degrees a frame, K = 2): the second layer found by framebuffer
+// fetch leaves the real frames as they were and brings the interpolated frames nearer the A-buffer.
+TEST(PackedLayers, InterpolatedFramesNearerTheABufferWithTwoLayers) {
+    test::TestScene c(makeBuiltinScene("tubes", 3), 96, 64, 30.0f, 15.0f, kBackground);
+    if (!epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) GTEST_SKIP() << "no GL_EXT_shader_framebuffer_fetch";
+    const std::vector<float> yaws = {0.0f, 2.0f, 4.0f, 6.0f, 8.0f, 10.0f};
+    MethodOptions one = correctedOptions(), two = correctedOptions();
+    one.neural.correctedLayers = NeuralOptions::CorrectedLayers::One;
+    two.neural.correctedLayers = NeuralOptions::CorrectedLayers::Two;
+    const auto oneLayer = renderSequence(c, one, yaws, "recommended");
+    const auto twoLayers = renderSequence(c, two, yaws, "recommended");
+    const auto exact = renderSequence(c, MethodOptions{}, yaws, "abuffer");
+    auto mse = [](const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b) {
+        double sum = 0.0;
+        for (size_t i = 0; i < a.size(); ++i)
+            for (int ch = 0; ch < 3; ++ch) sum += double(a[i][ch] - b[i][ch]) * double(a[i][ch] - b[i][ch]);
+        return sum / double(3 * a.size());
+    };
+    double interpolatedOne = 0.0, interpolatedTwo = 0.0;
+    for (size_t f = 0; f < yaws.size(); ++f) {
+        if (f % 2 == 0) {
+            EXPECT_EQ(twoLayers[f], oneLayer[f]) << "real frame " << f;
+            continue;
+        }
+        interpolatedOne += mse(oneLayer[f], exact[f]);
+        interpolatedTwo += mse(twoLayers[f], exact[f]);
+    }
+    std::printf("interpolated frames' MSE against the A-buffer: one layer %.3g, two layers %.3g\n", interpolatedOne / 3.0,
+                interpolatedTwo / 3.0);
+    EXPECT_LT(interpolatedTwo, 0.8 * interpolatedOne);
+}
+
+// `--corrected-layers 2` names what it lacks.
+TEST(PackedLayers, TwoLayersWithoutWhatTheyNeedIsAnErrorNamingIt) {
+    test::glContext();
+    MethodOptions o = correctedOptions();
+    o.neural.correctedLayers = NeuralOptions::CorrectedLayers::Two;
+    try {
+        createMethod("starnt", SceneGpu::surfaceShader(), o);
+        ADD_FAILURE() << "starnt has no tail moments";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("tail-moment method"), std::string::npos) << e.what();
+    }
+    MethodOptions still = o;
+    still.neural.temporalInterval = 1;
+    try {
+        createMethod("starnt-d", SceneGpu::surfaceShader(), still);
+        ADD_FAILURE() << "no corrected frames";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("corrected frames"), std::string::npos) << e.what();
     }
 }

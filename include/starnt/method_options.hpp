@@ -89,6 +89,14 @@ struct NeuralOptions {
     // blending a packed (depth, colour) with GL_MIN (docs/DESIGN.md, "Corrected frames in one
     // geometry pass"); off: pass 1 for the nearest fragment, then pass 3 (two geometry passes).
     bool correctedOnePass = true;
+    // Layers an interpolated frame of the tail-moment methods (hybrid-moments, starnt-d,
+    // recommended) finds exactly in its one geometry pass (docs/DESIGN.md, "Corrected frames: the
+    // second layer by framebuffer fetch"): Two = the nearest two fragments, every fragment reading
+    // and rewriting a packed target in draw order (needs GL_EXT_shader_framebuffer_fetch), with the
+    // ordered closed form behind the second; One = the nearest, by MIN blending; Auto = Two where
+    // the driver has the extension (Mesa's llvmpipe, most mobile GPUs), One elsewhere.
+    enum class CorrectedLayers { Auto, One, Two };
+    CorrectedLayers correctedLayers = CorrectedLayers::Auto;
     double targetFps = 60.0;
     // Precision of the pass targets and the output (docs/DESIGN.md, "Pipeline and formats"): Compact (default) = 16-bit float
     // colours, sums and count, a 16-bit unsigned normalised transmittance, 32-bit depths, and the

@@ -38,6 +38,9 @@ const WordFlag kWordFlags[] = {
     {"--temporal-mode", &AccelerationFlags::temporalMode, parseTemporalModeOption,
      "neural methods: interpolated frames: warp (the paper) | refresh (fresh pass 1) | correct (fresh sums and "
      "nearest layer, the last real frame's network correction)"},
+    {"--corrected-layers", &AccelerationFlags::correctedLayers, parseCorrectedLayersOption,
+     "tail-moment methods: layers a corrected frame finds exactly in its one geometry pass: 1 | 2 (by framebuffer "
+     "fetch, GL_EXT_shader_framebuffer_fetch) | auto (2 where the driver has it)"},
     {"--upsample", &AccelerationFlags::upsample, parseUpsampleOption,
      "neural methods: reduced passes back to full resolution: bilinear | joint (bilateral, guided by pass-1 depth)"},
     {"--targets", &AccelerationFlags::targets, parseTargetsOption,

@@ -28,6 +28,7 @@ struct AccelerationFlags {
     std::string shadingRateImage = "off";   // off | auto | on
     std::string temporalMode = "correct";   // warp | refresh | correct
     int correctedPasses = 1;                // geometry passes of a corrected frame: 1 | 2
+    std::string correctedLayers = "auto";   // exact layers of a corrected frame: auto | 1 | 2
     std::string upsample = "bilinear";      // bilinear | joint
     std::string targets = "compact";        // compact | fp32
 };

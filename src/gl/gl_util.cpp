@@ -89,7 +89,7 @@ void deleteSampler(GLuint id) { glDeleteSamplers(1, &id); }
 
 size_t bytesPerTexel(GLenum f) {
     switch (f) {
-        case GL_RGBA32F: return 16;
+        case GL_RGBA32F: case GL_RGBA32UI: return 16;
         case GL_RGBA16F: return 8;
         case GL_RGBA8: case GL_RGB10_A2: case GL_RG16F: return 4;
         case GL_RG32F: return 8;
@@ -225,13 +225,11 @@ void copyBuffer(GLuint source, GLuint destination, size_t bytes) {
     }
 }
 
-std::vector<float> readTextureFloats(GLuint texture, int width, int height, int channels) {
-    std::vector<float> out(size_t(width) * size_t(height) * size_t(channels));
+void readTexture(GLuint texture, int width, int height, GLenum format, GLenum type, void* out, size_t bytes) {
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
     if (!isEs()) {
-        glGetTextureImage(texture, 0, channels == 1 ? GL_RED : GL_RGBA, GL_FLOAT, GLsizei(out.size() * sizeof(float)),
-                          out.data());
-        return out;
+        glGetTextureImage(texture, 0, format, type, GLsizei(bytes), out);
+        return;
     }
     GLuint fb = 0;
     glGenFramebuffers(1, &fb);
@@ -239,13 +237,22 @@ std::vector<float> readTextureFloats(GLuint texture, int width, int height, int 
     glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     const GLenum status = glCheckFramebufferStatus(GL_READ_FRAMEBUFFER);
-    std::vector<float> rgba(size_t(width) * size_t(height) * 4);
-    if (status == GL_FRAMEBUFFER_COMPLETE) glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, rgba.data());
+    if (status == GL_FRAMEBUFFER_COMPLETE) glReadPixels(0, 0, width, height, format, type, out);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
     glDeleteFramebuffers(1, &fb);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
         throw Error("internal: texture read-back on OpenGL ES: the texture is not colour-renderable");
     }
+}
+
+std::vector<float> readTextureFloats(GLuint texture, int width, int height, int channels) {
+    std::vector<float> out(size_t(width) * size_t(height) * size_t(channels));
+    if (!isEs()) {
+        readTexture(texture, width, height, channels == 1 ? GL_RED : GL_RGBA, GL_FLOAT, out.data(), out.size() * sizeof(float));
+        return out;
+    }
+    std::vector<float> rgba(size_t(width) * size_t(height) * 4);
+    readTexture(texture, width, height, GL_RGBA, GL_FLOAT, rgba.data(), rgba.size() * sizeof(float));
     if (channels == 4) return rgba;
     for (size_t i = 0; i < out.size(); ++i) out[i] = rgba[i * 4];
     return out;

@@ -130,6 +130,9 @@ void copyBuffer(GLuint source, GLuint destination, size_t bytes);
 // as GL stores them (glGetTextureImage; ES, which cannot read textures back, attaches it to a
 // framebuffer and calls glReadPixels with RGBA/FLOAT, which EXT_color_buffer_float guarantees).
 std::vector<float> readTextureFloats(GLuint texture, int width, int height, int channels);
+// Level 0 of a colour texture as `format` / `type` texels (glGetTextureImage; on ES the texture on a
+// read framebuffer, glReadPixels, which takes RGBA with FLOAT or RGBA_INTEGER with UNSIGNED_INT).
+void readTexture(GLuint texture, int width, int height, GLenum format, GLenum type, void* out, size_t bytes);
 // glTextureSubImage2D of the whole level 0 (ES: glBindTexture + glTexSubImage2D).
 void uploadTexture(GLuint texture, int width, int height, GLenum format, GLenum type, const void* pixels);
 // The sized internal format of level 0 (glGetTextureLevelParameteriv; ES 3.1: glGetTexLevelParameteriv).

@@ -71,7 +71,18 @@ std::string infoLog(GLuint object, GetIv getIv, GetLog getLog) {
 }
 
 GLuint compile(GLenum stage, const std::string& label, const std::string& body, const std::string& defines) {
-    std::string src = header(stage) + defines + "\n" + expandIncludes(body, label, 0);
+    // "#extension" lines among the defines go right after #version, before any other token (GLSL
+    // ES requires it; the ES header declares precisions), and only into fragment shaders (the
+    // extensions asked for so far are fragment ones: EXT_shader_framebuffer_fetch).
+    std::string extensions, rest;
+    {
+        std::istringstream in(defines);
+        std::string line;
+        while (std::getline(in, line)) (line.rfind("#extension", 0) == 0 ? extensions : rest) += line + "\n";
+    }
+    std::string head = header(stage);
+    if (stage == GL_FRAGMENT_SHADER && !extensions.empty()) head.insert(head.find('\n') + 1, extensions);
+    std::string src = head + rest + "\n" + expandIncludes(body, label, 0);
     GLuint s = glCreateShader(stage);
     const char* ptr = src.c_str();
     glShaderSource(s, 1, &ptr, nullptr);

@@ -1,6 +1,7 @@
 #include "gl/target_clears.hpp"
 
 #include <algorithm>
+#include <bit>
 
 #include "gl/gpu_timer.hpp"
 
@@ -16,6 +17,26 @@ bool TargetClears::copies() {
 }
 
 void TargetClears::color(GLint drawBuffer, const float value[4]) {
+    Value v;
+    for (int i = 0; i < 4; ++i) v.bits[size_t(i)] = std::bit_cast<GLuint>(value[i]);
+    clear(drawBuffer, v);
+}
+
+void TargetClears::colorUint(GLint drawBuffer, const GLuint value[4]) {
+    clear(drawBuffer, Value{{value[0], value[1], value[2], value[3]}, true});
+}
+
+void TargetClears::clearBuffer(GLint drawBuffer, const Value& value) {
+    if (value.integer) {
+        glClearBufferuiv(GL_COLOR, drawBuffer, value.bits.data());
+    } else {
+        float f[4];
+        for (int i = 0; i < 4; ++i) f[i] = std::bit_cast<float>(value.bits[size_t(i)]);
+        glClearBufferfv(GL_COLOR, drawBuffer, f);
+    }
+}
+
+void TargetClears::clear(GLint drawBuffer, const Value& value) {
     if (copies()) {
         GLint attachment = GL_NONE;
         glGetIntegerv(GL_DRAW_BUFFER0 + drawBuffer, &attachment);
@@ -24,10 +45,10 @@ void TargetClears::color(GLint drawBuffer, const float value[4]) {
         glGetBooleani_v(GL_COLOR_WRITEMASK, GLuint(drawBuffer), mask);
         if (mask[0] && mask[1] && mask[2] && mask[3] && copyInto(GLenum(attachment), value)) return;
     }
-    glClearBufferfv(GL_COLOR, drawBuffer, value);
+    clearBuffer(drawBuffer, value);
 }
 
-bool TargetClears::copyInto(GLenum attachment, const float value[4]) {
+bool TargetClears::copyInto(GLenum attachment, const Value& value) {
     GLint type = GL_NONE, name = 0, level = 0, layered = GL_FALSE;
     glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
     if (type != GL_TEXTURE) return false;  // the default framebuffer or a renderbuffer
@@ -45,11 +66,14 @@ bool TargetClears::copyInto(GLenum attachment, const float value[4]) {
     return copied;
 }
 
-bool TargetClears::copyTo(GLuint name, GLuint activeUnit, const float value[4]) {
+bool TargetClears::copyTo(GLuint name, GLuint activeUnit, const Value& value) {
     const TextureDescription target = describeTexture(name, activeUnit);
     // Only 16-byte texels: llvmpipe clears 4- and 8-byte ones at memory speed (0.3-0.5 ms at
     // 1280x720), where copies saved little and, in whole frames, cost more (DESIGN.md).
-    if (!target.is2D || !target.immutable || target.integer || bytesPerTexel(target.internalFormat) != 16) return false;
+    // A float value into an integer target (or the reverse) is the clear's business (it converts).
+    if (!target.is2D || !target.immutable || target.integer != value.integer || bytesPerTexel(target.internalFormat) != 16) {
+        return false;
+    }
     int x0 = 0, y0 = 0, x1 = target.width, y1 = target.height;
     if (glIsEnabled(GL_SCISSOR_TEST)) {
         GLint box[4] = {0, 0, 0, 0};
@@ -69,15 +93,14 @@ bool TargetClears::copyTo(GLuint name, GLuint activeUnit, const float value[4]) 
     return true;
 }
 
-const TargetClears::Strip& TargetClears::strip(GLenum format, const float value[4]) {
-    const std::array<float, 4> key{value[0], value[1], value[2], value[3]};
+const TargetClears::Strip& TargetClears::strip(GLenum format, const Value& value) {
     for (const Strip& s : strips_) {
-        if (s.format == format && s.value == key) return s;
+        if (s.format == format && s.value == value) return s;
     }
     // A handful of constant values in practice; a caller whose values keep changing reuses the
     // oldest strip rather than growing the list.
     if (strips_.size() >= kMaxStrips) strips_.erase(strips_.begin());
-    Strip s{format, key, Texture2D(format, stripWidth_, stripRows_)};
+    Strip s{format, value, Texture2D(format, stripWidth_, stripRows_)};
     // Filled once by the clear it stands in for, so that the value converts as that clear's does.
     GLint drawFramebuffer = 0, readFramebuffer = 0;  // makeFramebuffer binds both on ES
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer);
@@ -87,7 +110,7 @@ const TargetClears::Strip& TargetClears::strip(GLenum format, const float value[
     {
         const FramebufferHandle fill = makeFramebuffer({&s.texture});
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fill.id());
-        glClearBufferfv(GL_COLOR, 0, value);
+        clearBuffer(0, value);
     }
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(drawFramebuffer));
     glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(readFramebuffer));

@@ -26,23 +26,34 @@ public:
     // What glClearBufferfv(GL_COLOR, drawBuffer, value) does to the bound draw framebuffer: the
     // scissor box when the scissor test is on, the whole attachment otherwise. It is that call
     // wherever a copy would differ or gain nothing: texels of other than 16 bytes, a colour mask,
-    // a renderbuffer, a layer or a level other than 0, a texture without immutable storage.
+    // a renderbuffer, a layer or a level other than 0, a texture without immutable storage, an
+    // integer target (colorUint clears those).
     void color(GLint drawBuffer, const float value[4]);
+    // The same for an unsigned integer target: glClearBufferuiv(GL_COLOR, drawBuffer, value).
+    void colorUint(GLint drawBuffer, const GLuint value[4]);
 
     // Bytes the strips hold (one per format and value met; 512 KiB for RGBA32F).
     size_t bytes() const;
 
 private:
+    // A clear value: its bits, and whether they are floats or unsigned integers.
+    struct Value {
+        std::array<GLuint, 4> bits{};
+        bool integer = false;
+        bool operator==(const Value&) const = default;
+    };
     struct Strip {
         GLenum format = 0;
-        std::array<float, 4> value{};
+        Value value;
         Texture2D texture;
     };
     bool copies();
+    void clear(GLint drawBuffer, const Value& value);
     // False where a copy cannot stand in for the clear; then nothing was written.
-    bool copyInto(GLenum attachment, const float value[4]);
-    bool copyTo(GLuint texture, GLuint activeUnit, const float value[4]);
-    const Strip& strip(GLenum format, const float value[4]);
+    bool copyInto(GLenum attachment, const Value& value);
+    bool copyTo(GLuint texture, GLuint activeUnit, const Value& value);
+    const Strip& strip(GLenum format, const Value& value);
+    static void clearBuffer(GLint drawBuffer, const Value& value);
 
     static constexpr size_t kMaxStrips = 4;
     Path path_;

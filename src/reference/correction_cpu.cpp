@@ -74,6 +74,47 @@ glm::vec4 blendNearest(const glm::vec4& a, const glm::vec4& b) { return glm::min
 
 float keyedDepth(float z) { return depthOfKey(packedDepthKey(z)); }
 
+namespace {
+uint32_t packedColourSteps(float c, float steps) {
+    const float r = std::sqrt(std::max(c, 0.0f));
+    return uint32_t(std::floor(r / (1.0f + r) * steps + 0.5f));
+}
+
+float unpackedColourSteps(uint32_t p, float steps) {
+    const float x = float(p) / steps;
+    const float r = x / (1.0f - x);
+    return r * r;
+}
+}  // namespace
+
+glm::uvec2 packLayer(float z, const glm::vec4& c) {
+    const uint32_t alpha = uint32_t(std::floor(std::clamp(c.a, 0.0f, 1.0f) * float(STARNT_PACKED_STEPS) + 0.5f));
+    return {(packedDepthKey(z) << STARNT_PACKED_PAYLOAD_BITS) | alpha,
+            packedColour(c.r) | (packedColour(c.g) << 11) | (packedColourSteps(c.b, float(STARNT_PACKED_BLUE_STEPS)) << 22)};
+}
+
+glm::uvec4 packedLayersEmpty() { return {STARNT_PACKED_LAYER_EMPTY, 0u, STARNT_PACKED_LAYER_EMPTY, 0u}; }
+static_assert(STARNT_PACKED_LAYER_EMPTY == (kPackedMaxKey << STARNT_PACKED_PAYLOAD_BITS | kPackedPayloadMask));
+
+glm::uvec4 insertLayer(const glm::uvec4& layers, const glm::uvec2& f) {
+    const uint32_t key = f.x >> STARNT_PACKED_PAYLOAD_BITS, first = layers.x >> STARNT_PACKED_PAYLOAD_BITS;
+    if (key < first) return {f.x, f.y, layers.x, layers.y};
+    if (key > first && key < (layers.z >> STARNT_PACKED_PAYLOAD_BITS)) return {layers.x, layers.y, f.x, f.y};
+    return layers;
+}
+
+glm::vec4 unpackLayer(const glm::uvec2& layer, float& z) {
+    const uint32_t key = layer.x >> STARNT_PACKED_PAYLOAD_BITS;
+    if (key == kPackedMaxKey) {
+        z = 1.0f;
+        return glm::vec4(0.0f);
+    }
+    z = depthOfKey(key);
+    return {unpackedColour(layer.y & kPackedPayloadMask), unpackedColour((layer.y >> 11) & kPackedPayloadMask),
+            unpackedColourSteps(layer.y >> 22, float(STARNT_PACKED_BLUE_STEPS)),
+            float(layer.x & kPackedPayloadMask) / float(STARNT_PACKED_STEPS)};
+}
+
 float depthBehindReference(float z, float reference) {
     if (!(reference < 1.0f)) return 0.0f;
     return std::log(1.0f + std::max(keyedDepth(z) - reference, 0.0f) /
@@ -145,6 +186,29 @@ glm::vec3 orderedClosedFormBehind(const glm::vec4& nearest, float depth, const g
     const glm::vec4 first = ordered.moment1 - u * sums;
     return orderedClosedFormBehindFromMoments(nearest, sums, transmittance, first, ordered.moment2 - u * (ordered.moment1.a + first.a),
                                               background);
+}
+
+glm::vec3 orderedClosedFormBehindSecondFromMoments(const glm::vec4& nearest, const glm::vec4& second, const glm::vec4& sums,
+                                                   float transmittance, const glm::vec4& moment1, float moment2,
+                                                   const glm::vec3& background) {
+    const float open2 = 1.0f - second.a;
+    if (!(open2 > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE))) return glm::vec3(second);
+    const glm::vec4 nearestTerms(glm::vec3(nearest) * nearest.a, nearest.a);
+    const glm::vec3 behind = orderedClosedFormBehindFromMoments(second, sums - nearestTerms, transmittance / (1.0f - nearest.a),
+                                                                moment1, moment2, background);
+    return second.a * glm::vec3(second) + open2 * behind;
+}
+
+glm::vec3 orderedClosedFormBehindTwoLayers(const glm::vec4& nearest, float depth, const glm::vec4& second, float secondDepth,
+                                           const glm::vec4& sums, float transmittance, const OrderedBehind& ordered,
+                                           const glm::vec3& background) {
+    const float u2 = depthBehindReference(secondDepth, ordered.reference);
+    const float d = depthBehindReference(depth, ordered.reference) - u2;
+    const glm::vec4 nearestTerms(glm::vec3(nearest) * nearest.a, nearest.a);
+    const glm::vec4 first = ordered.moment1 - u2 * sums;
+    const float second2 = ordered.moment2 - u2 * (ordered.moment1.a + first.a) - nearestTerms.a * d * d;
+    return orderedClosedFormBehindSecondFromMoments(nearest, second, sums, transmittance, first - nearestTerms * d, second2,
+                                                    background);
 }
 
 glm::vec3 closedFormBehind(const glm::vec4& nearest, const glm::vec4& sums, float transmittance, const glm::vec3& background) {

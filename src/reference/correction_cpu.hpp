@@ -60,6 +60,14 @@ glm::vec4 blendNearest(const glm::vec4& a, const glm::vec4& b);
 // nearest over the tile's every STARNT_ORDERED_REFERENCE_STRIDE-th pixel and its eight neighbour
 // tiles'; reference_depth.frag.glsl), referenceAt its value at pixel (x, y).
 float keyedDepth(float z);
+// The nearest two fragments in one RGBA32UI texel (packed_nearest.h, STARNT_PACKED_TWO_LAYERS; the
+// same integer and float operations as packed_nearest.glsl): packLayer, a fragment's two words;
+// insertLayer, the texel after that fragment met it (draw order); unpackLayer, C and a of a layer
+// (0 where none) and its window depth (1 where none).
+glm::uvec2 packLayer(float z, const glm::vec4& c);
+glm::uvec4 packedLayersEmpty();
+glm::uvec4 insertLayer(const glm::uvec4& layers, const glm::uvec2& fragment);
+glm::vec4 unpackLayer(const glm::uvec2& layer, float& z);
 float depthBehindReference(float z, float reference);
 std::vector<float> referenceDepthOnCpu(const std::vector<float>& depth, int width, int height);
 float referenceAt(const std::vector<float>& reference, int width, int x, int y);
@@ -83,6 +91,18 @@ glm::vec3 orderedClosedFormBehind(const glm::vec4& nearest, float depth, const g
 // what orderedClosedFormBehind makes of the sums over every fragment.
 glm::vec3 orderedClosedFormBehindFromMoments(const glm::vec4& nearest, const glm::vec4& sums, float transmittance,
                                              const glm::vec4& moment1, float moment2, const glm::vec3& background);
+
+// What lies behind the nearest layer when the second (C2, a2 > 0) is known exactly too
+// (ordered_behind.glsl): the second layer over the ordered closed form of what lies behind it.
+// ...SecondFromMoments: `moment1`, `moment2` summed over the fragments behind the second layer in
+// v = u - u2 (a real frame's pass 3 with STARNT_BEHIND_SECOND); ...TwoLayers: from an
+// interpolated frame's moments in u over every fragment, recentred at u2, less the nearest's terms.
+glm::vec3 orderedClosedFormBehindSecondFromMoments(const glm::vec4& nearest, const glm::vec4& second, const glm::vec4& sums,
+                                                   float transmittance, const glm::vec4& moment1, float moment2,
+                                                   const glm::vec3& background);
+glm::vec3 orderedClosedFormBehindTwoLayers(const glm::vec4& nearest, float depth, const glm::vec4& second, float secondDepth,
+                                           const glm::vec4& sums, float transmittance, const OrderedBehind& ordered,
+                                           const glm::vec3& background);
 
 // One interpolated pixel (x, y): `nearest`, `depth`, `sums`, `transmittance` of the fresh passes at
 // that pixel; `correction` the kept texels of a frame rendered with `oldViewProj` (empty: the frame

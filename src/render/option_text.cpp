@@ -99,6 +99,14 @@ void parseCorrectedPassesOption(int passes, MethodOptions& options) {
     options.neural.correctedOnePass = passes == 1;
 }
 
+void parseCorrectedLayersOption(const std::string& text, MethodOptions& options) {
+    using L = NeuralOptions::CorrectedLayers;
+    if (text == "auto") options.neural.correctedLayers = L::Auto;
+    else if (text == "1") options.neural.correctedLayers = L::One;
+    else if (text == "2") options.neural.correctedLayers = L::Two;
+    else throw Error("--corrected-layers '" + text + "': expected auto, 1 or 2");
+}
+
 void parseTargetsOption(const std::string& text, MethodOptions& options) {
     if (text == "compact") options.neural.targets = NeuralOptions::Targets::Compact;
     else if (text == "fp32") options.neural.targets = NeuralOptions::Targets::Float32;

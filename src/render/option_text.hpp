@@ -29,6 +29,8 @@ void parseUpsampleOption(const std::string& text, MethodOptions& options);
 void parseTemporalModeOption(const std::string& text, MethodOptions& options);
 // --corrected-passes 1|2: NeuralOptions::correctedOnePass.
 void parseCorrectedPassesOption(int passes, MethodOptions& options);
+// --corrected-layers auto|1|2: NeuralOptions::correctedLayers.
+void parseCorrectedLayersOption(const std::string& text, MethodOptions& options);
 // "compact" | "fp32" (docs/DESIGN.md, "Pipeline and formats": pass-target precision).
 void parseTargetsOption(const std::string& text, MethodOptions& options);
 // Target frame rate for --temporal auto: finite and in (0, 1000].

@@ -42,11 +42,13 @@ public:
           // Only DFAOIT's inputs read the unweighted colour sum of pass 3 (docs/DESIGN.md, "Pipeline and formats").
           passes_(surface, opaque_, config.kind == nn::NetworkKind::DFAOIT, options_.neural.targets,
                   narrowLayersApply(config, options_, spatial_, corners_), config.tailMoments),
-          temporal_(options_, config.tailMoments) {
+          twoLayers_(correctedTwoLayers(config, options_)),
+          temporal_(options_, config.tailMoments, twoLayers_) {
         if (spatial_ || corners_) tiles_ = std::make_unique<tiles::GpuTiles>();
         shadingRates_ = shadingRatesApply();
         if (shadingRates_) tiles_->enableShadingRates();
         if (temporal_.interpolates() && temporal_.corrects()) {
+            if (twoLayers_) passes_.findTwoLayers();
             if (options_.neural.correctedOnePass) passes_.preparePackedNearestAndSums();
             else passes_.prepareNearestAndSums();
             if (config_.tailMoments && fusedCaptureApplies()) {
@@ -323,6 +325,31 @@ private:
         return false;
     }
 
+    // Whether the interpolated frames find the nearest two fragments (NeuralOptions::correctedLayers;
+    // docs/DESIGN.md, "Corrected frames: the second layer by framebuffer fetch"). Their real frames
+    // then sum the moments behind pass 2's layer, and the kept correction is taken against the
+    // closed form with both layers exact. `2` without what it needs is an error naming it; `auto`
+    // falls back to one layer.
+    static bool correctedTwoLayers(const NeuralMethodConfig& config, const MethodOptions& o) {
+        using L = NeuralOptions::CorrectedLayers;
+        if (o.neural.correctedLayers == L::One) return false;
+        const bool corrected = (o.neural.temporalInterval > 1 || o.neural.temporalAuto) &&
+                               o.neural.temporalMode == NeuralOptions::TemporalMode::Correct;
+        std::string missing;
+        if (!config.tailMoments) {
+            missing = "a tail-moment method (hybrid-moments, starnt-d, recommended)";
+        } else if (!corrected) {
+            missing = "corrected frames (--temporal 2..4 or auto with --temporal-mode correct)";
+        } else if (!o.neural.correctedOnePass) {
+            missing = "corrected frames in one geometry pass (--corrected-passes 1)";
+        } else if (!epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) {
+            missing = "GL_EXT_shader_framebuffer_fetch in this OpenGL context";
+        }
+        if (missing.empty()) return true;
+        if (o.neural.correctedLayers == L::Two) throw Error("--corrected-layers 2 needs " + missing);
+        return false;
+    }
+
     static const MethodOptions& validated(const NeuralMethodConfig& config, const MethodOptions& o) {
         auto scaleOk = [](float s) { return s == 0.0f || (s >= float(STARNT_SCALE_MIN) && s <= 1.0f); };
         if (!scaleOk(o.neural.fixedScale2) || !scaleOk(o.neural.fixedScale3) || ((o.neural.fixedScale2 == 0.0f) != (o.neural.fixedScale3 == 0.0f))) {
@@ -357,6 +384,7 @@ private:
         const std::string defines = std::string(fullResolutionInputs ? "#define STARNT_INPUTS_FULL_RESOLUTION\n" : "") +
                                     (capture ? "#define STARNT_CAPTURE_CORRECTION\n" : "") +
                                     (ordered ? "#define STARNT_CAPTURE_ORDERED\n" : "") +
+                                    (ordered && twoLayers_ ? "#define STARNT_CAPTURE_TWO_LAYERS\n" : "") +
                                     (joint() ? "#define STARNT_UPSAMPLE_JOINT\n" : "") + passes_.countLayoutDefine() + passes_.targetsDefine() +
                                     passes_.layerDefine() +
                                     neuralEpsilonDefines() + nn::generateInferenceGlsl(network_);
@@ -495,6 +523,7 @@ private:
     nn::Network network_;
     std::map<std::pair<std::string, bool>, gl::Program> inferencePrograms_;
     NeuralPasses passes_;
+    bool twoLayers_;  // correctedTwoLayers
     TemporalFrames temporal_;
     std::unique_ptr<tiles::GpuTiles> tiles_;
     EmptyPixelSkip emptyPixels_;

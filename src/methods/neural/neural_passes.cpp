@@ -231,6 +231,7 @@ void NeuralPasses::addMemoryTargets(OitMethod::MemoryTargets& out) const {
                            {"layer_alphas", layerAlpha_.bytes()},
                            {"pass3_tail_moments", tailMoment1_.bytes() + tailMoment2_.bytes()},
                            {"corrected_packed_nearest", packedNearest_.bytes()},
+                           {"corrected_packed_layers", packedLayers_.bytes()},
                            {"pass3_resolve_copies_es", esResolveCopies_.bytes()},
                            {"clear_strips", clears_.bytes()}});
 }
@@ -238,7 +239,7 @@ void NeuralPasses::addMemoryTargets(OitMethod::MemoryTargets& out) const {
 size_t NeuralPasses::gpuMemoryBytes() const {
     return nearest_.bytes() + nearestDepth_.bytes() + second_.bytes() + secondDepth_.bytes() +
            alphaColor_.bytes() + colorCount_.bytes() + transmittance_.bytes() + layerAlpha_.bytes() +
-           tailMoment1_.bytes() + tailMoment2_.bytes() + packedNearest_.bytes() + esResolveCopies_.bytes() + clears_.bytes();
+           tailMoment1_.bytes() + tailMoment2_.bytes() + packedNearest_.bytes() + packedLayers_.bytes() + esResolveCopies_.bytes() + clears_.bytes();
 }
 
 void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) {
@@ -304,7 +305,8 @@ void NeuralPasses::prepareRealBehindMoments() {
     if (!pass3Behind_.id()) {
         pass3Behind_ = buildSurfaceProgram(surface_, "neural_pass3_behind", "methods/neural/pass3_accumulate.frag.glsl",
                                            std::string(colorSums_ ? "" : "#define STARNT_COUNT_ONLY\n") +
-                                               tailMomentsDefine(tailMoments_) + behindMomentsDefine());
+                                               tailMomentsDefine(tailMoments_) + behindMomentsDefine() +
+                                               (twoLayers_ ? "#define STARNT_BEHIND_SECOND\n" : ""));
     }
 }
 
@@ -427,7 +429,10 @@ void NeuralPasses::preparePackedNearestAndSums() {
     if (!pass3Packed_.id()) {
         pass3Packed_ = buildSurfaceProgram(surface_, "neural_pass3_packed", "methods/neural/pass3_accumulate.frag.glsl",
                                            std::string("#define STARNT_SUMS_ONLY\n#define STARNT_PACKED_NEAREST\n") +
-                                               behindMomentsDefine());
+                                               behindMomentsDefine() +
+                                               (twoLayers_ ? "#extension GL_EXT_shader_framebuffer_fetch : require\n"
+                                                             "#define STARNT_PACKED_TWO_LAYERS\n"
+                                                           : ""));
     }
 }
 
@@ -447,7 +452,14 @@ void NeuralPasses::beginSecondMomentAndOpticalDepth(GLuint target) {
 void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCallback& draw, GLuint reference) {
     resize(frame.width, frame.height);
     preparePackedNearestAndSums();
-    allocatePackedNearest();
+    gl::Texture2D& packed = twoLayers_ ? packedLayers_ : packedNearest_;
+    if (packed.width() != width_ || packed.height() != height_) {
+        // The two layers: an integer target of their own (the real frames keep their moments behind
+        // the reference in packedNearest_, a float one).
+        if (twoLayers_) packedLayers_ = gl::Texture2D(GL_RGBA32UI, width_, height_);
+        else allocatePackedNearest();
+        packedFb_.reset();
+    }
     if (tailMoments_) widenCountBesideBehind();
     if (!packedFb_.id()) {
         // Pass 1's depth target, free in an interpolated frame, records which pixels any fragment
@@ -455,7 +467,7 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
         // composite's early empty-pixel test; so the opaque clip runs in the shader, as in pass 1.
         // The tail-moment methods sum their moments behind the nearest layer into their first
         // moment target and the count's, free in an interpolated frame (makeSumsFramebuffer).
-        packedFb_ = tailMoments_ ? gl::makeFramebuffer({&alphaColor_, &colorCount_, &packedNearest_, &tailMoment1_}, &nearestDepth_)
+        packedFb_ = tailMoments_ ? gl::makeFramebuffer({&alphaColor_, &colorCount_, &packed, &tailMoment1_}, &nearestDepth_)
                                  : gl::makeFramebuffer({&alphaColor_, &transmittance_, &packedNearest_}, &nearestDepth_);
     }
     pass3Size_ = {width_, height_};
@@ -472,10 +484,16 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
     glEnable(GL_BLEND);
     glBlendFunci(0, GL_ONE, GL_ONE);                   // sum a C, sum a
     glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);  // prod (1 - a)
-    const float emptyPixel = std::bit_cast<float>(STARNT_PACKED_EMPTY_BITS);
-    const float empty[4] = {emptyPixel, emptyPixel, emptyPixel, emptyPixel};
-    clears_.color(2, empty);
-    glBlendEquationi(2, GL_MIN);  // blend factors do not apply to MIN
+    if (twoLayers_) {
+        // Read and rewritten by every fragment (framebuffer fetch); an integer target blends nothing.
+        const GLuint empty[4] = {STARNT_PACKED_LAYER_EMPTY, 0u, STARNT_PACKED_LAYER_EMPTY, 0u};
+        clears_.colorUint(2, empty);
+    } else {
+        const float emptyPixel = std::bit_cast<float>(STARNT_PACKED_EMPTY_BITS);
+        const float empty[4] = {emptyPixel, emptyPixel, emptyPixel, emptyPixel};
+        clears_.color(2, empty);
+        glBlendEquationi(2, GL_MIN);  // blend factors do not apply to MIN
+    }
     if (tailMoments_) {
         beginSecondMomentAndOpticalDepth(1);
         beginBehindMoment(3, reference);

@@ -151,7 +151,11 @@ public:
     // The moments behind `reference` as runNearestAndSums.
     void runPackedNearestAndSums(const FrameDesc& frame, const DrawCallback& draw, GLuint reference = 0);
     void preparePackedNearestAndSums();
-    GLuint packedNearest() const { return packedNearest_.id(); }
+    GLuint packedNearest() const { return twoLayers_ ? packedLayers_.id() : packedNearest_.id(); }
+    // From now on runPackedNearestAndSums finds the nearest two fragments (the tail-moment methods,
+    // GL_EXT_shader_framebuffer_fetch; packed_nearest.h): packedNearest() is then RGBA32UI. Call
+    // before preparePackedNearestAndSums.
+    void findTwoLayers() { twoLayers_ = tailMoments_; }
     // The moments an interpolated frame of a tail-moment method summed behind its reference (targets
     // its real frames' inference has read by then): (sum a C u, sum a u) in the first tail-moment
     // target, and in the count's (RG32F) sum a u^2 in .r and the optical depth sum -ln(1 - a) in .g
@@ -232,6 +236,8 @@ private:
     // runPackedNearestAndSums' pass 3 and its targets: the sums and the packed nearest fragment.
     gl::Program pass3Packed_;
     gl::Texture2D packedNearest_;  // allocated on first need
+    bool twoLayers_ = false;       // findTwoLayers
+    gl::Texture2D packedLayers_;   // the nearest two fragments (twoLayers_), allocated on first need
     // A real frame's moments behind the reference (the first in packedNearest_, free then; the
     // second beside the count).
     gl::Program pass3Behind_;

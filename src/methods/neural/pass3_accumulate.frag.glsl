@@ -13,11 +13,15 @@
 //   reads nothing else): target 0 as above, target 1 the transmittance; no count, no moments.
 //   and with STARNT_PACKED_NEAREST (corrected frames in one geometry pass, no pass 1):
 //   target 2 (RGBA32F, blend equation GL_MIN):        the nearest fragment (packed_nearest.glsl)
+//   or with STARNT_PACKED_TWO_LAYERS (framebuffer fetch, the tail-moment methods):
+//   target 2 (RGBA32UI, read and rewritten):          the nearest two fragments (packed_nearest.h)
 //   and with STARNT_BEHIND_MOMENTS (corrected frames of the tail-moment methods), u a fragment's
 //   depth behind the reference depth (ordered_behind.glsl), over every fragment:
 //   target 1 (the count's, RG32F, blend ONE/ONE):      sum a u^2, sum -ln(1 - a) (the optical
 //                                                      depth in place of prod (1 - a): both added)
 //   the next target (2, or 3 after the packed layer) (RGBA32F, blend ONE/ONE): sum a C u, sum a u
+//   With STARNT_BEHIND_SECOND (real frames whose interpolated frames find two layers,
+//   STARNT_PACKED_TWO_LAYERS) the same over the fragments behind pass 2's layer only, in v = u - u2.
 //   Their real frames (with the tail moments, not STARNT_SUMS_ONLY) sum the same over every
 //   fragment, the same float operations, so that their composite recentres them as the
 //   interpolated frames' does (STARNT_BEHIND_BESIDE_COUNT): sum a u^2 beside the count in target 1
@@ -25,7 +29,13 @@
 layout(location = 0) out vec4 outAlphaColor;
 #ifdef STARNT_SUMS_ONLY
 layout(location = 1) out vec4 outTransmittance;
-#ifdef STARNT_PACKED_NEAREST
+#if defined(STARNT_PACKED_TWO_LAYERS)
+// The nearest two fragments, by reading and rewriting the target in draw order
+// (EXT_shader_framebuffer_fetch; packed_nearest.h): target 2 is RGBA32UI, not blended.
+#include "methods/neural/temporal/packed_nearest.glsl"
+layout(location = 2) inout highp uvec4 outPackedLayers;
+#define STARNT_BEHIND_MOMENT1_LOCATION 3
+#elif defined(STARNT_PACKED_NEAREST)
 #include "methods/neural/temporal/packed_nearest.glsl"
 layout(location = 2) out vec4 outPackedNearest;
 #define STARNT_BEHIND_MOMENT1_LOCATION 3
@@ -63,12 +73,23 @@ void main() {
     outColorCount = vec4(s.rgb, 1.0);
 #endif
     outTransmittance = vec4(0.0, 0.0, 0.0, s.a);
-#ifdef STARNT_PACKED_NEAREST
+#if defined(STARNT_PACKED_TWO_LAYERS)
+    outPackedLayers = insertLayer(outPackedLayers, packLayer(gl_FragCoord.z, s));
+#elif defined(STARNT_PACKED_NEAREST)
     outPackedNearest = packNearest(gl_FragCoord.z, s);
 #endif
+#ifdef STARNT_TAIL_MOMENTS
+    float second = texelFetch(u_secondDepth, ivec2(gl_FragCoord.xy), 0).r;
+#endif
 #ifdef STARNT_BEHIND_MOMENTS
-    float behind = depthBehindReference(gl_FragCoord.z,
-                                        texelFetch(u_reference, ivec2(gl_FragCoord.xy) / STARNT_ORDERED_REFERENCE_TILE, 0).r);
+    float reference = texelFetch(u_reference, ivec2(gl_FragCoord.xy) / STARNT_ORDERED_REFERENCE_TILE, 0).r;
+#ifdef STARNT_BEHIND_SECOND
+    // Behind pass 2's layer only, in v = u - u2 (ordered_behind.glsl: orderedClosedFormBehindSecondFromMoments).
+    float behind = gl_FragCoord.z > second ? depthBehindReference(gl_FragCoord.z, reference) - depthBehindReference(second, reference)
+                                           : 0.0;
+#else
+    float behind = depthBehindReference(gl_FragCoord.z, reference);
+#endif
     outBehindMoment1 = vec4(s.rgb * s.a, s.a) * behind;
 #ifdef STARNT_BEHIND_BESIDE_COUNT
     outColorCount.g = outBehindMoment1.a * behind;
@@ -77,7 +98,6 @@ void main() {
 #endif
 #endif
 #ifdef STARNT_TAIL_MOMENTS
-    float second = texelFetch(u_secondDepth, ivec2(gl_FragCoord.xy), 0).r;
     // tail_moments_constants.h: a logarithmic depth behind z2 (1 - second > 0 wherever z > second).
     float u = gl_FragCoord.z > second
                   ? log(1.0 + (gl_FragCoord.z - second) / (float(STARNT_TAIL_MOMENT_DEPTH_SCALE) * (1.0 - second)))

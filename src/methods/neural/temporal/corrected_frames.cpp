@@ -13,12 +13,14 @@ namespace {
 const char* orderedDefine(bool ordered) { return ordered ? "#define STARNT_ORDERED_BEHIND\n" : ""; }
 }  // namespace
 
-CorrectedFrames::CorrectedFrames(bool ordered)
+CorrectedFrames::CorrectedFrames(bool ordered, bool twoLayers)
     : ordered_(ordered),
+      twoLayers_(ordered && twoLayers),
       capture_(buildTemporalPass("correction_capture", "reprojection_behind.frag.glsl", "#define STARNT_BEHIND_CORRECTION 1\n")),
       composite_(buildTemporalPass("correction_composite", "correction_composite.frag.glsl", orderedDefine(ordered))),
       compositePacked_(buildTemporalPass("correction_composite_packed", "correction_composite.frag.glsl",
-                                         std::string("#define STARNT_PACKED_NEAREST\n") + orderedDefine(ordered))),
+                                         std::string("#define STARNT_PACKED_NEAREST\n") + orderedDefine(ordered) +
+                                             (ordered && twoLayers ? "#define STARNT_PACKED_TWO_LAYERS\n" : ""))),
       emptyVao_(gl::makeEmptyVertexArray()) {
     if (ordered) {
         referenceTilesPass_ = buildTemporalPass("corrected_reference_tiles", "reference_depth.frag.glsl");
@@ -138,8 +140,9 @@ void CorrectedFrames::compositePacked(const glm::mat4& newViewProj, GLuint packe
                                       GLuint sumAlphaColor, GLuint transmittance, const OpaqueScene& background,
                                       GLuint output, GLuint behindMoment1, GLuint behindMoment2) {
     if (!hasFrame_) throw Error("internal: a corrected frame before any real frame was captured");
-    if (gl::textureInternalFormat(packedNearest) != GL_RGBA32F) {
-        throw Error("internal: the packed nearest fragment must be an RGBA32F texture");
+    if (gl::textureInternalFormat(packedNearest) != (twoLayers_ ? GL_RGBA32UI : GL_RGBA32F)) {
+        throw Error(twoLayers_ ? "internal: the packed two layers must be an RGBA32UI texture"
+                               : "internal: the packed nearest fragment must be an RGBA32F texture");
     }
     const bool halfOutput = gl::textureInternalFormat(output) == GL_RGBA16F;  // before any binding (ES)
     emptyPixels_.bindCovered(output, coverDepth, width_, height_);

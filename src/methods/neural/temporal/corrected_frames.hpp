@@ -19,7 +19,9 @@ public:
     // interpolated frames weigh what lies behind the nearest layer by depth (ordered_behind.glsl):
     // every kept frame then keeps a reference depth too (reference()), and the composites read the
     // moments pass 3 summed behind it.
-    explicit CorrectedFrames(bool ordered = false);
+    // ordered: the tail-moment methods' closed form (ordered_behind.glsl); twoLayers: their
+    // interpolated frames' packed target holds the nearest two fragments (packed_nearest.h).
+    explicit CorrectedFrames(bool ordered = false, bool twoLayers = false);
 
     // After a real frame: `composite` its output (RGBA16F or RGBA32F; the kept texture takes the same
     // format), `depth` its pass-1 depth (DEPTH_COMPONENT32F), `nearest` its pass-1 colour + alpha,
@@ -88,6 +90,7 @@ private:
     void bindComposite(GLuint nearestOrPacked, GLuint depth, GLuint sumAlphaColor,
                        GLuint transmittance, GLuint behindMoment1, GLuint behindMoment2);
     bool ordered_ = false;
+    bool twoLayers_ = false;
     bool referenceFresh_ = false;  // prepareReference ran in this real frame
     gl::Program capture_, composite_, compositePacked_;
     gl::Program referenceTilesPass_, referenceAroundPass_;  // ordered only

@@ -14,7 +14,12 @@
 #include "methods/neural/temporal/closed_form_behind.glsl"
 #include "methods/neural/half_targets.glsl"
 
-#ifdef STARNT_PACKED_NEAREST
+#if defined(STARNT_PACKED_TWO_LAYERS)
+// The tail-moment methods where framebuffer fetch exists: the nearest two layers, packed
+// (packed_nearest.h), and what lies behind the second weighed by depth.
+#include "methods/neural/temporal/packed_nearest.glsl"
+layout(binding = 0) uniform highp usampler2D u_packedLayers;  // fresh pass 3: the nearest two fragments, packed
+#elif defined(STARNT_PACKED_NEAREST)
 #include "methods/neural/temporal/packed_nearest.glsl"
 layout(binding = 0) uniform highp sampler2D u_packedNearest;  // fresh pass 3: the nearest fragment, packed
 #else
@@ -49,7 +54,12 @@ out vec4 o_color;
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
-#ifdef STARNT_PACKED_NEAREST
+#if defined(STARNT_PACKED_TWO_LAYERS)
+    uvec4 layers = texelFetch(u_packedLayers, p, 0);
+    float depth, secondDepth;
+    vec4 fresh = unpackLayer(layers.xy, depth);
+    vec4 second = unpackLayer(layers.zw, secondDepth);
+#elif defined(STARNT_PACKED_NEAREST)
     float depth;
     vec4 fresh = unpackNearest(texelFetch(u_packedNearest, p, 0), depth);
 #else
@@ -68,7 +78,19 @@ void main() {
 #endif
         vec3 behind = background();
         if (open > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE)) {
-#ifdef STARNT_ORDERED_BEHIND
+#if defined(STARNT_PACKED_TWO_LAYERS)
+            if (second.a > 0.0) {
+                behind = orderedClosedFormBehindTwoLayers(fresh, depth, second, secondDepth, texelFetch(u_sumAlphaColor, p, 0),
+                                                          transmittance, texelFetch(u_behindMoment1, p, 0),
+                                                          secondAndTransmittance.x,
+                                                          texelFetch(u_reference, p / STARNT_ORDERED_REFERENCE_TILE, 0).r,
+                                                          background());
+            } else {
+                behind = orderedClosedFormBehind(fresh, depth, texelFetch(u_sumAlphaColor, p, 0), transmittance,
+                                                 texelFetch(u_behindMoment1, p, 0), secondAndTransmittance.x,
+                                                 texelFetch(u_reference, p / STARNT_ORDERED_REFERENCE_TILE, 0).r, background());
+            }
+#elif defined(STARNT_ORDERED_BEHIND)
             behind = orderedClosedFormBehind(fresh, depth, texelFetch(u_sumAlphaColor, p, 0), transmittance,
                                              texelFetch(u_behindMoment1, p, 0), secondAndTransmittance.x,
                                              texelFetch(u_reference, p / STARNT_ORDERED_REFERENCE_TILE, 0).r, background());

@@ -58,4 +58,33 @@ vec3 orderedClosedFormBehind(vec4 nearest, float depth, vec4 sums, float t, vec4
     vec4 first = m1 - u * sums;
     return orderedClosedFormBehindFromMoments(nearest, sums, t, first, m2 - u * (m1.a + first.a), background);
 }
+
+// What lies behind the nearest layer when the second is known exactly too (C2, a2 > 0, behind the
+// nearest): the second layer over the ordered closed form of what lies behind it. `m1`, `m2` =
+// (sum a C v, sum a v), sum a v^2 over the fragments behind the second layer, v = u - u2 the
+// depth behind it (a real frame's pass 3 sums them so: STARNT_BEHIND_SECOND); `sums`, `t` over
+// every fragment.
+vec3 orderedClosedFormBehindSecondFromMoments(vec4 nearest, vec4 second, vec4 sums, float t, vec4 m1, float m2,
+                                              vec3 background) {
+    float open2 = 1.0 - second.a;
+    if (!(open2 > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE))) return second.rgb;
+    vec4 nearestTerms = vec4(nearest.rgb * nearest.a, nearest.a);
+    vec3 behind = orderedClosedFormBehindFromMoments(second, sums - nearestTerms, t / (1.0 - nearest.a), m1, m2, background);
+    return second.a * second.rgb + open2 * behind;
+}
+
+// The same from an interpolated frame's pass 3 (the nearest two layers packed, the moments in u
+// over every fragment): the moments recentred at u2, the second layer's (its own terms then
+// vanish), less the nearest layer's, a1 (C1, 1) (u1 - u2) and a1 (u1 - u2)^2. They differ from
+// what a real frame sums behind the second layer only by fragments at the nearest layer's key
+// other than it (coplanar duplicates).
+vec3 orderedClosedFormBehindTwoLayers(vec4 nearest, float depth, vec4 second, float secondDepth, vec4 sums, float t, vec4 m1,
+                                      float m2, float reference, vec3 background) {
+    float u2 = depthBehindReference(secondDepth, reference);
+    float d = depthBehindReference(depth, reference) - u2;
+    vec4 nearestTerms = vec4(nearest.rgb * nearest.a, nearest.a);
+    vec4 first = m1 - u2 * sums;
+    float second2 = m2 - u2 * (m1.a + first.a) - nearestTerms.a * d * d;
+    return orderedClosedFormBehindSecondFromMoments(nearest, second, sums, t, first - nearestTerms * d, second2, background);
+}
 #endif

@@ -58,4 +58,49 @@ vec4 unpackNearest(vec4 encoded, out float z) {
     return vec4(unpackedColour(payload.r), unpackedColour(payload.g), unpackedColour(payload.b),
                 float(payload.a) / float(STARNT_PACKED_STEPS));
 }
+
+#ifdef STARNT_PACKED_TWO_LAYERS
+uint packedColourSteps(float c, float steps) {
+    float r = sqrt(max(c, 0.0));
+    return uint(floor(r / (1.0 + r) * steps + 0.5));
+}
+
+float unpackedColourSteps(uint p, float steps) {
+    float x = float(p) / steps;
+    float r = x / (1.0 - x);
+    return r * r;
+}
+
+// One layer's two words (packed_nearest.h).
+uvec2 packLayer(float z, vec4 c) {
+    uint alpha = uint(floor(clamp(c.a, 0.0, 1.0) * float(STARNT_PACKED_STEPS) + 0.5));
+    return uvec2((packedDepthKey(z) << STARNT_PACKED_PAYLOAD_BITS) | alpha,
+                 packedColour(c.r) | (packedColour(c.g) << 11) |
+                     (packedColourSteps(c.b, float(STARNT_PACKED_BLUE_STEPS)) << 22));
+}
+
+// The two layers after fragment `f` (packLayer) met them: the nearest, then the nearest with a
+// larger key; on equal keys the layer already kept stays.
+uvec4 insertLayer(uvec4 layers, uvec2 f) {
+    uint key = f.x >> STARNT_PACKED_PAYLOAD_BITS;
+    uint first = layers.x >> STARNT_PACKED_PAYLOAD_BITS;
+    if (key < first) return uvec4(f, layers.xy);
+    if (key > first && key < (layers.z >> STARNT_PACKED_PAYLOAD_BITS)) return uvec4(layers.xy, f);
+    return layers;
+}
+
+// C, a of a layer (all 0 where there is none) and its window depth (1 where there is none), at the
+// middle of its key's depth interval.
+vec4 unpackLayer(uvec2 layer, out float z) {
+    uint key = layer.x >> STARNT_PACKED_PAYLOAD_BITS;
+    if (key == kPackedMaxKey) {
+        z = 1.0;
+        return vec4(0.0);
+    }
+    z = depthOfKey(key);
+    return vec4(unpackedColour(layer.y & kPackedPayloadMask), unpackedColour((layer.y >> 11) & kPackedPayloadMask),
+                unpackedColourSteps(layer.y >> 22, float(STARNT_PACKED_BLUE_STEPS)),
+                float(layer.x & kPackedPayloadMask) / float(STARNT_PACKED_STEPS));
+}
+#endif
 #endif

@@ -27,4 +27,17 @@
 // to STARNT_MAX_SURFACE_COLOR (1024) above, in steps of a few %. Alpha: linear steps.
 #define STARNT_PACKED_STEPS 2047.0
 
+
+// Two layers (corrected frames of the tail-moment methods where EXT_shader_framebuffer_fetch exists;
+// docs/DESIGN.md, "Corrected frames: the second layer by framebuffer fetch"): an RGBA32UI target
+// that every fragment reads and rewrites in draw order, the nearest fragment in .xy and the nearest
+// one behind it (a larger key) in .zw, each as
+//   x: key << STARNT_PACKED_PAYLOAD_BITS | alpha    y: r | g << 11 | b << 22
+// the key and the alpha as above, r and g in STARNT_PACKED_STEPS steps, b in
+// STARNT_PACKED_BLUE_STEPS (10 bits). A fragment whose key equals a layer's loses to it (the first
+// drawn stays, as pass 1's LESS depth test and pass 2's peel keep it). Clear: x and z
+// STARNT_PACKED_LAYER_EMPTY (the largest key, every payload bit set), y and w 0.
+#define STARNT_PACKED_BLUE_STEPS 1023.0
+#define STARNT_PACKED_LAYER_EMPTY 0x1FFFFFFFu
+
 #endif

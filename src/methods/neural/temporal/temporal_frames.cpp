@@ -4,14 +4,14 @@
 
 namespace starnt {
 
-TemporalFrames::TemporalFrames(const MethodOptions& options, bool orderedBehind)
+TemporalFrames::TemporalFrames(const MethodOptions& options, bool orderedBehind, bool twoLayers)
     : schedule_(options),
       clock_(gl::wallClockTimingNeeded()),
       mode_(options.neural.temporalMode),
       skipEmptyPixels_(options.neural.skipEmptyPixels),
       onePass_(options.neural.correctedOnePass) {
     if (!interpolates()) return;
-    if (corrects()) corrected_ = std::make_unique<temporal::CorrectedFrames>(orderedBehind);
+    if (corrects()) corrected_ = std::make_unique<temporal::CorrectedFrames>(orderedBehind, twoLayers);
     else reprojector_ = std::make_unique<temporal::Reprojector>();
 }
 

@@ -45,7 +45,8 @@ public:
     // context (builds the reprojection programs; picks the timing source from the renderer).
     // `orderedBehind`: the method has tail moments, and its corrected frames weigh what lies behind
     // the nearest layer by depth (CorrectedFrames' `ordered`).
-    explicit TemporalFrames(const MethodOptions& options, bool orderedBehind = false);
+    // orderedBehind, twoLayers: temporal::CorrectedFrames' ordered and twoLayers.
+    explicit TemporalFrames(const MethodOptions& options, bool orderedBehind = false, bool twoLayers = false);
 
     // Starts a frame of the given size; true = render it for real. Always true for the first frame,
     // after reset(), and when the size differs from the kept real frame's.
