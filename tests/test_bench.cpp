@@ -290,7 +290,8 @@ void expectEveryJsonField(const fs::path& dir) {
                     ASSERT_EQ(realCount, 1);
                     ASSERT_EQ(interpCount, 2);
                     EXPECT_NEAR(longRun, share * real + (1.0 - share) * interp / 2.0, 1e-9);
-                    EXPECT_LT(longRun, c["stats"]["frame_ms_mean"].get<double>());  // a real frame costs more
+                    // (No comparison of the two kinds of frame's times: a test asserts no speed. Under
+                    // the sanitizers an interpolated frame of this tiny run took longer than the real one.)
                 } else if (interpCount == 0) {
                     EXPECT_DOUBLE_EQ(share, 1.0);
                     EXPECT_NEAR(longRun, msSum / 3.0, 1e-9);
