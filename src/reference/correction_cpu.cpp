@@ -191,6 +191,7 @@ glm::vec3 orderedClosedFormBehind(const glm::vec4& nearest, float depth, const g
 glm::vec3 orderedClosedFormBehindSecondFromMoments(const glm::vec4& nearest, const glm::vec4& second, const glm::vec4& sums,
                                                    float transmittance, const glm::vec4& moment1, float moment2,
                                                    const glm::vec3& background) {
+    if (!(second.a > 0.0f)) return orderedClosedFormBehindFromMoments(nearest, sums, transmittance, moment1, moment2, background);
     const float open2 = 1.0f - second.a;
     if (!(open2 > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE))) return glm::vec3(second);
     const glm::vec4 nearestTerms(glm::vec3(nearest) * nearest.a, nearest.a);
@@ -202,6 +203,7 @@ glm::vec3 orderedClosedFormBehindSecondFromMoments(const glm::vec4& nearest, con
 glm::vec3 orderedClosedFormBehindTwoLayers(const glm::vec4& nearest, float depth, const glm::vec4& second, float secondDepth,
                                            const glm::vec4& sums, float transmittance, const OrderedBehind& ordered,
                                            const glm::vec3& background) {
+    if (!(second.a > 0.0f)) return orderedClosedFormBehind(nearest, depth, sums, transmittance, ordered, background);
     const float u2 = depthBehindReference(secondDepth, ordered.reference);
     const float d = depthBehindReference(depth, ordered.reference) - u2;
     const glm::vec4 nearestTerms(glm::vec3(nearest) * nearest.a, nearest.a);

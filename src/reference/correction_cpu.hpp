@@ -92,8 +92,9 @@ glm::vec3 orderedClosedFormBehind(const glm::vec4& nearest, float depth, const g
 glm::vec3 orderedClosedFormBehindFromMoments(const glm::vec4& nearest, const glm::vec4& sums, float transmittance,
                                              const glm::vec4& moment1, float moment2, const glm::vec3& background);
 
-// What lies behind the nearest layer when the second (C2, a2 > 0) is known exactly too
-// (ordered_behind.glsl): the second layer over the ordered closed form of what lies behind it.
+// What lies behind the nearest layer when the second (C2, a2) is known exactly too
+// (ordered_behind.glsl): the second layer over the ordered closed form of what lies behind it; with
+// a2 = 0 the one-layer forms (orderedClosedFormBehindFromMoments, orderedClosedFormBehind).
 // ...SecondFromMoments: `moment1`, `moment2` summed over the fragments behind the second layer in
 // v = u - u2 (a real frame's pass 3 with STARNT_BEHIND_SECOND); ...TwoLayers: from an
 // interpolated frame's moments in u over every fragment, recentred at u2, less the nearest's terms.

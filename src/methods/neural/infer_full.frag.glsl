@@ -39,11 +39,8 @@ void main() {
     vec4 captureSums = vec4(s.sumAlphaColor, s.sumAlpha);
     vec4 behindMoment1 = imageLoad(u_behindMoment1, t);
     float behindMoment2 = texelFetch(u_colorCount, t, 0).g;
-    vec3 closedForm = s.a2 > 0.0
-                          ? orderedClosedFormBehindSecondFromMoments(vec4(s.c1, s.a1), vec4(s.c2, s.a2), captureSums,
-                                                                     s.transmittance, behindMoment1, behindMoment2, background())
-                          : orderedClosedFormBehindFromMoments(vec4(s.c1, s.a1), captureSums, s.transmittance, behindMoment1,
-                                                               behindMoment2, background());
+    vec3 closedForm = orderedClosedFormBehindSecondFromMoments(vec4(s.c1, s.a1), vec4(s.c2, s.a2), captureSums, s.transmittance,
+                                                               behindMoment1, behindMoment2, background());
 #elif defined(STARNT_CAPTURE_ORDERED)
     vec3 closedForm = orderedClosedFormBehind(vec4(s.c1, s.a1), texelFetch(u_captureDepth, t, 0).r,
                                               vec4(s.sumAlphaColor, s.sumAlpha), s.transmittance, imageLoad(u_behindMoment1, t),

@@ -79,17 +79,10 @@ void main() {
         vec3 behind = background();
         if (open > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE)) {
 #if defined(STARNT_PACKED_TWO_LAYERS)
-            if (second.a > 0.0) {
-                behind = orderedClosedFormBehindTwoLayers(fresh, depth, second, secondDepth, texelFetch(u_sumAlphaColor, p, 0),
-                                                          transmittance, texelFetch(u_behindMoment1, p, 0),
-                                                          secondAndTransmittance.x,
-                                                          texelFetch(u_reference, p / STARNT_ORDERED_REFERENCE_TILE, 0).r,
-                                                          background());
-            } else {
-                behind = orderedClosedFormBehind(fresh, depth, texelFetch(u_sumAlphaColor, p, 0), transmittance,
-                                                 texelFetch(u_behindMoment1, p, 0), secondAndTransmittance.x,
-                                                 texelFetch(u_reference, p / STARNT_ORDERED_REFERENCE_TILE, 0).r, background());
-            }
+            behind = orderedClosedFormBehindTwoLayers(fresh, depth, second, secondDepth, texelFetch(u_sumAlphaColor, p, 0),
+                                                      transmittance, texelFetch(u_behindMoment1, p, 0), secondAndTransmittance.x,
+                                                      texelFetch(u_reference, p / STARNT_ORDERED_REFERENCE_TILE, 0).r,
+                                                      background());
 #elif defined(STARNT_ORDERED_BEHIND)
             behind = orderedClosedFormBehind(fresh, depth, texelFetch(u_sumAlphaColor, p, 0), transmittance,
                                              texelFetch(u_behindMoment1, p, 0), secondAndTransmittance.x,

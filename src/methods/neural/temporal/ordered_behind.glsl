@@ -59,13 +59,16 @@ vec3 orderedClosedFormBehind(vec4 nearest, float depth, vec4 sums, float t, vec4
     return orderedClosedFormBehindFromMoments(nearest, sums, t, first, m2 - u * (m1.a + first.a), background);
 }
 
-// What lies behind the nearest layer when the second is known exactly too (C2, a2 > 0, behind the
-// nearest): the second layer over the ordered closed form of what lies behind it. `m1`, `m2` =
+// What lies behind the nearest layer when the second is known exactly too (C2, a2, behind the
+// nearest): the second layer over the ordered closed form of what lies behind it; without a second
+// layer (a2 = 0, the moments then 0 or those of fragments at the nearest's depth), the ordered
+// closed form behind the nearest. `m1`, `m2` =
 // (sum a C v, sum a v), sum a v^2 over the fragments behind the second layer, v = u - u2 the
 // depth behind it (a real frame's pass 3 sums them so: STARNT_BEHIND_SECOND); `sums`, `t` over
 // every fragment.
 vec3 orderedClosedFormBehindSecondFromMoments(vec4 nearest, vec4 second, vec4 sums, float t, vec4 m1, float m2,
                                               vec3 background) {
+    if (!(second.a > 0.0)) return orderedClosedFormBehindFromMoments(nearest, sums, t, m1, m2, background);
     float open2 = 1.0 - second.a;
     if (!(open2 > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE))) return second.rgb;
     vec4 nearestTerms = vec4(nearest.rgb * nearest.a, nearest.a);
@@ -80,6 +83,7 @@ vec3 orderedClosedFormBehindSecondFromMoments(vec4 nearest, vec4 second, vec4 su
 // other than it (coplanar duplicates).
 vec3 orderedClosedFormBehindTwoLayers(vec4 nearest, float depth, vec4 second, float secondDepth, vec4 sums, float t, vec4 m1,
                                       float m2, float reference, vec3 background) {
+    if (!(second.a > 0.0)) return orderedClosedFormBehind(nearest, depth, sums, t, m1, m2, reference, background);
     float u2 = depthBehindReference(secondDepth, reference);
     float d = depthBehindReference(depth, reference) - u2;
     vec4 nearestTerms = vec4(nearest.rgb * nearest.a, nearest.a);
