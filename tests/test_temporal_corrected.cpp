@@ -11,6 +11,7 @@
 
 
 #include "reference/correction_cpu.hpp"
+#include "methods/neural/temporal/packed_nearest.h"
 #include "methods/neural/temporal/reprojection_constants.h"
 #include "methods/common/opaque_scene.hpp"
 #include "methods/neural/neural_passes.hpp"
@@ -710,8 +711,12 @@ TEST(PackedLayers, PassThreeFindsPassOneAndPassTwosFragments) {
             }
             ++covered;
             // (No depth read-back on ES: readDepth is empty there.)
+            // The key decodes to pass 1's depth itself from STARNT_PACKED_LAYER_EXACT_DEPTH on, within
+            // half its coarse step nearer.
             firstOff += !near(got1, layer1[i]) ||
-                        (!depth1.empty() && std::abs((1.0f - z1) - (1.0f - depth1[i])) > (1.0f - depth1[i]) * std::exp2(-12.0f));
+                        (!depth1.empty() && (depth1[i] >= float(STARNT_PACKED_LAYER_EXACT_DEPTH)
+                                                 ? z1 != depth1[i]
+                                                 : std::abs(z1 - depth1[i]) > depth1[i] * std::exp2(-20.0f)));
             if (layer2[i].a > 0.0f) {
                 ++twoDeep;
                 secondOff += !near(got2, layer2[i]) || !(z2 > z1);
@@ -732,6 +737,46 @@ TEST(PackedLayers, PassThreeFindsPassOneAndPassTwosFragments) {
     EXPECT_LE(firstOff, covered / 100) << "pixels whose packed nearest fragment is not pass 1's";
     EXPECT_LE(secondOff, covered / 50) << "pixels whose packed second fragment is not pass 2's";
     EXPECT_LE(bitsOff, covered / 50) << "pixels whose packed bits differ from the CPU fold";
+}
+
+// The packed layers order fragments as the depth tests of passes 1 and 2 do, also where surfaces lie
+// closer together than any coarse key's step (chess's board: docs/DESIGN.md, "Corrected frames: the
+// second layer by framebuffer fetch"): a fragment one float ulp nearer, drawn later, becomes the
+// nearest layer; one at the same depth loses to the layer drawn first; the depth decodes exactly.
+TEST(PackedLayers, KeysOrderDepthsOneUlpApartAsTheDepthTestDoes) {
+    const glm::vec4 dark(0.1f, 0.1f, 0.1f, 0.5f), light(0.6f, 0.6f, 0.6f, 0.5f), third(0.3f, 0.2f, 0.1f, 0.4f);
+    for (float z : {0.25f, 0.3f, 0.4685744f, 0.5f, 0.9f, 0.99999f}) {
+        const float behind = std::nextafter(z, 1.0f);
+        glm::uvec4 layers = insertLayer(packedLayersEmpty(), packLayer(behind, light));
+        layers = insertLayer(layers, packLayer(z, dark));
+        float z1 = 0.0f, z2 = 0.0f;
+        const glm::vec4 first = unpackLayer(glm::uvec2(layers.x, layers.y), z1);
+        const glm::vec4 second = unpackLayer(glm::uvec2(layers.z, layers.w), z2);
+        EXPECT_EQ(z1, z) << "the nearer fragment, drawn later, is the nearest layer";
+        EXPECT_EQ(z2, behind);
+        EXPECT_NEAR(first.r, dark.r, 2e-3f) << z;
+        EXPECT_NEAR(second.r, light.r, 4e-3f) << z;
+        EXPECT_NEAR(first.a, dark.a, 1e-3f) << z;
+        // A fragment at the nearest layer's depth, drawn after it, changes nothing; one between them
+        // cannot exist (they are one ulp apart); one behind both is not kept.
+        EXPECT_EQ(insertLayer(layers, packLayer(z, light)), layers) << z;
+        EXPECT_EQ(insertLayer(layers, packLayer(std::nextafter(behind, 1.0f), third)), layers) << z;
+    }
+    // Nearer than STARNT_PACKED_LAYER_EXACT_DEPTH the keys still order (coarser steps), never reverse.
+    float previous = 0.0f;
+    for (float z = 0.01f; z < 0.3f; z *= 1.37f) {
+        float decoded = 0.0f;
+        unpackLayer(glm::uvec2(packLayer(z, dark)), decoded);
+        EXPECT_GE(decoded, previous) << z;
+        EXPECT_NEAR(decoded, std::max(z, float(STARNT_PACKED_LAYER_NEAREST_DEPTH)), z * 1e-5f) << z;
+        previous = decoded;
+    }
+    float emptyDepth = 0.0f;
+    EXPECT_EQ(unpackLayer(glm::uvec2(STARNT_PACKED_LAYER_EMPTY, 0u), emptyDepth), glm::vec4(0.0f));
+    EXPECT_EQ(emptyDepth, 1.0f);
+    float farthest = 0.0f;
+    EXPECT_GT(unpackLayer(packLayer(1.0f, dark), farthest).a, 0.0f) << "z = 1 is a fragment, not the empty layer";
+    EXPECT_EQ(farthest, 1.0f);
 }
 
 // The closed form behind two exact layers: with one fragment behind the second it is exact, and

@@ -75,44 +75,83 @@ glm::vec4 blendNearest(const glm::vec4& a, const glm::vec4& b) { return glm::min
 float keyedDepth(float z) { return depthOfKey(packedDepthKey(z)); }
 
 namespace {
-uint32_t packedColourSteps(float c, float steps) {
-    const float r = std::sqrt(std::max(c, 0.0f));
-    return uint32_t(std::floor(r / (1.0f + r) * steps + 0.5f));
+constexpr uint32_t kLayerMaxKey = (1u << STARNT_PACKED_LAYER_KEY_BITS) - 1u;
+constexpr uint32_t kLayerLowBits = 32u - STARNT_PACKED_LAYER_KEY_BITS;
+constexpr uint32_t kLayerAlphaLow = STARNT_PACKED_LAYER_ALPHA_BITS - kLayerLowBits;
+constexpr uint32_t kLayerGShift = STARNT_PACKED_LAYER_R_BITS;
+constexpr uint32_t kLayerBShift = kLayerGShift + STARNT_PACKED_LAYER_G_BITS;
+constexpr uint32_t kLayerAShift = kLayerBShift + STARNT_PACKED_LAYER_B_BITS;
+constexpr uint32_t kLayerCoarseKeys =
+    (STARNT_PACKED_LAYER_EXACT_BITS - STARNT_PACKED_LAYER_NEAREST_BITS) >> STARNT_PACKED_LAYER_COARSE_SHIFT;
+static_assert(STARNT_PACKED_LAYER_KEY_BITS + STARNT_PACKED_LAYER_ALPHA_BITS + STARNT_PACKED_LAYER_R_BITS +
+                  STARNT_PACKED_LAYER_G_BITS + STARNT_PACKED_LAYER_B_BITS == 64);
+static_assert(kLayerAShift + kLayerAlphaLow == 32 && STARNT_PACKED_LAYER_ALPHA_BITS >= kLayerLowBits);
+static_assert(STARNT_PACKED_LAYER_NEAREST_BITS == std::bit_cast<uint32_t>(float(STARNT_PACKED_LAYER_NEAREST_DEPTH)));
+static_assert(STARNT_PACKED_LAYER_EXACT_BITS == std::bit_cast<uint32_t>(float(STARNT_PACKED_LAYER_EXACT_DEPTH)));
+static_assert(STARNT_PACKED_LAYER_EMPTY == 0xFFFFFFFFu);
+// z = 1 has a fragment's key, below the empty layer's.
+static_assert(0x3F800000u - STARNT_PACKED_LAYER_EXACT_BITS + kLayerCoarseKeys < kLayerMaxKey);
+
+float layerSteps(uint32_t bits) { return float((1u << bits) - 1u); }
+
+constexpr float kLayerLdrShare = float(STARNT_PACKED_LAYER_LDR_SHARE);
+constexpr float kLayerHdrScale = (1.0f - kLayerLdrShare) / float(STARNT_PACKED_LAYER_HDR_LOG2_RANGE);
+
+uint32_t layerColour(float c, uint32_t bits) {
+    const float r = std::sqrt(std::clamp(c, 0.0f, std::exp2(2.0f * float(STARNT_PACKED_LAYER_HDR_LOG2_RANGE))));
+    const float x = r <= 1.0f ? kLayerLdrShare * r : kLayerLdrShare + kLayerHdrScale * std::log2(r);
+    return uint32_t(std::floor(x * layerSteps(bits) + 0.5f));
 }
 
-float unpackedColourSteps(uint32_t p, float steps) {
-    const float x = float(p) / steps;
-    const float r = x / (1.0f - x);
+float unpackedLayerColour(uint32_t word, uint32_t shift, uint32_t bits) {
+    const float x = float((word >> shift) & ((1u << bits) - 1u)) / layerSteps(bits);
+    const float r = x <= kLayerLdrShare ? x / kLayerLdrShare : std::exp2((x - kLayerLdrShare) / kLayerHdrScale);
     return r * r;
+}
+
+uint32_t layerKey(float z) {
+    const uint32_t bits = std::bit_cast<uint32_t>(std::clamp(z, float(STARNT_PACKED_LAYER_NEAREST_DEPTH), 1.0f));
+    return bits >= STARNT_PACKED_LAYER_EXACT_BITS ? bits - STARNT_PACKED_LAYER_EXACT_BITS + kLayerCoarseKeys
+                                                   : (bits - STARNT_PACKED_LAYER_NEAREST_BITS) >> STARNT_PACKED_LAYER_COARSE_SHIFT;
+}
+
+float depthOfLayerKey(uint32_t key) {
+    return std::bit_cast<float>(key >= kLayerCoarseKeys ? key - kLayerCoarseKeys + STARNT_PACKED_LAYER_EXACT_BITS
+                                                        : (key << STARNT_PACKED_LAYER_COARSE_SHIFT) +
+                                                              STARNT_PACKED_LAYER_NEAREST_BITS +
+                                                              ((1u << STARNT_PACKED_LAYER_COARSE_SHIFT) >> 1));
 }
 }  // namespace
 
 glm::uvec2 packLayer(float z, const glm::vec4& c) {
-    const uint32_t alpha = uint32_t(std::floor(std::clamp(c.a, 0.0f, 1.0f) * float(STARNT_PACKED_STEPS) + 0.5f));
-    return {(packedDepthKey(z) << STARNT_PACKED_PAYLOAD_BITS) | alpha,
-            packedColour(c.r) | (packedColour(c.g) << 11) | (packedColourSteps(c.b, float(STARNT_PACKED_BLUE_STEPS)) << 22)};
+    const uint32_t alpha = uint32_t(std::floor(std::clamp(c.a, 0.0f, 1.0f) * layerSteps(STARNT_PACKED_LAYER_ALPHA_BITS) + 0.5f));
+    return {(layerKey(z) << kLayerLowBits) | (alpha >> kLayerAlphaLow),
+            (alpha << kLayerAShift) | layerColour(c.r, STARNT_PACKED_LAYER_R_BITS) |
+                (layerColour(c.g, STARNT_PACKED_LAYER_G_BITS) << kLayerGShift) |
+                (layerColour(c.b, STARNT_PACKED_LAYER_B_BITS) << kLayerBShift)};
 }
 
 glm::uvec4 packedLayersEmpty() { return {STARNT_PACKED_LAYER_EMPTY, 0u, STARNT_PACKED_LAYER_EMPTY, 0u}; }
-static_assert(STARNT_PACKED_LAYER_EMPTY == (kPackedMaxKey << STARNT_PACKED_PAYLOAD_BITS | kPackedPayloadMask));
 
 glm::uvec4 insertLayer(const glm::uvec4& layers, const glm::uvec2& f) {
-    const uint32_t key = f.x >> STARNT_PACKED_PAYLOAD_BITS, first = layers.x >> STARNT_PACKED_PAYLOAD_BITS;
+    const uint32_t key = f.x >> kLayerLowBits, first = layers.x >> kLayerLowBits;
     if (key < first) return {f.x, f.y, layers.x, layers.y};
-    if (key > first && key < (layers.z >> STARNT_PACKED_PAYLOAD_BITS)) return {layers.x, layers.y, f.x, f.y};
+    if (key > first && key < (layers.z >> kLayerLowBits)) return {layers.x, layers.y, f.x, f.y};
     return layers;
 }
 
 glm::vec4 unpackLayer(const glm::uvec2& layer, float& z) {
-    const uint32_t key = layer.x >> STARNT_PACKED_PAYLOAD_BITS;
-    if (key == kPackedMaxKey) {
+    const uint32_t key = layer.x >> kLayerLowBits;
+    if (key == kLayerMaxKey) {
         z = 1.0f;
         return glm::vec4(0.0f);
     }
-    z = depthOfKey(key);
-    return {unpackedColour(layer.y & kPackedPayloadMask), unpackedColour((layer.y >> 11) & kPackedPayloadMask),
-            unpackedColourSteps(layer.y >> 22, float(STARNT_PACKED_BLUE_STEPS)),
-            float(layer.x & kPackedPayloadMask) / float(STARNT_PACKED_STEPS)};
+    z = depthOfLayerKey(key);
+    const uint32_t alpha = ((layer.x & ((1u << kLayerLowBits) - 1u)) << kLayerAlphaLow) | (layer.y >> kLayerAShift);
+    return {unpackedLayerColour(layer.y, 0, STARNT_PACKED_LAYER_R_BITS),
+            unpackedLayerColour(layer.y, kLayerGShift, STARNT_PACKED_LAYER_G_BITS),
+            unpackedLayerColour(layer.y, kLayerBShift, STARNT_PACKED_LAYER_B_BITS),
+            float(alpha) / layerSteps(STARNT_PACKED_LAYER_ALPHA_BITS)};
 }
 
 float depthBehindReference(float z, float reference) {

@@ -60,47 +60,79 @@ vec4 unpackNearest(vec4 encoded, out float z) {
 }
 
 #ifdef STARNT_PACKED_TWO_LAYERS
-uint packedColourSteps(float c, float steps) {
-    float r = sqrt(max(c, 0.0));
-    return uint(floor(r / (1.0 + r) * steps + 0.5));
+const uint kLayerMaxKey = (1u << STARNT_PACKED_LAYER_KEY_BITS) - 1u;  // the empty layer's
+const uint kLayerLowBits = 32u - uint(STARNT_PACKED_LAYER_KEY_BITS);      // of the first word, below the key: alpha's top
+const uint kLayerAlphaLow = uint(STARNT_PACKED_LAYER_ALPHA_BITS) - kLayerLowBits;  // alpha's bits in the second word
+const uint kLayerGShift = uint(STARNT_PACKED_LAYER_R_BITS);
+const uint kLayerBShift = kLayerGShift + uint(STARNT_PACKED_LAYER_G_BITS);
+const uint kLayerAShift = kLayerBShift + uint(STARNT_PACKED_LAYER_B_BITS);
+// The keys below STARNT_PACKED_LAYER_EXACT_DEPTH (coarse) come first.
+const uint kLayerCoarseKeys = (STARNT_PACKED_LAYER_EXACT_BITS - STARNT_PACKED_LAYER_NEAREST_BITS) >> STARNT_PACKED_LAYER_COARSE_SHIFT;
+
+float layerSteps(int bits) { return float((1 << bits) - 1); }
+
+const float kLayerLdrShare = float(STARNT_PACKED_LAYER_LDR_SHARE);
+const float kLayerHdrScale = (1.0 - kLayerLdrShare) / float(STARNT_PACKED_LAYER_HDR_LOG2_RANGE);
+
+uint layerColour(float c, int bits) {
+    float r = sqrt(clamp(c, 0.0, exp2(2.0 * float(STARNT_PACKED_LAYER_HDR_LOG2_RANGE))));
+    float x = r <= 1.0 ? kLayerLdrShare * r : kLayerLdrShare + kLayerHdrScale * log2(r);
+    return uint(floor(x * layerSteps(bits) + 0.5));
 }
 
-float unpackedColourSteps(uint p, float steps) {
-    float x = float(p) / steps;
-    float r = x / (1.0 - x);
+float unpackedLayerColour(uint word, uint shift, int bits) {
+    float x = float((word >> shift) & ((1u << uint(bits)) - 1u)) / layerSteps(bits);
+    float r = x <= kLayerLdrShare ? x / kLayerLdrShare : exp2((x - kLayerLdrShare) / kLayerHdrScale);
     return r * r;
+}
+
+uint layerKey(float z) {
+    uint bits = floatBitsToUint(clamp(z, float(STARNT_PACKED_LAYER_NEAREST_DEPTH), 1.0));
+    return bits >= STARNT_PACKED_LAYER_EXACT_BITS
+               ? bits - STARNT_PACKED_LAYER_EXACT_BITS + kLayerCoarseKeys
+               : (bits - STARNT_PACKED_LAYER_NEAREST_BITS) >> STARNT_PACKED_LAYER_COARSE_SHIFT;
+}
+
+// The window depth of a key: z itself in the exact range, the middle of its step below.
+float depthOfLayerKey(uint key) {
+    return uintBitsToFloat(key >= kLayerCoarseKeys
+                               ? key - kLayerCoarseKeys + STARNT_PACKED_LAYER_EXACT_BITS
+                               : (key << STARNT_PACKED_LAYER_COARSE_SHIFT) + STARNT_PACKED_LAYER_NEAREST_BITS +
+                                     ((1u << STARNT_PACKED_LAYER_COARSE_SHIFT) >> 1));
 }
 
 // One layer's two words (packed_nearest.h).
 uvec2 packLayer(float z, vec4 c) {
-    uint alpha = uint(floor(clamp(c.a, 0.0, 1.0) * float(STARNT_PACKED_STEPS) + 0.5));
-    return uvec2((packedDepthKey(z) << STARNT_PACKED_PAYLOAD_BITS) | alpha,
-                 packedColour(c.r) | (packedColour(c.g) << 11) |
-                     (packedColourSteps(c.b, float(STARNT_PACKED_BLUE_STEPS)) << 22));
+    uint alpha = uint(floor(clamp(c.a, 0.0, 1.0) * layerSteps(STARNT_PACKED_LAYER_ALPHA_BITS) + 0.5));
+    return uvec2((layerKey(z) << kLayerLowBits) | (alpha >> kLayerAlphaLow),
+                 (alpha << kLayerAShift) | layerColour(c.r, STARNT_PACKED_LAYER_R_BITS) |
+                     (layerColour(c.g, STARNT_PACKED_LAYER_G_BITS) << kLayerGShift) |
+                     (layerColour(c.b, STARNT_PACKED_LAYER_B_BITS) << kLayerBShift));
 }
 
 // The two layers after fragment `f` (packLayer) met them: the nearest, then the nearest with a
 // larger key; on equal keys the layer already kept stays.
 uvec4 insertLayer(uvec4 layers, uvec2 f) {
-    uint key = f.x >> STARNT_PACKED_PAYLOAD_BITS;
-    uint first = layers.x >> STARNT_PACKED_PAYLOAD_BITS;
+    uint key = f.x >> kLayerLowBits;
+    uint first = layers.x >> kLayerLowBits;
     if (key < first) return uvec4(f, layers.xy);
-    if (key > first && key < (layers.z >> STARNT_PACKED_PAYLOAD_BITS)) return uvec4(layers.xy, f);
+    if (key > first && key < (layers.z >> kLayerLowBits)) return uvec4(layers.xy, f);
     return layers;
 }
 
-// C, a of a layer (all 0 where there is none) and its window depth (1 where there is none), at the
-// middle of its key's depth interval.
+// C, a of a layer (all 0 where there is none) and its window depth (1 where there is none).
 vec4 unpackLayer(uvec2 layer, out float z) {
-    uint key = layer.x >> STARNT_PACKED_PAYLOAD_BITS;
-    if (key == kPackedMaxKey) {
+    uint key = layer.x >> kLayerLowBits;
+    if (key == kLayerMaxKey) {
         z = 1.0;
         return vec4(0.0);
     }
-    z = depthOfKey(key);
-    return vec4(unpackedColour(layer.y & kPackedPayloadMask), unpackedColour((layer.y >> 11) & kPackedPayloadMask),
-                unpackedColourSteps(layer.y >> 22, float(STARNT_PACKED_BLUE_STEPS)),
-                float(layer.x & kPackedPayloadMask) / float(STARNT_PACKED_STEPS));
+    z = depthOfLayerKey(key);
+    uint alpha = ((layer.x & ((1u << kLayerLowBits) - 1u)) << kLayerAlphaLow) | (layer.y >> kLayerAShift);
+    return vec4(unpackedLayerColour(layer.y, 0u, STARNT_PACKED_LAYER_R_BITS),
+                unpackedLayerColour(layer.y, kLayerGShift, STARNT_PACKED_LAYER_G_BITS),
+                unpackedLayerColour(layer.y, kLayerBShift, STARNT_PACKED_LAYER_B_BITS),
+                float(alpha) / layerSteps(STARNT_PACKED_LAYER_ALPHA_BITS));
 }
 #endif
 #endif

@@ -31,13 +31,32 @@
 // Two layers (corrected frames of the tail-moment methods where EXT_shader_framebuffer_fetch exists;
 // docs/DESIGN.md, "Corrected frames: the second layer by framebuffer fetch"): an RGBA32UI target
 // that every fragment reads and rewrites in draw order, the nearest fragment in .xy and the nearest
-// one behind it (a larger key) in .zw, each as
-//   x: key << STARNT_PACKED_PAYLOAD_BITS | alpha    y: r | g << 11 | b << 22
-// the key and the alpha as above, r and g in STARNT_PACKED_STEPS steps, b in
-// STARNT_PACKED_BLUE_STEPS (10 bits). A fragment whose key equals a layer's loses to it (the first
-// drawn stays, as pass 1's LESS depth test and pass 2's peel keep it). Clear: x and z
-// STARNT_PACKED_LAYER_EMPTY (the largest key, every payload bit set), y and w 0.
-#define STARNT_PACKED_BLUE_STEPS 1023.0
-#define STARNT_PACKED_LAYER_EMPTY 0x1FFFFFFFu
+// one behind it (a larger key) in .zw, each as 64 bits, from the top: the key
+// (STARNT_PACKED_LAYER_KEY_BITS), alpha (STARNT_PACKED_LAYER_ALPHA_BITS, linear steps; it straddles
+// the two words), then b, g and r (STARNT_PACKED_LAYER_B_BITS, _G_BITS, _R_BITS) down to bit 0 of
+// the second word. A colour c is kept as x = STARNT_PACKED_LAYER_LDR_SHARE sqrt(c) up to c = 1 and
+// logarithmically in sqrt(c) above, up to STARNT_MAX_SURFACE_COLOR (1024) at x = 1: three quarters
+// of the steps for [0, 1] (10 bits: 2.0e-3 at c = 0.6, finer in the darks; the encoding above spends
+// half its steps above 1 and would need 11 bits for that), steps of 2.7 % above 1.
+// The key orders fragments as their window depths z do: from z = STARNT_PACKED_LAYER_EXACT_DEPTH on
+// it is the float bits of z less those of that depth, exact, so surfaces closer together than any
+// coarser step (chess's board) are ordered as pass 1's and pass 2's depth tests order them, and
+// the key decodes to z itself; nearer, in steps of 2^STARNT_PACKED_LAYER_COARSE_SHIFT float ulps
+// from STARNT_PACKED_LAYER_NEAREST_DEPTH (z below that counts as that). A fragment whose key equals
+// a layer's loses to it (the first drawn stays, as pass 1's LESS depth test and pass 2's peel keep
+// it). Clear: x and z STARNT_PACKED_LAYER_EMPTY (the largest key, every other bit set), y and w 0.
+#define STARNT_PACKED_LAYER_KEY_BITS 25
+#define STARNT_PACKED_LAYER_ALPHA_BITS 10
+#define STARNT_PACKED_LAYER_R_BITS 10
+#define STARNT_PACKED_LAYER_G_BITS 10
+#define STARNT_PACKED_LAYER_B_BITS 9
+#define STARNT_PACKED_LAYER_NEAREST_DEPTH 0.015625  // 2^-6
+#define STARNT_PACKED_LAYER_NEAREST_BITS 0x3C800000u  // its float bits
+#define STARNT_PACKED_LAYER_EXACT_DEPTH 0.25
+#define STARNT_PACKED_LAYER_EXACT_BITS 0x3E800000u
+#define STARNT_PACKED_LAYER_COARSE_SHIFT 3
+#define STARNT_PACKED_LAYER_LDR_SHARE 0.75
+#define STARNT_PACKED_LAYER_HDR_LOG2_RANGE 5.0  // log2 sqrt(STARNT_MAX_SURFACE_COLOR)
+#define STARNT_PACKED_LAYER_EMPTY 0xFFFFFFFFu
 
 #endif
