@@ -15,6 +15,8 @@
 //                  would give): the closed form covers only the fragments between the two;
 //   + second:      the nearest and second layers exact, the closed form behind the second (what a
 //                  peeled pass 2 would give);
+//   + third:       the nearest three layers exact, the closed form behind the third (what a third
+//                  packed layer gives: "Corrected frames: three layers and no correction");
 //   starnt-d:      the real frame's composite (two exact layers, the tail moments, the network).
 // It also counts the covered pixels with 1, 2 and more fragments.
 #include <algorithm>
@@ -66,7 +68,7 @@ int main(int argc, char** argv) {
         HeadlessGlContext context(GlApi::Desktop);
         const nn::Network network = loadMethodNetwork(*neuralConfig("starnt-d"), {});
         std::printf("MSE (sRGB) against the exact composite, %dx%d, default camera\n", width, height);
-        std::printf("%-12s %10s %10s %10s %10s | %8s %8s %8s\n", "scene", "ordered", "+farthest", "+second", "starnt-d",
+        std::printf("%-12s %10s %10s %10s %10s %10s | %8s %8s %8s\n", "scene", "ordered", "+farthest", "+second", "+third", "starnt-d",
                     "1 frag", "2 frags", "3+");
         for (const std::string& name : names) {
             const study::CapturedScene captured = study::captureSuiteScene(name, width, height);
@@ -83,7 +85,7 @@ int main(int argc, char** argv) {
                 }
             }
             const std::vector<float> reference = temporal::referenceDepthOnCpu(nearestDepth, width, height);
-            double ordered = 0.0, farthest = 0.0, second = 0.0, starntD = 0.0;
+            double ordered = 0.0, farthest = 0.0, second = 0.0, third = 0.0, starntD = 0.0;
             long counts[3] = {0, 0, 0};
             for (int y = 0; y < height; ++y) {
                 for (int x = 0; x < width; ++x) {
@@ -108,14 +110,23 @@ int main(int argc, char** argv) {
                         withSecond = list[0].alpha * list[0].color + (1.0f - list[0].alpha) * nearestOverOrdered(rest, r, background);
                     }
                     second += squaredSrgb(withSecond, exact);
+                    // The nearest three layers exact: the closed form behind the third.
+                    glm::vec3 withThird = exact;
+                    if (list.size() > 3) {
+                        const FragmentList rest(list.begin() + 2, list.end());
+                        const glm::vec3 behindSecond = nearestOverOrdered(rest, r, background);
+                        withThird = list[0].alpha * list[0].color +
+                                    (1.0f - list[0].alpha) * (list[1].alpha * list[1].color + (1.0f - list[1].alpha) * behindSecond);
+                    }
+                    third += squaredSrgb(withThird, exact);
                     const nn::PixelSums s = nn::sumsFromFragments(list, captured.spec.alphaCutoff);
                     const nn::TailMoments m = nn::tailMomentsFromFragments(list, captured.spec.alphaCutoff);
                     starntD += squaredSrgb(nn::compositeStarntDepth(network, s, m, background), exact);
                 }
             }
             const double n = double(pixels);
-            std::printf("%-12s %10.3e %10.3e %10.3e %10.3e | %8ld %8ld %8ld\n", name.c_str(), ordered / n, farthest / n,
-                        second / n, starntD / n, counts[0], counts[1], counts[2]);
+            std::printf("%-12s %10.3e %10.3e %10.3e %10.3e %10.3e | %8ld %8ld %8ld\n", name.c_str(), ordered / n, farthest / n,
+                        second / n, third / n, starntD / n, counts[0], counts[1], counts[2]);
         }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "interpolated_layers_study: %s\n", e.what());

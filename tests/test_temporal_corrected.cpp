@@ -554,11 +554,16 @@ TEST(TemporalCorrected, WithoutSumsTheClosedFormAloneAndResetsAreReal) {
 // methods, whose real frames recentre the ordered closed form's moments at pass 1's fragment and
 // whose interpolated frames recentre theirs at the packed layer's, a few pixels more
 // where the closed form's switches (linear or quadratic weight) fall differently for the packed
-// layer's rounding than for pass 1's.
+// layer's rounding than for pass 1's. (With three layers the interpolated frames keep no correction:
+// ThreeLayersAtAStillCameraAreNoFartherFromTheABufferThanTheRealFrame below.)
 TEST(TemporalCorrected, StillCameraGivesTheRealFrame) {
     test::TestScene c(makeBuiltinScene("tubes", 3), 96, 64, 30.0f, 15.0f, kBackground);
     for (const char* method : {"starnt", "starnt-d", "hybrid-moments", "recommended"}) {
-        const auto frames = renderSequence(c, correctedOptions(), {0.0f, 0.0f, 0.0f, 0.0f}, method);
+        MethodOptions options = correctedOptions();
+        if (std::string(method) != "starnt" && epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) {
+            options.neural.correctedLayers = NeuralOptions::CorrectedLayers::Two;
+        }
+        const auto frames = renderSequence(c, options, {0.0f, 0.0f, 0.0f, 0.0f}, method);
         float largest = 0.0f;
         double sum = 0.0;
         size_t off = 0;
@@ -587,6 +592,31 @@ TEST(TemporalCorrected, StillCameraGivesTheRealFrame) {
         }
         EXPECT_EQ(frames[2], frames[0]) << method << ": the next real frame";
     }
+}
+
+// A still camera with three layers (the default where the driver allows): the interpolated frames
+// composite the closed form alone, so they differ from the real frame, but by no more than the real
+// frame's own error, and they are no farther from the A-buffer.
+TEST(TemporalCorrected, ThreeLayersAtAStillCameraAreNoFartherFromTheABufferThanTheRealFrame) {
+    test::TestScene c(makeBuiltinScene("tubes", 3), 96, 64, 30.0f, 15.0f, kBackground);
+    if (!epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) GTEST_SKIP() << "no GL_EXT_shader_framebuffer_fetch";
+    GLint drawBuffers = 0;
+    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &drawBuffers);
+    if (drawBuffers < 5) GTEST_SKIP() << "fewer than 5 draw buffers";
+    const auto frames = renderSequence(c, correctedOptions(), {0.0f, 0.0f, 0.0f, 0.0f}, "recommended");
+    const auto exact = renderSequence(c, MethodOptions{}, {0.0f}, "abuffer");
+    auto mse = [](const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b) {
+        double sum = 0.0;
+        for (size_t i = 0; i < a.size(); ++i)
+            for (int ch = 0; ch < 3; ++ch) sum += double(a[i][ch] - b[i][ch]) * double(a[i][ch] - b[i][ch]);
+        return sum / double(3 * a.size());
+    };
+    const double real = mse(frames[0], exact[0]), interpolated = mse(frames[1], exact[0]), apart = mse(frames[1], frames[0]);
+    std::printf("still camera, MSE against the A-buffer: real %.3g, interpolated %.3g; between them %.3g\n", real, interpolated, apart);
+    EXPECT_NE(frames[1], frames[0]) << "no correction: the closed form alone";
+    EXPECT_LE(interpolated, real);
+    EXPECT_LE(apart, 2.0 * real);
+    EXPECT_EQ(frames[2], frames[0]) << "the next real frame";
 }
 
 // After a camera move, a pixel covered by one layer only equals a real render at the new camera:
@@ -856,6 +886,224 @@ TEST(PackedLayers, InterpolatedFramesNearerTheABufferWithTwoLayers) {
     EXPECT_LT(interpolatedTwo, 0.8 * interpolatedOne);
 }
 
+// Three layers (docs/DESIGN.md, "Corrected frames: three layers and no correction"): pass 3 keeps the
+// nearest two fragments as before and the third in an RG32UI target, bit for bit the CPU fold of the
+// captured fragments (temporal::insertThreeLayers); the third decodes to the third fragment.
+TEST(PackedLayers, PassThreeFindsTheNearestThreeFragments) {
+    test::glContext();
+    if (!epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) GTEST_SKIP() << "no GL_EXT_shader_framebuffer_fetch";
+    GLint drawBuffers = 0;
+    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &drawBuffers);
+    if (drawBuffers < 5) GTEST_SKIP() << "fewer than 5 draw buffers";
+    const int w = 64, h = 48;
+    const test::TestScene scene(loadScene("builtin:tubes"), w, h, 30.0f, 20.0f, kBackground);
+    const FrameDesc frame = scene.frame();
+    const DrawCallback draw = scene.gpu->callback(frame.view, frame.projection, SurfaceOptions{});
+    OpaqueScene opaque(kBackground);
+    opaque.begin(frame);
+    NeuralPasses passes(SceneGpu::surfaceShader(), opaque, false, NeuralOptions::Targets::Float32, false, true);
+    passes.findThreeLayers();
+    passes.runPackedNearestAndSums(frame, draw);
+    ASSERT_EQ(gl::textureInternalFormat(passes.packedNearest()), GLenum(GL_RGBA32UI));
+    ASSERT_EQ(gl::textureInternalFormat(passes.thirdLayer()), GLenum(GL_RG32UI));
+    const std::vector<glm::uvec4> packed = test::readRgbaUint(passes.packedNearest(), w, h);
+    const std::vector<glm::uvec4> third = test::readRgbaUint(passes.thirdLayer(), w, h);  // .xy
+    const CapturedFrame fragments = scene.capture();
+    size_t covered = 0, threeDeep = 0, thirdOff = 0, bitsOff = 0;
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * size_t(w) + size_t(x);
+            const FragmentList list = nn::preparedFragments(fragments.at(x, h - 1 - y));
+            glm::uvec4 layers = packedLayersEmpty();
+            glm::uvec2 fold = packedLayerEmpty();
+            for (const Fragment& f : list) insertThreeLayers(layers, fold, packLayer(f.depth, glm::vec4(f.color, f.alpha)));
+            const glm::uvec2 got(third[i].x, third[i].y);
+            bitsOff += layers != packed[i] || fold != got;
+            if (list.empty()) continue;
+            ++covered;
+            float z3 = 0.0f;
+            const glm::vec4 layer3 = unpackLayer(got, z3);
+            if (list.size() >= 3 && list[2].depth > list[1].depth && list[1].depth > list[0].depth) {
+                ++threeDeep;
+                thirdOff += std::abs(layer3.a - list[2].alpha) > 1e-3f || std::abs(layer3.r - list[2].color.r) > 4e-3f ||
+                            (list[2].depth >= float(STARNT_PACKED_LAYER_EXACT_DEPTH) && z3 != list[2].depth);
+            } else if (list.size() < 3) {
+                thirdOff += layer3.a != 0.0f;
+            }
+        }
+    }
+    std::printf("covered %zu, three deep %zu; layer 3 off %zu, bits off the CPU fold %zu\n", covered, threeDeep, thirdOff, bitsOff);
+    EXPECT_GT(covered, size_t(300));
+    EXPECT_GT(threeDeep, covered / 4);
+    EXPECT_LE(thirdOff, covered / 50) << "pixels whose packed third layer is not the third fragment";
+    EXPECT_LE(bitsOff, covered / 50) << "pixels whose packed bits differ from the CPU fold";
+}
+
+// The closed form behind three exact layers is exact with one fragment behind the third, and with
+// more it is nearer the exact composite than the two-layer form of the same fragments.
+TEST(PackedLayers, ThreeLayerClosedFormIsExactForOneFragmentBehindTheThird) {
+    const float reference = 0.4f;
+    auto error = [&](const std::vector<Fragment>& all, bool three) {
+        const glm::vec4 l1(all[0].color, all[0].alpha), l2(all[1].color, all[1].alpha), l3(all[2].color, all[2].alpha);
+        glm::vec4 sums(0.0f);
+        float t = 1.0f;
+        for (const Fragment& f : all) sums += glm::vec4(f.color * f.alpha, f.alpha), t *= 1.0f - f.alpha;
+        const OrderedBehind m = behindMomentsOf(all, reference);
+        const glm::vec3 got = three ? orderedClosedFormBehindThreeLayers(l1, all[0].depth, l2, all[1].depth, l3, all[2].depth, sums,
+                                                                         t, m, kBackground)
+                                    : orderedClosedFormBehindTwoLayers(l1, all[0].depth, l2, all[1].depth, sums, t, m, kBackground);
+        return glm::length(got - compositeOver(std::vector<Fragment>(all.begin() + 1, all.end()), kBackground));
+    };
+    const std::vector<Fragment> four = {{glm::vec3(0.2f, 0.4f, 0.6f), 0.5f, 0.5f},
+                                        {glm::vec3(0.9f, 0.1f, 0.3f), 0.4f, 0.6f},
+                                        {glm::vec3(0.1f, 0.8f, 0.2f), 0.3f, 0.7f},
+                                        {glm::vec3(0.7f, 0.7f, 0.1f), 0.6f, 0.9f}};
+    EXPECT_LT(error(four, true), 2e-4f);
+    EXPECT_GT(error(four, false), 1e-2f) << "two layers leave the third to the closed form";
+    std::vector<Fragment> deep = four;
+    deep.push_back({glm::vec3(0.0f, 0.0f, 1.0f), 0.6f, 0.97f});
+    EXPECT_LT(error(deep, true), 0.5f * error(deep, false));
+    // Without a third layer the two-layer form.
+    const std::vector<Fragment> two = {four[0], four[1]};
+    const glm::vec4 sums2 = glm::vec4(four[0].color * 0.5f, 0.5f) + glm::vec4(four[1].color * 0.4f, 0.4f);
+    const glm::vec3 a = orderedClosedFormBehindThreeLayers(glm::vec4(four[0].color, 0.5f), 0.5f, glm::vec4(four[1].color, 0.4f), 0.6f,
+                                                           glm::vec4(0.0f), 1.0f, sums2, 0.3f, behindMomentsOf(two, reference), kBackground);
+    const glm::vec3 b = orderedClosedFormBehindTwoLayers(glm::vec4(four[0].color, 0.5f), 0.5f, glm::vec4(four[1].color, 0.4f), 0.6f,
+                                                         sums2, 0.3f, behindMomentsOf(two, reference), kBackground);
+    EXPECT_EQ(a, b);
+}
+
+// The three-layer composite (correction_composite.frag.glsl with STARNT_PACKED_THREE_LAYERS) against
+// the CPU reference on random lists: the nearest layer over orderedClosedFormBehindThreeLayers, no
+// correction (the real frame kept none).
+TEST(PackedLayers, ThreeLayerCompositeMatchesCpuReference) {
+    test::glContext();
+    const int w = 43, h = 31;
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const RandomPasses real = randomPasses(w, h, rng);
+    const std::vector<float> reference = referenceDepthOnCpu(real.depth, w, h);
+    std::vector<glm::uvec4> layers;
+    std::vector<glm::uvec4> thirds;  // RG32UI uploads from RGBA_INTEGER texels
+    std::vector<glm::vec4> sums, first, second;
+    std::vector<float> cover;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            std::vector<Fragment> list;
+            if (u(rng) > 0.15f) {
+                const float z1 = 0.75f + 0.1f * u(rng);
+                list.push_back({glm::vec3(u(rng), u(rng), u(rng)), 0.1f + 0.8f * u(rng), z1});
+                const int behind = int(u(rng) * 6.0f);
+                for (int k = 0; k < behind; ++k) {
+                    list.push_back({glm::vec3(u(rng), u(rng), u(rng)), 0.05f + 0.9f * u(rng), z1 + (1.0f - z1) * u(rng)});
+                }
+                std::sort(list.begin(), list.end(), [](const Fragment& a, const Fragment& b) { return a.depth < b.depth; });
+            }
+            glm::vec4 s(0.0f);
+            float opticalDepth = 0.0f;
+            glm::uvec4 l = packedLayersEmpty();
+            glm::uvec2 t3 = packedLayerEmpty();
+            for (const Fragment& f : list) {
+                s += glm::vec4(f.color * f.alpha, f.alpha);
+                opticalDepth -= std::log(std::max(1.0f - f.alpha, float(STARNT_ORDERED_MIN_OPENNESS)));
+                insertThreeLayers(l, t3, packLayer(f.depth, glm::vec4(f.color, f.alpha)));
+            }
+            const OrderedBehind m = behindMomentsOf(list, referenceAt(reference, w, x, y));
+            layers.push_back(l);
+            thirds.push_back(glm::uvec4(t3, 0u, 0u));
+            sums.push_back(s);
+            first.push_back(m.moment1);
+            second.push_back(glm::vec4(m.moment2, opticalDepth, 0.0f, 0.0f));
+            cover.push_back(list.empty() ? 1.0f : 0.5f);
+        }
+    std::vector<glm::vec4> composite(real.nearest.size(), glm::vec4(0.5f, 0.5f, 0.5f, 1.0f));
+    gl::Texture2D rc = uploadRgba(composite, w, h), rd = uploadDepth(real.depth, w, h), rn = uploadRgba(real.nearest, w, h);
+    gl::Texture2D packedTexture(GL_RGBA32UI, w, h), thirdTexture(GL_RG32UI, w, h);
+    std::vector<glm::uvec2> thirdsRg;
+    for (const glm::uvec4& t : thirds) thirdsRg.emplace_back(t.x, t.y);
+    gl::uploadTexture(packedTexture.id(), w, h, GL_RGBA_INTEGER, GL_UNSIGNED_INT, layers.data());
+    gl::uploadTexture(thirdTexture.id(), w, h, GL_RG_INTEGER, GL_UNSIGNED_INT, thirdsRg.data());
+    gl::Texture2D fs = uploadRgba(sums, w, h), m1 = uploadRgba(first, w, h), m2 = uploadRgba(second, w, h),
+                  fd = uploadDepth(cover, w, h), output(GL_RGBA32F, w, h);
+    TemporalFrames temporal(correctedOptions(), true, 3);
+    const glm::mat4 oldVP = test::turnedViewProj(w, h, 0.0f), newVP = test::turnedViewProj(w, h, 1.0f);
+    ASSERT_TRUE(temporal.beginFrame(w, h));
+    temporal.endRealFrame(rc.id(), {rn.id(), rd.id(), fs.id(), 0u}, oldVP, w, h, OpaqueScene(kBackground));
+    ASSERT_FALSE(temporal.beginFrame(w, h));
+    TemporalPassTargets passes{.nearestDepth = fd.id(), .sumAlphaColor = fs.id(), .packedNearest = packedTexture.id()};
+    passes.behindMoment1 = m1.id();
+    passes.behindMoment2 = m2.id();
+    passes.thirdLayer = thirdTexture.id();
+    temporal.interpolate(newVP, passes, OpaqueScene(kBackground), output.id());
+    const std::vector<glm::vec4> gpu = readRgba(output.id(), w, h);
+    size_t off = 0, threeDeep = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * size_t(w) + size_t(x);
+            float z1 = 1.0f, z2 = 1.0f, z3 = 1.0f;
+            const glm::vec4 l1 = unpackLayer(glm::uvec2(layers[i].x, layers[i].y), z1);
+            const glm::vec4 l2 = unpackLayer(glm::uvec2(layers[i].z, layers[i].w), z2);
+            const glm::vec4 l3 = unpackLayer(glm::uvec2(thirds[i].x, thirds[i].y), z3);
+            glm::vec3 want = kBackground;
+            if (l1.a > 0.0f) {
+                const float t = std::exp(-second[i].g);
+                glm::vec3 behind = kBackground;
+                if (1.0f - l1.a > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE)) {
+                    const OrderedBehind m{first[i], second[i].r, referenceAt(reference, w, x, y)};
+                    behind = glm::max(orderedClosedFormBehindThreeLayers(l1, z1, l2, z2, l3, z3, sums[i], t, m, kBackground),
+                                      glm::vec3(0.0f));
+                }
+                want = l1.a * glm::vec3(l1) + (1.0f - l1.a) * behind;
+            }
+            threeDeep += l3.a > 0.0f;
+            bool near = true;
+            for (int ch = 0; ch < 3; ++ch) near = near && std::abs(gpu[i][ch] - want[ch]) <= 1e-3f;
+            off += !near;  // the closed form's switches (spread thresholds) may flip on the last bits
+        }
+    EXPECT_GT(threeDeep, size_t(w * h / 4));
+    EXPECT_LE(off, size_t(w * h / 100)) << "pixels off the CPU reference";
+}
+
+// End to end (tubes, turning 2 degrees a frame, K = 2): with three layers the real frames render as
+// at K = 1 (no moments behind the second layer, no correction kept: starnt-d's frames bit for bit)
+// and the interpolated frames are nearer the A-buffer than with two layers and the correction.
+TEST(PackedLayers, ThreeLayersLeaveRealFramesAsAtKOneAndBringInterpolatedFramesNearer) {
+    test::TestScene c(makeBuiltinScene("tubes", 3), 96, 64, 30.0f, 15.0f, kBackground);
+    if (!epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) GTEST_SKIP() << "no GL_EXT_shader_framebuffer_fetch";
+    GLint drawBuffers = 0;
+    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &drawBuffers);
+    if (drawBuffers < 5) GTEST_SKIP() << "fewer than 5 draw buffers";
+    const std::vector<float> yaws = {0.0f, 2.0f, 4.0f, 6.0f, 8.0f, 10.0f};
+    MethodOptions two = correctedOptions(), three = correctedOptions(), still;
+    two.neural.correctedLayers = NeuralOptions::CorrectedLayers::Two;
+    three.neural.correctedLayers = NeuralOptions::CorrectedLayers::Three;
+    still.neural.spatial = false;
+    const auto twoLayers = renderSequence(c, two, yaws, "starnt-d");
+    const auto threeLayers = renderSequence(c, three, yaws, "starnt-d");
+    const auto everyFrameReal = renderSequence(c, still, yaws, "starnt-d");
+    const auto exact = renderSequence(c, MethodOptions{}, yaws, "abuffer");
+    auto mse = [](const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b) {
+        double sum = 0.0;
+        for (size_t i = 0; i < a.size(); ++i)
+            for (int ch = 0; ch < 3; ++ch) sum += double(a[i][ch] - b[i][ch]) * double(a[i][ch] - b[i][ch]);
+        return sum / double(3 * a.size());
+    };
+    double interpolatedTwo = 0.0, interpolatedThree = 0.0, real = 0.0;
+    for (size_t f = 0; f < yaws.size(); ++f) {
+        if (f % 2 == 0) {
+            EXPECT_EQ(threeLayers[f], everyFrameReal[f]) << "real frame " << f;
+            real += mse(threeLayers[f], exact[f]);
+            continue;
+        }
+        interpolatedTwo += mse(twoLayers[f], exact[f]);
+        interpolatedThree += mse(threeLayers[f], exact[f]);
+    }
+    std::printf("MSE against the A-buffer: real frames %.3g; interpolated, two layers %.3g, three layers %.3g\n", real / 3.0,
+                interpolatedTwo / 3.0, interpolatedThree / 3.0);
+    EXPECT_LT(interpolatedThree, 0.8 * interpolatedTwo);
+    EXPECT_LT(interpolatedThree, 1.25 * real) << "interpolated frames within 1.25x of the real frames' error";
+}
+
 // `--corrected-layers 2` names what it lacks.
 TEST(PackedLayers, TwoLayersWithoutWhatTheyNeedIsAnErrorNamingIt) {
     test::glContext();
@@ -874,5 +1122,14 @@ TEST(PackedLayers, TwoLayersWithoutWhatTheyNeedIsAnErrorNamingIt) {
         ADD_FAILURE() << "no corrected frames";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("corrected frames"), std::string::npos) << e.what();
+    }
+    MethodOptions three = o;
+    three.neural.correctedLayers = NeuralOptions::CorrectedLayers::Three;
+    try {
+        createMethod("starnt", SceneGpu::surfaceShader(), three);
+        ADD_FAILURE() << "starnt has no tail moments";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("--corrected-layers 3"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("tail-moment method"), std::string::npos) << e.what();
     }
 }

@@ -91,11 +91,13 @@ struct NeuralOptions {
     bool correctedOnePass = true;
     // Layers an interpolated frame of the tail-moment methods (hybrid-moments, starnt-d,
     // recommended) finds exactly in its one geometry pass (docs/DESIGN.md, "Corrected frames: the
-    // second layer by framebuffer fetch"): Two = the nearest two fragments, every fragment reading
-    // and rewriting a packed target in draw order (needs GL_EXT_shader_framebuffer_fetch), with the
-    // ordered closed form behind the second; One = the nearest, by MIN blending; Auto = Two where
-    // the driver has the extension (Mesa's llvmpipe, most mobile GPUs), One elsewhere.
-    enum class CorrectedLayers { Auto, One, Two };
+    // second layer by framebuffer fetch" and "... three layers"): Three = the nearest three
+    // fragments, every fragment reading and rewriting two packed targets in draw order (needs
+    // GL_EXT_shader_framebuffer_fetch and 5 draw buffers), the ordered closed form behind the third
+    // and no correction from the real frames (which then render as at K = 1); Two = the nearest two
+    // the same way, the real frames' network correction added; One = the nearest, by MIN blending;
+    // Auto = the most the driver allows (Mesa's llvmpipe, most mobile GPUs: Three), One elsewhere.
+    enum class CorrectedLayers { Auto, One, Two, Three };
     CorrectedLayers correctedLayers = CorrectedLayers::Auto;
     double targetFps = 60.0;
     // Precision of the pass targets and the output (docs/DESIGN.md, "Pipeline and formats"): Compact (default) = 16-bit float

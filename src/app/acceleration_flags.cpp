@@ -40,7 +40,8 @@ const WordFlag kWordFlags[] = {
      "nearest layer, the last real frame's network correction)"},
     {"--corrected-layers", &AccelerationFlags::correctedLayers, parseCorrectedLayersOption,
      "tail-moment methods: layers a corrected frame finds exactly in its one geometry pass: 1 | 2 (by framebuffer "
-     "fetch, GL_EXT_shader_framebuffer_fetch) | auto (2 where the driver has it)"},
+     "fetch, GL_EXT_shader_framebuffer_fetch, with the real frames' correction) | 3 (the same, no correction) | "
+     "auto (3 where the driver allows)"},
     {"--upsample", &AccelerationFlags::upsample, parseUpsampleOption,
      "neural methods: reduced passes back to full resolution: bilinear | joint (bilateral, guided by pass-1 depth)"},
     {"--targets", &AccelerationFlags::targets, parseTargetsOption,

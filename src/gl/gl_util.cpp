@@ -92,7 +92,7 @@ size_t bytesPerTexel(GLenum f) {
         case GL_RGBA32F: case GL_RGBA32UI: return 16;
         case GL_RGBA16F: return 8;
         case GL_RGBA8: case GL_RGB10_A2: case GL_RG16F: return 4;
-        case GL_RG32F: return 8;
+        case GL_RG32F: case GL_RG32UI: return 8;
         case GL_R32F: case GL_R32UI: case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8: return 4;
         case GL_R16F: case GL_R16: case GL_DEPTH_COMPONENT16: return 2;
         case GL_R8: case GL_R8UI: return 1;

@@ -140,6 +140,21 @@ glm::uvec4 insertLayer(const glm::uvec4& layers, const glm::uvec2& f) {
     return layers;
 }
 
+void insertThreeLayers(glm::uvec4& layers, glm::uvec2& third, const glm::uvec2& f) {
+    const uint32_t key = f.x >> kLayerLowBits, first = layers.x >> kLayerLowBits, second = layers.z >> kLayerLowBits;
+    if (key < first) {
+        third = {layers.z, layers.w};
+        layers = {f.x, f.y, layers.x, layers.y};
+    } else if (key > first && key < second) {
+        third = {layers.z, layers.w};
+        layers = {layers.x, layers.y, f.x, f.y};
+    } else if (key > second && key < (third.x >> kLayerLowBits)) {
+        third = f;
+    }
+}
+
+glm::uvec2 packedLayerEmpty() { return {STARNT_PACKED_LAYER_EMPTY, 0u}; }
+
 glm::vec4 unpackLayer(const glm::uvec2& layer, float& z) {
     const uint32_t key = layer.x >> kLayerLowBits;
     if (key == kLayerMaxKey) {
@@ -250,6 +265,28 @@ glm::vec3 orderedClosedFormBehindTwoLayers(const glm::vec4& nearest, float depth
     const float second2 = ordered.moment2 - u2 * (ordered.moment1.a + first.a) - nearestTerms.a * d * d;
     return orderedClosedFormBehindSecondFromMoments(nearest, second, sums, transmittance, first - nearestTerms * d, second2,
                                                     background);
+}
+
+glm::vec3 orderedClosedFormBehindThreeLayers(const glm::vec4& nearest, float depth, const glm::vec4& second, float secondDepth,
+                                             const glm::vec4& third, float thirdDepth, const glm::vec4& sums, float transmittance,
+                                             const OrderedBehind& ordered, const glm::vec3& background) {
+    if (!(third.a > 0.0f)) {
+        return orderedClosedFormBehindTwoLayers(nearest, depth, second, secondDepth, sums, transmittance, ordered, background);
+    }
+    const float open2 = 1.0f - second.a;
+    if (!(open2 > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE))) return glm::vec3(second);
+    const float u3 = depthBehindReference(thirdDepth, ordered.reference);
+    const float d1 = depthBehindReference(depth, ordered.reference) - u3;
+    const float d2 = depthBehindReference(secondDepth, ordered.reference) - u3;
+    const glm::vec4 nearestTerms(glm::vec3(nearest) * nearest.a, nearest.a);
+    const glm::vec4 secondTerms(glm::vec3(second) * second.a, second.a);
+    const glm::vec4 first = ordered.moment1 - u3 * sums;
+    const float second2 =
+        ordered.moment2 - u3 * (ordered.moment1.a + first.a) - nearestTerms.a * d1 * d1 - secondTerms.a * d2 * d2;
+    const glm::vec3 behindSecond =
+        orderedClosedFormBehindSecondFromMoments(second, third, sums - nearestTerms, transmittance / (1.0f - nearest.a),
+                                                 first - nearestTerms * d1 - secondTerms * d2, second2, background);
+    return second.a * glm::vec3(second) + open2 * behindSecond;
 }
 
 glm::vec3 closedFormBehind(const glm::vec4& nearest, const glm::vec4& sums, float transmittance, const glm::vec3& background) {

@@ -68,6 +68,11 @@ glm::uvec2 packLayer(float z, const glm::vec4& c);
 glm::uvec4 packedLayersEmpty();
 glm::uvec4 insertLayer(const glm::uvec4& layers, const glm::uvec2& fragment);
 glm::vec4 unpackLayer(const glm::uvec2& layer, float& z);
+// Three layers (STARNT_PACKED_THREE_LAYERS): `layers` the nearest two as insertLayer keeps them,
+// `third` (an RG32UI texel, packedLayerEmpty() when cleared) the nearest with a larger key than the
+// second's; on equal keys the layer already kept stays.
+void insertThreeLayers(glm::uvec4& layers, glm::uvec2& third, const glm::uvec2& fragment);
+glm::uvec2 packedLayerEmpty();
 float depthBehindReference(float z, float reference);
 std::vector<float> referenceDepthOnCpu(const std::vector<float>& depth, int width, int height);
 float referenceAt(const std::vector<float>& reference, int width, int x, int y);
@@ -104,6 +109,12 @@ glm::vec3 orderedClosedFormBehindSecondFromMoments(const glm::vec4& nearest, con
 glm::vec3 orderedClosedFormBehindTwoLayers(const glm::vec4& nearest, float depth, const glm::vec4& second, float secondDepth,
                                            const glm::vec4& sums, float transmittance, const OrderedBehind& ordered,
                                            const glm::vec3& background);
+// The same with the third layer (C3, a3, behind the second) known too: the second over the third
+// over the ordered closed form behind it, the moments recentred at u3 less both nearer layers'
+// terms; with a3 = 0 orderedClosedFormBehindTwoLayers.
+glm::vec3 orderedClosedFormBehindThreeLayers(const glm::vec4& nearest, float depth, const glm::vec4& second, float secondDepth,
+                                             const glm::vec4& third, float thirdDepth, const glm::vec4& sums, float transmittance,
+                                             const OrderedBehind& ordered, const glm::vec3& background);
 
 // One interpolated pixel (x, y): `nearest`, `depth`, `sums`, `transmittance` of the fresh passes at
 // that pixel; `correction` the kept texels of a frame rendered with `oldViewProj` (empty: the frame

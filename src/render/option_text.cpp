@@ -104,7 +104,8 @@ void parseCorrectedLayersOption(const std::string& text, MethodOptions& options)
     if (text == "auto") options.neural.correctedLayers = L::Auto;
     else if (text == "1") options.neural.correctedLayers = L::One;
     else if (text == "2") options.neural.correctedLayers = L::Two;
-    else throw Error("--corrected-layers '" + text + "': expected auto, 1 or 2");
+    else if (text == "3") options.neural.correctedLayers = L::Three;
+    else throw Error("--corrected-layers '" + text + "': expected auto, 1, 2 or 3");
 }
 
 void parseTargetsOption(const std::string& text, MethodOptions& options) {

@@ -29,7 +29,7 @@ void parseUpsampleOption(const std::string& text, MethodOptions& options);
 void parseTemporalModeOption(const std::string& text, MethodOptions& options);
 // --corrected-passes 1|2: NeuralOptions::correctedOnePass.
 void parseCorrectedPassesOption(int passes, MethodOptions& options);
-// --corrected-layers auto|1|2: NeuralOptions::correctedLayers.
+// --corrected-layers auto|1|2|3: NeuralOptions::correctedLayers.
 void parseCorrectedLayersOption(const std::string& text, MethodOptions& options);
 // "compact" | "fp32" (docs/DESIGN.md, "Pipeline and formats": pass-target precision).
 void parseTargetsOption(const std::string& text, MethodOptions& options);

@@ -42,20 +42,21 @@ public:
           // Only DFAOIT's inputs read the unweighted colour sum of pass 3 (docs/DESIGN.md, "Pipeline and formats").
           passes_(surface, opaque_, config.kind == nn::NetworkKind::DFAOIT, options_.neural.targets,
                   narrowLayersApply(config, options_, spatial_, corners_), config.tailMoments),
-          twoLayers_(correctedTwoLayers(config, options_)),
-          temporal_(options_, config.tailMoments, twoLayers_) {
+          layers_(correctedLayers(config, options_)),
+          temporal_(options_, config.tailMoments, layers_) {
         if (spatial_ || corners_) tiles_ = std::make_unique<tiles::GpuTiles>();
         shadingRates_ = shadingRatesApply();
         if (shadingRates_) tiles_->enableShadingRates();
         if (temporal_.interpolates() && temporal_.corrects()) {
-            if (twoLayers_) passes_.findTwoLayers();
+            if (layers_ == 3) passes_.findThreeLayers();
+            else if (layers_ == 2) passes_.findTwoLayers();
             if (options_.neural.correctedOnePass) passes_.preparePackedNearestAndSums();
             else passes_.prepareNearestAndSums();
             if (config_.tailMoments && fusedCaptureApplies()) {
                 // (the plain capture only where pass 3 lacks the draw buffers: built on first need)
                 passes_.prepareRealBehindMoments();
                 inference("infer_full_capture_ordered", true);
-            } else if (options_.neural.fusedCorrectionCapture && !corners_) {
+            } else if (keepsCorrection() && options_.neural.fusedCorrectionCapture && !corners_) {
                 inference("infer_full_capture", true);
             }
         }
@@ -183,6 +184,7 @@ public:
             TemporalPassTargets targets = temporalTargets(true);
             if (temporal_.interpolatedPasses() == TemporalFrames::Passes::PackedNearestAndSums) {
                 targets.packedNearest = passes_.packedNearest();
+                targets.thirdLayer = passes_.thirdLayer();
             }
             targets.behindMoment1 = passes_.behindMoment1();
             targets.behindMoment2 = passes_.behindMoment2();
@@ -325,14 +327,15 @@ private:
         return false;
     }
 
-    // Whether the interpolated frames find the nearest two fragments (NeuralOptions::correctedLayers;
-    // docs/DESIGN.md, "Corrected frames: the second layer by framebuffer fetch"). Their real frames
-    // then sum the moments behind pass 2's layer, and the kept correction is taken against the
-    // closed form with both layers exact. `2` without what it needs is an error naming it; `auto`
-    // falls back to one layer.
-    static bool correctedTwoLayers(const NeuralMethodConfig& config, const MethodOptions& o) {
+    // How many layers the interpolated frames find exactly (NeuralOptions::correctedLayers; docs/DESIGN.md,
+    // "Corrected frames: the second layer by framebuffer fetch" and "... three layers and no
+    // correction"). With two, their real frames sum the moments behind pass 2's layer and the kept
+    // correction is taken against the closed form with both layers exact; with three, the real
+    // frames keep no correction (keepsCorrection). `2` or `3` without what it needs is an error
+    // naming it; `auto` takes the most the context allows, else one layer.
+    static int correctedLayers(const NeuralMethodConfig& config, const MethodOptions& o) {
         using L = NeuralOptions::CorrectedLayers;
-        if (o.neural.correctedLayers == L::One) return false;
+        if (o.neural.correctedLayers == L::One) return 1;
         const bool corrected = (o.neural.temporalInterval > 1 || o.neural.temporalAuto) &&
                                o.neural.temporalMode == NeuralOptions::TemporalMode::Correct;
         std::string missing;
@@ -345,9 +348,20 @@ private:
         } else if (!epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) {
             missing = "GL_EXT_shader_framebuffer_fetch in this OpenGL context";
         }
-        if (missing.empty()) return true;
-        if (o.neural.correctedLayers == L::Two) throw Error("--corrected-layers 2 needs " + missing);
-        return false;
+        if (!missing.empty()) {
+            if (o.neural.correctedLayers == L::Two) throw Error("--corrected-layers 2 needs " + missing);
+            if (o.neural.correctedLayers == L::Three) throw Error("--corrected-layers 3 needs " + missing);
+            return 1;
+        }
+        if (o.neural.correctedLayers == L::Two) return 2;
+        // The third layer is a fifth target of the interpolated frames' pass 3.
+        GLint drawBuffers = 0;
+        glGetIntegerv(GL_MAX_DRAW_BUFFERS, &drawBuffers);
+        if (drawBuffers >= 5) return 3;
+        if (o.neural.correctedLayers == L::Three) {
+            throw Error("--corrected-layers 3 needs 5 draw buffers (GL_MAX_DRAW_BUFFERS is " + std::to_string(drawBuffers) + ")");
+        }
+        return 2;
     }
 
     static const MethodOptions& validated(const NeuralMethodConfig& config, const MethodOptions& o) {
@@ -384,7 +398,7 @@ private:
         const std::string defines = std::string(fullResolutionInputs ? "#define STARNT_INPUTS_FULL_RESOLUTION\n" : "") +
                                     (capture ? "#define STARNT_CAPTURE_CORRECTION\n" : "") +
                                     (ordered ? "#define STARNT_CAPTURE_ORDERED\n" : "") +
-                                    (ordered && twoLayers_ ? "#define STARNT_CAPTURE_TWO_LAYERS\n" : "") +
+                                    (ordered && layers_ == 2 ? "#define STARNT_CAPTURE_TWO_LAYERS\n" : "") +
                                     (joint() ? "#define STARNT_UPSAMPLE_JOINT\n" : "") + passes_.countLayoutDefine() + passes_.targetsDefine() +
                                     passes_.layerDefine() +
                                     neuralEpsilonDefines() + nn::generateInferenceGlsl(network_);
@@ -449,8 +463,14 @@ private:
     // The real frame's composite captures the corrected frames' correction itself (beside corner
     // inference and reduced passes, which the caller checks per frame).
     bool fusedCaptureApplies() const {
-        return temporal_.interpolates() && temporal_.corrects() && skipEmpty() && options_.neural.fusedCorrectionCapture;
+        return temporal_.interpolates() && temporal_.corrects() && keepsCorrection() && skipEmpty() &&
+               options_.neural.fusedCorrectionCapture;
     }
+    // Whether the real frames keep the network's correction for the interpolated frames: not with
+    // three layers, whose closed form alone measured nearer the A-buffer than the real frames
+    // (docs/DESIGN.md, "Corrected frames: three layers and no correction"); those real frames then
+    // render as at K = 1 and keep only the reference depth.
+    bool keepsCorrection() const { return layers_ != 3; }
 
     void setCommonUniforms(const gl::Program& program, const FrameDesc& frame) const {
         glUseProgram(program.id());
@@ -523,7 +543,7 @@ private:
     nn::Network network_;
     std::map<std::pair<std::string, bool>, gl::Program> inferencePrograms_;
     NeuralPasses passes_;
-    bool twoLayers_;  // correctedTwoLayers
+    int layers_;  // correctedLayers
     TemporalFrames temporal_;
     std::unique_ptr<tiles::GpuTiles> tiles_;
     EmptyPixelSkip emptyPixels_;

@@ -232,6 +232,7 @@ void NeuralPasses::addMemoryTargets(OitMethod::MemoryTargets& out) const {
                            {"pass3_tail_moments", tailMoment1_.bytes() + tailMoment2_.bytes()},
                            {"corrected_packed_nearest", packedNearest_.bytes()},
                            {"corrected_packed_layers", packedLayers_.bytes()},
+                           {"corrected_third_layer", thirdLayer_.bytes()},
                            {"pass3_resolve_copies_es", esResolveCopies_.bytes()},
                            {"clear_strips", clears_.bytes()}});
 }
@@ -239,7 +240,7 @@ void NeuralPasses::addMemoryTargets(OitMethod::MemoryTargets& out) const {
 size_t NeuralPasses::gpuMemoryBytes() const {
     return nearest_.bytes() + nearestDepth_.bytes() + second_.bytes() + secondDepth_.bytes() +
            alphaColor_.bytes() + colorCount_.bytes() + transmittance_.bytes() + layerAlpha_.bytes() +
-           tailMoment1_.bytes() + tailMoment2_.bytes() + packedNearest_.bytes() + packedLayers_.bytes() + esResolveCopies_.bytes() + clears_.bytes();
+           tailMoment1_.bytes() + tailMoment2_.bytes() + packedNearest_.bytes() + packedLayers_.bytes() + thirdLayer_.bytes() + esResolveCopies_.bytes() + clears_.bytes();
 }
 
 void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) {
@@ -430,6 +431,7 @@ void NeuralPasses::preparePackedNearestAndSums() {
         pass3Packed_ = buildSurfaceProgram(surface_, "neural_pass3_packed", "methods/neural/pass3_accumulate.frag.glsl",
                                            std::string("#define STARNT_SUMS_ONLY\n#define STARNT_PACKED_NEAREST\n") +
                                                behindMomentsDefine() +
+                                               (threeLayers_ ? "#define STARNT_PACKED_THREE_LAYERS\n" : "") +
                                                (twoLayers_ ? "#extension GL_EXT_shader_framebuffer_fetch : require\n"
                                                              "#define STARNT_PACKED_TWO_LAYERS\n"
                                                            : ""));
@@ -457,6 +459,7 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
         // The two layers: an integer target of their own (the real frames keep their moments behind
         // the reference in packedNearest_, a float one).
         if (twoLayers_) packedLayers_ = gl::Texture2D(GL_RGBA32UI, width_, height_);
+        if (threeLayers_) thirdLayer_ = gl::Texture2D(GL_RG32UI, width_, height_);
         else allocatePackedNearest();
         packedFb_.reset();
     }
@@ -467,7 +470,9 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
         // composite's early empty-pixel test; so the opaque clip runs in the shader, as in pass 1.
         // The tail-moment methods sum their moments behind the nearest layer into their first
         // moment target and the count's, free in an interpolated frame (makeSumsFramebuffer).
-        packedFb_ = tailMoments_ ? gl::makeFramebuffer({&alphaColor_, &colorCount_, &packed, &tailMoment1_}, &nearestDepth_)
+        // The third layer, where found, is target 4 (pass3_accumulate.frag.glsl).
+        packedFb_ = threeLayers_   ? gl::makeFramebuffer({&alphaColor_, &colorCount_, &packed, &tailMoment1_, &thirdLayer_}, &nearestDepth_)
+                    : tailMoments_ ? gl::makeFramebuffer({&alphaColor_, &colorCount_, &packed, &tailMoment1_}, &nearestDepth_)
                                  : gl::makeFramebuffer({&alphaColor_, &transmittance_, &packedNearest_}, &nearestDepth_);
     }
     pass3Size_ = {width_, height_};
@@ -488,6 +493,7 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
         // Read and rewritten by every fragment (framebuffer fetch); an integer target blends nothing.
         const GLuint empty[4] = {STARNT_PACKED_LAYER_EMPTY, 0u, STARNT_PACKED_LAYER_EMPTY, 0u};
         clears_.colorUint(2, empty);
+        if (threeLayers_) clears_.colorUint(4, empty);
     } else {
         const float emptyPixel = std::bit_cast<float>(STARNT_PACKED_EMPTY_BITS);
         const float empty[4] = {emptyPixel, emptyPixel, emptyPixel, emptyPixel};

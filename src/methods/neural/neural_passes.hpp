@@ -156,6 +156,10 @@ public:
     // GL_EXT_shader_framebuffer_fetch; packed_nearest.h): packedNearest() is then RGBA32UI. Call
     // before preparePackedNearestAndSums.
     void findTwoLayers() { twoLayers_ = tailMoments_; }
+    // The same and the third layer in an RG32UI target of its own (thirdLayer(); needs 5 draw
+    // buffers): docs/DESIGN.md, "Corrected frames: three layers and no correction".
+    void findThreeLayers() { twoLayers_ = threeLayers_ = tailMoments_; }
+    GLuint thirdLayer() const { return threeLayers_ ? thirdLayer_.id() : 0u; }
     // The moments an interpolated frame of a tail-moment method summed behind its reference (targets
     // its real frames' inference has read by then): (sum a C u, sum a u) in the first tail-moment
     // target, and in the count's (RG32F) sum a u^2 in .r and the optical depth sum -ln(1 - a) in .g
@@ -238,6 +242,8 @@ private:
     gl::Texture2D packedNearest_;  // allocated on first need
     bool twoLayers_ = false;       // findTwoLayers
     gl::Texture2D packedLayers_;   // the nearest two fragments (twoLayers_), allocated on first need
+    bool threeLayers_ = false;     // findThreeLayers
+    gl::Texture2D thirdLayer_;     // the third (threeLayers_), allocated with packedLayers_
     // A real frame's moments behind the reference (the first in packedNearest_, free then; the
     // second beside the count).
     gl::Program pass3Behind_;

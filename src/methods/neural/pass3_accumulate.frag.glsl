@@ -34,6 +34,9 @@ layout(location = 1) out vec4 outTransmittance;
 // (EXT_shader_framebuffer_fetch; packed_nearest.h): target 2 is RGBA32UI, not blended.
 #include "methods/neural/temporal/packed_nearest.glsl"
 layout(location = 2) inout highp uvec4 outPackedLayers;
+#ifdef STARNT_PACKED_THREE_LAYERS
+layout(location = 4) inout highp uvec4 outThirdLayer;
+#endif
 #define STARNT_BEHIND_MOMENT1_LOCATION 3
 #elif defined(STARNT_PACKED_NEAREST)
 #include "methods/neural/temporal/packed_nearest.glsl"
@@ -74,7 +77,15 @@ void main() {
 #endif
     outTransmittance = vec4(0.0, 0.0, 0.0, s.a);
 #if defined(STARNT_PACKED_TWO_LAYERS)
+#ifdef STARNT_PACKED_THREE_LAYERS
+    uvec4 layers = outPackedLayers;
+    uvec2 third = outThirdLayer.xy;
+    insertThreeLayers(layers, third, packLayer(gl_FragCoord.z, s));
+    outPackedLayers = layers;
+    outThirdLayer = uvec4(third, 0u, 0u);
+#else
     outPackedLayers = insertLayer(outPackedLayers, packLayer(gl_FragCoord.z, s));
+#endif
 #elif defined(STARNT_PACKED_NEAREST)
     outPackedNearest = packNearest(gl_FragCoord.z, s);
 #endif

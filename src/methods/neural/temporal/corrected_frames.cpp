@@ -13,14 +13,16 @@ namespace {
 const char* orderedDefine(bool ordered) { return ordered ? "#define STARNT_ORDERED_BEHIND\n" : ""; }
 }  // namespace
 
-CorrectedFrames::CorrectedFrames(bool ordered, bool twoLayers)
+CorrectedFrames::CorrectedFrames(bool ordered, int layers)
     : ordered_(ordered),
-      twoLayers_(ordered && twoLayers),
+      twoLayers_(ordered && layers >= 2),
+      threeLayers_(ordered && layers >= 3),
       capture_(buildTemporalPass("correction_capture", "reprojection_behind.frag.glsl", "#define STARNT_BEHIND_CORRECTION 1\n")),
       composite_(buildTemporalPass("correction_composite", "correction_composite.frag.glsl", orderedDefine(ordered))),
       compositePacked_(buildTemporalPass("correction_composite_packed", "correction_composite.frag.glsl",
                                          std::string("#define STARNT_PACKED_NEAREST\n") + orderedDefine(ordered) +
-                                             (ordered && twoLayers ? "#define STARNT_PACKED_TWO_LAYERS\n" : ""))),
+                                             (ordered && layers >= 2 ? "#define STARNT_PACKED_TWO_LAYERS\n" : "") +
+                                             (ordered && layers >= 3 ? "#define STARNT_PACKED_THREE_LAYERS\n" : ""))),
       emptyVao_(gl::makeEmptyVertexArray()) {
     if (ordered) {
         referenceTilesPass_ = buildTemporalPass("corrected_reference_tiles", "reference_depth.frag.glsl");
@@ -138,17 +140,20 @@ void CorrectedFrames::composite(const glm::mat4& newViewProj, GLuint nearest, GL
 
 void CorrectedFrames::compositePacked(const glm::mat4& newViewProj, GLuint packedNearest, GLuint coverDepth,
                                       GLuint sumAlphaColor, GLuint transmittance, const OpaqueScene& background,
-                                      GLuint output, GLuint behindMoment1, GLuint behindMoment2) {
+                                      GLuint output, GLuint behindMoment1, GLuint behindMoment2, GLuint thirdLayer) {
     if (!hasFrame_) throw Error("internal: a corrected frame before any real frame was captured");
     if (gl::textureInternalFormat(packedNearest) != (twoLayers_ ? GL_RGBA32UI : GL_RGBA32F)) {
         throw Error(twoLayers_ ? "internal: the packed two layers must be an RGBA32UI texture"
                                : "internal: the packed nearest fragment must be an RGBA32F texture");
     }
+    if (threeLayers_ && (!thirdLayer || gl::textureInternalFormat(thirdLayer) != GL_RG32UI)) {
+        throw Error("internal: the packed third layer must be an RG32UI texture");
+    }
     const bool halfOutput = gl::textureInternalFormat(output) == GL_RGBA16F;  // before any binding (ES)
     emptyPixels_.bindCovered(output, coverDepth, width_, height_);
     emptyPixels_.clearToBackground(background, halfOutput);  // the output is not read here
     setCompositeUniforms(compositePacked_, newViewProj, background, halfOutput);
-    bindComposite(packedNearest, 0, sumAlphaColor, transmittance, behindMoment1, behindMoment2);
+    bindComposite(packedNearest, thirdLayer, sumAlphaColor, transmittance, behindMoment1, behindMoment2);
     gl::drawFullscreenTriangle(emptyVao_);
     emptyPixels_.fillEmpty(background, halfOutput, emptyVao_);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -160,7 +165,7 @@ void CorrectedFrames::bindComposite(GLuint nearestOrPacked, GLuint depth, GLuint
         throw Error("internal: ordered corrected frames need pass 3's moments behind the reference depth");
     }
     // correction_composite.frag.glsl's units: 0 pass 1's layer (or the packed layer), 1 its depth
-    // (none with the packed layer), 2 and 3 the sums, 4 the correction; ordered: 5 and 6 the
+    // (with the packed layers: the third layer, where found), 2 and 3 the sums, 4 the correction; ordered: 5 and 6 the
     // moments, 7 the reference depth.
     const GLuint inputs[] = {nearestOrPacked, depth, sumAlphaColor, transmittance, correction_.id(),
                              behindMoment1, behindMoment2, ordered_ ? reference_.id() : 0u};

@@ -19,9 +19,11 @@ public:
     // interpolated frames weigh what lies behind the nearest layer by depth (ordered_behind.glsl):
     // every kept frame then keeps a reference depth too (reference()), and the composites read the
     // moments pass 3 summed behind it.
-    // ordered: the tail-moment methods' closed form (ordered_behind.glsl); twoLayers: their
-    // interpolated frames' packed target holds the nearest two fragments (packed_nearest.h).
-    explicit CorrectedFrames(bool ordered = false, bool twoLayers = false);
+    // ordered: the tail-moment methods' closed form (ordered_behind.glsl); layers (ordered only):
+    // 2, their interpolated frames' packed target holds the nearest two fragments
+    // (packed_nearest.h); 3, a second target the third (the real frames then keep no correction:
+    // the interpolated frames composite the closed form behind the third layer alone).
+    explicit CorrectedFrames(bool ordered = false, int layers = 1);
 
     // After a real frame: `composite` its output (RGBA16F or RGBA32F; the kept texture takes the same
     // format), `depth` its pass-1 depth (DEPTH_COMPONENT32F), `nearest` its pass-1 colour + alpha,
@@ -62,7 +64,7 @@ public:
     // fragment, which the early empty-pixel test runs against (the composite does not sample it).
     void compositePacked(const glm::mat4& newViewProj, GLuint packedNearest, GLuint coverDepth, GLuint sumAlphaColor,
                          GLuint transmittance, const OpaqueScene& background, GLuint output, GLuint behindMoment1 = 0,
-                         GLuint behindMoment2 = 0);
+                         GLuint behindMoment2 = 0, GLuint thirdLayer = 0);
     // Ordered only: the kept frame's reference depth (R32F, one texel per
     // STARNT_ORDERED_REFERENCE_TILE pixels squared; reference_depth.frag.glsl), which an
     // interpolated frame's pass 3 reads; 0 before the first kept frame or when not ordered.
@@ -91,6 +93,7 @@ private:
                        GLuint transmittance, GLuint behindMoment1, GLuint behindMoment2);
     bool ordered_ = false;
     bool twoLayers_ = false;
+    bool threeLayers_ = false;
     bool referenceFresh_ = false;  // prepareReference ran in this real frame
     gl::Program capture_, composite_, compositePacked_;
     gl::Program referenceTilesPass_, referenceAroundPass_;  // ordered only

@@ -19,6 +19,9 @@
 // (packed_nearest.h), and what lies behind the second weighed by depth.
 #include "methods/neural/temporal/packed_nearest.glsl"
 layout(binding = 0) uniform highp usampler2D u_packedLayers;  // fresh pass 3: the nearest two fragments, packed
+#ifdef STARNT_PACKED_THREE_LAYERS
+layout(binding = 1) uniform highp usampler2D u_thirdLayer;
+#endif
 #elif defined(STARNT_PACKED_NEAREST)
 #include "methods/neural/temporal/packed_nearest.glsl"
 layout(binding = 0) uniform highp sampler2D u_packedNearest;  // fresh pass 3: the nearest fragment, packed
@@ -59,6 +62,10 @@ void main() {
     float depth, secondDepth;
     vec4 fresh = unpackLayer(layers.xy, depth);
     vec4 second = unpackLayer(layers.zw, secondDepth);
+#ifdef STARNT_PACKED_THREE_LAYERS
+    float thirdDepth;
+    vec4 third = unpackLayer(texelFetch(u_thirdLayer, p, 0).xy, thirdDepth);
+#endif
 #elif defined(STARNT_PACKED_NEAREST)
     float depth;
     vec4 fresh = unpackNearest(texelFetch(u_packedNearest, p, 0), depth);
@@ -79,10 +86,17 @@ void main() {
         vec3 behind = background();
         if (open > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE)) {
 #if defined(STARNT_PACKED_TWO_LAYERS)
+#ifdef STARNT_PACKED_THREE_LAYERS
+            behind = orderedClosedFormBehindThreeLayers(fresh, depth, second, secondDepth, third, thirdDepth, texelFetch(u_sumAlphaColor, p, 0),
+                                                      transmittance, texelFetch(u_behindMoment1, p, 0), secondAndTransmittance.x,
+                                                      texelFetch(u_reference, p / STARNT_ORDERED_REFERENCE_TILE, 0).r,
+                                                      background());
+#else
             behind = orderedClosedFormBehindTwoLayers(fresh, depth, second, secondDepth, texelFetch(u_sumAlphaColor, p, 0),
                                                       transmittance, texelFetch(u_behindMoment1, p, 0), secondAndTransmittance.x,
                                                       texelFetch(u_reference, p / STARNT_ORDERED_REFERENCE_TILE, 0).r,
                                                       background());
+#endif
 #elif defined(STARNT_ORDERED_BEHIND)
             behind = orderedClosedFormBehind(fresh, depth, texelFetch(u_sumAlphaColor, p, 0), transmittance,
                                              texelFetch(u_behindMoment1, p, 0), secondAndTransmittance.x,

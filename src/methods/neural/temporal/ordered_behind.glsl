@@ -91,4 +91,28 @@ vec3 orderedClosedFormBehindTwoLayers(vec4 nearest, float depth, vec4 second, fl
     float second2 = m2 - u2 * (m1.a + first.a) - nearestTerms.a * d * d;
     return orderedClosedFormBehindSecondFromMoments(nearest, second, sums, t, first - nearestTerms * d, second2, background);
 }
+
+// The same with the nearest three layers packed (docs/DESIGN.md, "Corrected frames: three layers and
+// no correction"): the second layer over the third over the ordered closed form of what lies behind
+// it, the moments recentred at u3 less the nearest two layers' terms; the two-layer form where no
+// third layer was found.
+vec3 orderedClosedFormBehindThreeLayers(vec4 nearest, float depth, vec4 second, float secondDepth, vec4 third,
+                                        float thirdDepth, vec4 sums, float t, vec4 m1, float m2, float reference,
+                                        vec3 background) {
+    if (!(third.a > 0.0)) {
+        return orderedClosedFormBehindTwoLayers(nearest, depth, second, secondDepth, sums, t, m1, m2, reference, background);
+    }
+    float open2 = 1.0 - second.a;
+    if (!(open2 > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE))) return second.rgb;
+    float u3 = depthBehindReference(thirdDepth, reference);
+    float d1 = depthBehindReference(depth, reference) - u3;
+    float d2 = depthBehindReference(secondDepth, reference) - u3;
+    vec4 nearestTerms = vec4(nearest.rgb * nearest.a, nearest.a);
+    vec4 secondTerms = vec4(second.rgb * second.a, second.a);
+    vec4 first = m1 - u3 * sums;
+    float second2 = m2 - u3 * (m1.a + first.a) - nearestTerms.a * d1 * d1 - secondTerms.a * d2 * d2;
+    vec3 behindSecond = orderedClosedFormBehindSecondFromMoments(second, third, sums - nearestTerms, t / (1.0 - nearest.a),
+                                                                 first - nearestTerms * d1 - secondTerms * d2, second2, background);
+    return second.a * second.rgb + open2 * behindSecond;
+}
 #endif

@@ -120,6 +120,25 @@ uvec4 insertLayer(uvec4 layers, uvec2 f) {
     return layers;
 }
 
+#ifdef STARNT_PACKED_THREE_LAYERS
+// The nearest three layers after fragment `f` met them: `layers` the nearest two (insertLayer),
+// `third` the nearest with a larger key than the second's; on equal keys the layer kept stays.
+void insertThreeLayers(inout uvec4 layers, inout uvec2 third, uvec2 f) {
+    uint key = f.x >> kLayerLowBits;
+    uint first = layers.x >> kLayerLowBits;
+    uint second = layers.z >> kLayerLowBits;
+    if (key < first) {
+        third = layers.zw;
+        layers = uvec4(f, layers.xy);
+    } else if (key > first && key < second) {
+        third = layers.zw;
+        layers.zw = f;
+    } else if (key > second && key < (third.x >> kLayerLowBits)) {
+        third = f;
+    }
+}
+#endif
+
 // C, a of a layer (all 0 where there is none) and its window depth (1 where there is none).
 vec4 unpackLayer(uvec2 layer, out float z) {
     uint key = layer.x >> kLayerLowBits;

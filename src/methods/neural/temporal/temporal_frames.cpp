@@ -4,14 +4,14 @@
 
 namespace starnt {
 
-TemporalFrames::TemporalFrames(const MethodOptions& options, bool orderedBehind, bool twoLayers)
+TemporalFrames::TemporalFrames(const MethodOptions& options, bool orderedBehind, int layers)
     : schedule_(options),
       clock_(gl::wallClockTimingNeeded()),
       mode_(options.neural.temporalMode),
       skipEmptyPixels_(options.neural.skipEmptyPixels),
       onePass_(options.neural.correctedOnePass) {
     if (!interpolates()) return;
-    if (corrects()) corrected_ = std::make_unique<temporal::CorrectedFrames>(orderedBehind, twoLayers);
+    if (corrects()) corrected_ = std::make_unique<temporal::CorrectedFrames>(orderedBehind, layers);
     else reprojector_ = std::make_unique<temporal::Reprojector>();
 }
 
@@ -68,7 +68,7 @@ void TemporalFrames::interpolate(const glm::mat4& viewProj, const TemporalPassTa
             if (passes.packedNearest) {
                 corrected_->compositePacked(viewProj, passes.packedNearest, passes.nearestDepth, passes.sumAlphaColor,
                                             passes.transmittance, background, outputTexture, passes.behindMoment1,
-                                            passes.behindMoment2);
+                                            passes.behindMoment2, passes.thirdLayer);
             } else {
                 corrected_->composite(viewProj, passes.nearest, passes.nearestDepth, passes.sumAlphaColor, passes.transmittance,
                                       background, outputTexture, passes.behindMoment1, passes.behindMoment2);

@@ -37,6 +37,8 @@ struct TemporalPassTargets {
     // Corrected frames of the tail-moment methods: pass 3's moments behind the reference depth
     // (ordered_behind.glsl).
     GLuint behindMoment1 = 0, behindMoment2 = 0;
+    // Three layers (packedNearest the nearest two): pass 3's third layer, RG32UI.
+    GLuint thirdLayer = 0;
 };
 
 class TemporalFrames {
@@ -45,8 +47,8 @@ public:
     // context (builds the reprojection programs; picks the timing source from the renderer).
     // `orderedBehind`: the method has tail moments, and its corrected frames weigh what lies behind
     // the nearest layer by depth (CorrectedFrames' `ordered`).
-    // orderedBehind, twoLayers: temporal::CorrectedFrames' ordered and twoLayers.
-    explicit TemporalFrames(const MethodOptions& options, bool orderedBehind = false, bool twoLayers = false);
+    // orderedBehind, layers: temporal::CorrectedFrames' ordered and layers.
+    explicit TemporalFrames(const MethodOptions& options, bool orderedBehind = false, int layers = 1);
 
     // Starts a frame of the given size; true = render it for real. Always true for the first frame,
     // after reset(), and when the size differs from the kept real frame's.
