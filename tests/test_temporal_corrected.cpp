@@ -76,6 +76,60 @@ RandomPasses randomPasses(int w, int h, std::mt19937& rng) {
     return p;
 }
 
+// A random fragment list at a pixel: none (15 %), or a nearest fragment at window depth 0.75-0.85 and
+// up to `maxBehind` - 1 more behind it in draw order, not sorted.
+std::vector<Fragment> randomListBehindAFlatLayer(std::mt19937& rng, float maxBehind) {
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::vector<Fragment> list;
+    if (u(rng) > 0.15f) {
+        const float z1 = 0.75f + 0.1f * u(rng);
+        list.push_back({glm::vec3(u(rng), u(rng), u(rng)), 0.1f + 0.8f * u(rng), z1});
+        const int behind = int(u(rng) * maxBehind);
+        for (int k = 0; k < behind; ++k) {
+            list.push_back({glm::vec3(u(rng), u(rng), u(rng)), 0.05f + 0.9f * u(rng), z1 + (1.0f - z1) * u(rng)});
+        }
+    }
+    return list;
+}
+
+// What an ordered interpolated frame's pass 3 sums at a pixel (pass3_accumulate.frag.glsl).
+struct OrderedPixel {
+    glm::vec4 sums{0.0f};  // sum a C, sum a
+    float transmittance = 1.0f, opticalDepth = 0.0f;
+    OrderedBehind moments;
+};
+OrderedPixel orderedPixelOf(const std::vector<Fragment>& list, float reference) {
+    OrderedPixel o;
+    for (const Fragment& f : list) {
+        o.sums += glm::vec4(f.color * f.alpha, f.alpha);
+        o.transmittance *= 1.0f - f.alpha;
+        o.opticalDepth -= std::log(std::max(1.0f - f.alpha, float(STARNT_ORDERED_MIN_OPENNESS)));
+    }
+    o.moments = behindMomentsOf(list, reference);
+    return o;
+}
+
+// Tubes at 64x48 and the neural passes over them (the packed-layer tests).
+struct TubesPasses {
+    const int w = 64, h = 48;
+    test::TestScene scene{loadScene("builtin:tubes"), w, h, 30.0f, 20.0f, kBackground};
+    FrameDesc frame = scene.frame();
+    DrawCallback draw = scene.gpu->callback(frame.view, frame.projection, SurfaceOptions{});
+    OpaqueScene opaque{kBackground};
+    NeuralPasses passes{SceneGpu::surfaceShader(), beginOpaque(opaque, frame), false, NeuralOptions::Targets::Float32, false, true};
+    static OpaqueScene& beginOpaque(OpaqueScene& o, const FrameDesc& f) {
+        o.begin(f);
+        return o;
+    }
+};
+
+// Three layers need a fifth colour target (NeuralMethod::correctedLayers).
+bool fiveDrawBuffers() {
+    GLint drawBuffers = 0;
+    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &drawBuffers);
+    return drawBuffers >= 5;
+}
+
 MethodOptions correctedOptions() {
     MethodOptions o;
     o.neural.temporalInterval = 2;
@@ -375,36 +429,21 @@ TEST(TemporalCorrected, PassThreeSumsTheMomentsBehindTheReference) {
 static void expectOrderedFrameMatchesCpu(bool packed, int w, int h, unsigned seed) {
     test::glContext();
     std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
     const RandomPasses real = randomPasses(w, h, rng);
     const std::vector<float> reference = referenceDepthOnCpu(real.depth, w, h);
     std::vector<glm::vec4> nearest, sums, first, second, packedLayer;
     std::vector<float> depth, transmittance;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            std::vector<Fragment> list;
-            if (u(rng) > 0.15f) {
-                const float z1 = 0.75f + 0.1f * u(rng);
-                list.push_back({glm::vec3(u(rng), u(rng), u(rng)), 0.1f + 0.8f * u(rng), z1});
-                const int behind = int(u(rng) * 5.0f);
-                for (int k = 0; k < behind; ++k) {
-                    list.push_back({glm::vec3(u(rng), u(rng), u(rng)), 0.05f + 0.9f * u(rng), z1 + (1.0f - z1) * u(rng)});
-                }
-            }
-            glm::vec4 s(0.0f);
-            float t = 1.0f, opticalDepth = 0.0f;
-            for (const Fragment& f : list) {
-                s += glm::vec4(f.color * f.alpha, f.alpha), t *= 1.0f - f.alpha;
-                opticalDepth -= std::log(std::max(1.0f - f.alpha, float(STARNT_ORDERED_MIN_OPENNESS)));
-            }
-            const OrderedBehind m = behindMomentsOf(list, referenceAt(reference, w, x, y));
+            const std::vector<Fragment> list = randomListBehindAFlatLayer(rng, 5.0f);
+            const OrderedPixel o = orderedPixelOf(list, referenceAt(reference, w, x, y));
             nearest.push_back(list.empty() ? glm::vec4(0.0f) : glm::vec4(list[0].color, list[0].alpha));
             depth.push_back(list.empty() ? 1.0f : list[0].depth);
             packedLayer.push_back(list.empty() ? packedEmpty() : packNearest(depth.back(), nearest.back()));
-            sums.push_back(s);
-            transmittance.push_back(t);
-            first.push_back(m.moment1);
-            second.push_back(glm::vec4(m.moment2, opticalDepth, 0.0f, 0.0f));  // the transmittance beside sum a u^2
+            sums.push_back(o.sums);
+            transmittance.push_back(o.transmittance);
+            first.push_back(o.moments.moment1);
+            second.push_back(glm::vec4(o.moments.moment2, o.opticalDepth, 0.0f, 0.0f));  // the transmittance beside sum a u^2
         }
     std::vector<glm::vec4> composite(real.nearest.size(), glm::vec4(0.5f, 0.5f, 0.5f, 1.0f));
     gl::Texture2D rc = uploadRgba(composite, w, h), rd = uploadDepth(real.depth, w, h), rn = uploadRgba(real.nearest, w, h);
@@ -600,9 +639,7 @@ TEST(TemporalCorrected, StillCameraGivesTheRealFrame) {
 TEST(TemporalCorrected, ThreeLayersAtAStillCameraAreNoFartherFromTheABufferThanTheRealFrame) {
     test::TestScene c(makeBuiltinScene("tubes", 3), 96, 64, 30.0f, 15.0f, kBackground);
     if (!epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) GTEST_SKIP() << "no GL_EXT_shader_framebuffer_fetch";
-    GLint drawBuffers = 0;
-    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &drawBuffers);
-    if (drawBuffers < 5) GTEST_SKIP() << "fewer than 5 draw buffers";
+    if (!fiveDrawBuffers()) GTEST_SKIP() << "fewer than 5 draw buffers";
     const auto frames = renderSequence(c, correctedOptions(), {0.0f, 0.0f, 0.0f, 0.0f}, "recommended");
     const auto exact = renderSequence(c, MethodOptions{}, {0.0f}, "abuffer");
     auto mse = [](const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b) {
@@ -708,13 +745,12 @@ TEST(TemporalCorrected, FusedCaptureEqualsTheCapturePass) {
 TEST(PackedLayers, PassThreeFindsPassOneAndPassTwosFragments) {
     test::glContext();
     if (!epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) GTEST_SKIP() << "no GL_EXT_shader_framebuffer_fetch";
-    const int w = 64, h = 48;
-    const test::TestScene scene(loadScene("builtin:tubes"), w, h, 30.0f, 20.0f, kBackground);
-    const FrameDesc frame = scene.frame();
-    const DrawCallback draw = scene.gpu->callback(frame.view, frame.projection, SurfaceOptions{});
-    OpaqueScene opaque(kBackground);
-    opaque.begin(frame);
-    NeuralPasses passes(SceneGpu::surfaceShader(), opaque, false, NeuralOptions::Targets::Float32, false, true);
+    TubesPasses t;
+    const int w = t.w, h = t.h;
+    const test::TestScene& scene = t.scene;
+    const FrameDesc& frame = t.frame;
+    const DrawCallback& draw = t.draw;
+    NeuralPasses& passes = t.passes;
     passes.findTwoLayers();
     passes.run(frame, draw, NeuralPasses::kDefaultPeelEpsilon, {w, h}, {w, h});
     const std::vector<glm::vec4> layer1 = readRgba(passes.nearest().id(), w, h), layer2 = readRgba(passes.second().id(), w, h);
@@ -892,23 +928,17 @@ TEST(PackedLayers, InterpolatedFramesNearerTheABufferWithTwoLayers) {
 TEST(PackedLayers, PassThreeFindsTheNearestThreeFragments) {
     test::glContext();
     if (!epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) GTEST_SKIP() << "no GL_EXT_shader_framebuffer_fetch";
-    GLint drawBuffers = 0;
-    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &drawBuffers);
-    if (drawBuffers < 5) GTEST_SKIP() << "fewer than 5 draw buffers";
-    const int w = 64, h = 48;
-    const test::TestScene scene(loadScene("builtin:tubes"), w, h, 30.0f, 20.0f, kBackground);
-    const FrameDesc frame = scene.frame();
-    const DrawCallback draw = scene.gpu->callback(frame.view, frame.projection, SurfaceOptions{});
-    OpaqueScene opaque(kBackground);
-    opaque.begin(frame);
-    NeuralPasses passes(SceneGpu::surfaceShader(), opaque, false, NeuralOptions::Targets::Float32, false, true);
+    if (!fiveDrawBuffers()) GTEST_SKIP() << "fewer than 5 draw buffers";
+    TubesPasses t;
+    const int w = t.w, h = t.h;
+    NeuralPasses& passes = t.passes;
     passes.findThreeLayers();
-    passes.runPackedNearestAndSums(frame, draw);
+    passes.runPackedNearestAndSums(t.frame, t.draw);
     ASSERT_EQ(gl::textureInternalFormat(passes.packedNearest()), GLenum(GL_RGBA32UI));
     ASSERT_EQ(gl::textureInternalFormat(passes.thirdLayer()), GLenum(GL_RG32UI));
     const std::vector<glm::uvec4> packed = test::readRgbaUint(passes.packedNearest(), w, h);
     const std::vector<glm::uvec4> third = test::readRgbaUint(passes.thirdLayer(), w, h);  // .xy
-    const CapturedFrame fragments = scene.capture();
+    const CapturedFrame fragments = t.scene.capture();
     size_t covered = 0, threeDeep = 0, thirdOff = 0, bitsOff = 0;
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
@@ -980,40 +1010,24 @@ TEST(PackedLayers, ThreeLayerCompositeMatchesCpuReference) {
     test::glContext();
     const int w = 43, h = 31;
     std::mt19937 rng(31);
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
     const RandomPasses real = randomPasses(w, h, rng);
     const std::vector<float> reference = referenceDepthOnCpu(real.depth, w, h);
     std::vector<glm::uvec4> layers;
     std::vector<glm::uvec4> thirds;  // RG32UI uploads from RGBA_INTEGER texels
     std::vector<glm::vec4> sums, first, second;
-    std::vector<float> cover;
+    std::vector<float> cover;  // the cover depth: below 1 where pass 3 kept a fragment
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            std::vector<Fragment> list;
-            if (u(rng) > 0.15f) {
-                const float z1 = 0.75f + 0.1f * u(rng);
-                list.push_back({glm::vec3(u(rng), u(rng), u(rng)), 0.1f + 0.8f * u(rng), z1});
-                const int behind = int(u(rng) * 6.0f);
-                for (int k = 0; k < behind; ++k) {
-                    list.push_back({glm::vec3(u(rng), u(rng), u(rng)), 0.05f + 0.9f * u(rng), z1 + (1.0f - z1) * u(rng)});
-                }
-                std::sort(list.begin(), list.end(), [](const Fragment& a, const Fragment& b) { return a.depth < b.depth; });
-            }
-            glm::vec4 s(0.0f);
-            float opticalDepth = 0.0f;
+            const std::vector<Fragment> list = randomListBehindAFlatLayer(rng, 6.0f);
+            const OrderedPixel o = orderedPixelOf(list, referenceAt(reference, w, x, y));
             glm::uvec4 l = packedLayersEmpty();
             glm::uvec2 t3 = packedLayerEmpty();
-            for (const Fragment& f : list) {
-                s += glm::vec4(f.color * f.alpha, f.alpha);
-                opticalDepth -= std::log(std::max(1.0f - f.alpha, float(STARNT_ORDERED_MIN_OPENNESS)));
-                insertThreeLayers(l, t3, packLayer(f.depth, glm::vec4(f.color, f.alpha)));
-            }
-            const OrderedBehind m = behindMomentsOf(list, referenceAt(reference, w, x, y));
+            for (const Fragment& f : list) insertThreeLayers(l, t3, packLayer(f.depth, glm::vec4(f.color, f.alpha)));
             layers.push_back(l);
             thirds.push_back(glm::uvec4(t3, 0u, 0u));
-            sums.push_back(s);
-            first.push_back(m.moment1);
-            second.push_back(glm::vec4(m.moment2, opticalDepth, 0.0f, 0.0f));
+            sums.push_back(o.sums);
+            first.push_back(o.moments.moment1);
+            second.push_back(glm::vec4(o.moments.moment2, o.opticalDepth, 0.0f, 0.0f));
             cover.push_back(list.empty() ? 1.0f : 0.5f);
         }
     std::vector<glm::vec4> composite(real.nearest.size(), glm::vec4(0.5f, 0.5f, 0.5f, 1.0f));
@@ -1070,9 +1084,7 @@ TEST(PackedLayers, ThreeLayerCompositeMatchesCpuReference) {
 TEST(PackedLayers, ThreeLayersLeaveRealFramesAsAtKOneAndBringInterpolatedFramesNearer) {
     test::TestScene c(makeBuiltinScene("tubes", 3), 96, 64, 30.0f, 15.0f, kBackground);
     if (!epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) GTEST_SKIP() << "no GL_EXT_shader_framebuffer_fetch";
-    GLint drawBuffers = 0;
-    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &drawBuffers);
-    if (drawBuffers < 5) GTEST_SKIP() << "fewer than 5 draw buffers";
+    if (!fiveDrawBuffers()) GTEST_SKIP() << "fewer than 5 draw buffers";
     const std::vector<float> yaws = {0.0f, 2.0f, 4.0f, 6.0f, 8.0f, 10.0f};
     MethodOptions two = correctedOptions(), three = correctedOptions(), still;
     two.neural.correctedLayers = NeuralOptions::CorrectedLayers::Two;

@@ -15,6 +15,8 @@
 //   target 2 (RGBA32F, blend equation GL_MIN):        the nearest fragment (packed_nearest.glsl)
 //   or with STARNT_PACKED_TWO_LAYERS (framebuffer fetch, the tail-moment methods):
 //   target 2 (RGBA32UI, read and rewritten):          the nearest two fragments (packed_nearest.h)
+//   and with STARNT_PACKED_THREE_LAYERS:
+//   target 4 (RG32UI, read and rewritten):            the third nearest (insertThreeLayers)
 //   and with STARNT_BEHIND_MOMENTS (corrected frames of the tail-moment methods), u a fragment's
 //   depth behind the reference depth (ordered_behind.glsl), over every fragment:
 //   target 1 (the count's, RG32F, blend ONE/ONE):      sum a u^2, sum -ln(1 - a) (the optical

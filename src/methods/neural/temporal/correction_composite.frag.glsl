@@ -20,7 +20,10 @@
 #include "methods/neural/temporal/packed_nearest.glsl"
 layout(binding = 0) uniform highp usampler2D u_packedLayers;  // fresh pass 3: the nearest two fragments, packed
 #ifdef STARNT_PACKED_THREE_LAYERS
-layout(binding = 1) uniform highp usampler2D u_thirdLayer;
+// And the third (an RG32UI target of its own): what lies behind it weighed by depth. The real frames
+// keep no correction then (u_useCorrection false; docs/DESIGN.md, "Corrected frames: three layers
+// and no correction").
+layout(binding = 1) uniform highp usampler2D u_thirdLayer;  // fresh pass 3: the third nearest fragment, packed
 #endif
 #elif defined(STARNT_PACKED_NEAREST)
 #include "methods/neural/temporal/packed_nearest.glsl"

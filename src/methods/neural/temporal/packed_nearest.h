@@ -45,6 +45,9 @@
 // from STARNT_PACKED_LAYER_NEAREST_DEPTH (z below that counts as that). A fragment whose key equals
 // a layer's loses to it (the first drawn stays, as pass 1's LESS depth test and pass 2's peel keep
 // it). Clear: x and z STARNT_PACKED_LAYER_EMPTY (the largest key, every other bit set), y and w 0.
+// Three layers (STARNT_PACKED_THREE_LAYERS; docs/DESIGN.md, "Corrected frames: three layers and no
+// correction"): the third nearest in an RG32UI target of its own, in the same 64 bits, cleared to
+// (STARNT_PACKED_LAYER_EMPTY, 0).
 #define STARNT_PACKED_LAYER_KEY_BITS 25
 #define STARNT_PACKED_LAYER_ALPHA_BITS 10
 #define STARNT_PACKED_LAYER_R_BITS 10
