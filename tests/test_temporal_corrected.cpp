@@ -969,6 +969,35 @@ TEST(PackedLayers, PassThreeFindsTheNearestThreeFragments) {
     EXPECT_LE(bitsOff, covered / 50) << "pixels whose packed bits differ from the CPU fold";
 }
 
+// Three layers: a fragment whose key ties a kept layer's is merged into it, behind it (the layer
+// over the fragment, as the A-buffer composites coplanar fragments in draw order), instead of being
+// left to the closed form behind the third layer; a nearer one still pushes the layers back.
+TEST(PackedLayers, ThreeLayersMergeAFragmentThatTiesAKeptLayer) {
+    const glm::vec4 dark(0.1f, 0.1f, 0.1f, 0.5f), light(0.6f, 0.6f, 0.6f, 0.5f), other(0.3f, 0.2f, 0.1f, 0.4f);
+    for (float z : {0.3f, 0.4685744f, 0.9f}) {
+        glm::uvec4 layers = packedLayersEmpty();
+        glm::uvec2 third = packedLayerEmpty();
+        insertThreeLayers(layers, third, packLayer(z, dark));
+        insertThreeLayers(layers, third, packLayer(z, light));  // coplanar, drawn later: behind the dark one
+        float z1 = 0.0f, z2 = 0.0f;
+        const glm::vec4 first = unpackLayer(glm::uvec2(layers.x, layers.y), z1);
+        EXPECT_EQ(z1, z);
+        EXPECT_NEAR(first.a, 0.75f, 1e-3f) << z;
+        EXPECT_NEAR(first.r, (0.5f * 0.1f + 0.5f * 0.5f * 0.6f) / 0.75f, 4e-3f) << z;
+        EXPECT_EQ(unpackLayer(glm::uvec2(layers.z, layers.w), z2).a, 0.0f) << "no second layer: the tie merged";
+        // The same at the second and the third layer.
+        const float nearer = z - 0.01f, farther = z + 0.01f;
+        insertThreeLayers(layers, third, packLayer(farther, other));
+        insertThreeLayers(layers, third, packLayer(farther, other));
+        insertThreeLayers(layers, third, packLayer(nearer, other));  // pushes both back: third = the merged pair
+        float z3 = 0.0f;
+        const glm::vec4 last = unpackLayer(third, z3);
+        EXPECT_EQ(z3, farther);
+        EXPECT_NEAR(last.a, 0.4f + 0.6f * 0.4f, 1e-3f) << z;
+        EXPECT_NEAR(unpackLayer(glm::uvec2(layers.z, layers.w), z2).a, 0.75f, 1e-3f) << "the merged pair, now second";
+    }
+}
+
 // The closed form behind three exact layers is exact with one fragment behind the third, and with
 // more it is nearer the exact composite than the two-layer form of the same fragments.
 TEST(PackedLayers, ThreeLayerClosedFormIsExactForOneFragmentBehindTheThird) {

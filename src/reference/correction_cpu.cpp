@@ -140,16 +140,33 @@ glm::uvec4 insertLayer(const glm::uvec4& layers, const glm::uvec2& f) {
     return layers;
 }
 
+glm::uvec2 mergeLayer(const glm::uvec2& kept, const glm::uvec2& f) {
+    float z = 1.0f, zf = 1.0f;
+    const glm::vec4 a = unpackLayer(kept, z), b = unpackLayer(f, zf);
+    const float alpha = a.a + (1.0f - a.a) * b.a;
+    const glm::vec3 c = alpha > 0.0f ? (a.a * glm::vec3(a) + (1.0f - a.a) * b.a * glm::vec3(b)) / alpha : glm::vec3(a);
+    return packLayer(z, glm::vec4(c, alpha));
+}
+
 void insertThreeLayers(glm::uvec4& layers, glm::uvec2& third, const glm::uvec2& f) {
     const uint32_t key = f.x >> kLayerLowBits, first = layers.x >> kLayerLowBits, second = layers.z >> kLayerLowBits;
+    const uint32_t last = third.x >> kLayerLowBits;
     if (key < first) {
         third = {layers.z, layers.w};
         layers = {f.x, f.y, layers.x, layers.y};
-    } else if (key > first && key < second) {
+    } else if (key == first) {
+        const glm::uvec2 merged = mergeLayer({layers.x, layers.y}, f);
+        layers = {merged.x, merged.y, layers.z, layers.w};
+    } else if (key < second) {
         third = {layers.z, layers.w};
         layers = {layers.x, layers.y, f.x, f.y};
-    } else if (key > second && key < (third.x >> kLayerLowBits)) {
+    } else if (key == second) {
+        const glm::uvec2 merged = mergeLayer({layers.z, layers.w}, f);
+        layers = {layers.x, layers.y, merged.x, merged.y};
+    } else if (key < last) {
         third = f;
+    } else if (key == last) {
+        third = mergeLayer(third, f);
     }
 }
 

@@ -121,20 +121,38 @@ uvec4 insertLayer(uvec4 layers, uvec2 f) {
 }
 
 #ifdef STARNT_PACKED_THREE_LAYERS
-// The nearest three layers after fragment `f` met them: `layers` the nearest two (insertLayer),
-// `third` the nearest with a larger key than the second's; on equal keys the layer kept stays.
+// The nearest three keys after fragment `f` met them: `layers` the nearest two, `third` the next. A
+// fragment whose key equals a kept layer's is merged into it, behind it (the layer over the
+// fragment: coplanar fragments composite in draw order, as the A-buffer's stable sort keeps them;
+// left to the closed form they would lie behind the third layer: chess's board, docs/DESIGN.md,
+// "Corrected frames: three layers and no correction").
+vec4 unpackLayer(uvec2 layer, out float z);
+uvec2 mergeLayer(uvec2 kept, uvec2 f) {
+    float z, zf;
+    vec4 a = unpackLayer(kept, z), b = unpackLayer(f, zf);
+    float alpha = a.a + (1.0 - a.a) * b.a;
+    vec3 c = alpha > 0.0 ? (a.a * a.rgb + (1.0 - a.a) * b.a * b.rgb) / alpha : a.rgb;
+    return packLayer(z, vec4(c, alpha));
+}
 void insertThreeLayers(inout uvec4 layers, inout uvec2 third, uvec2 f) {
     uint key = f.x >> kLayerLowBits;
     uint first = layers.x >> kLayerLowBits;
     uint second = layers.z >> kLayerLowBits;
+    uint k3 = third.x >> kLayerLowBits;
     if (key < first) {
         third = layers.zw;
         layers = uvec4(f, layers.xy);
-    } else if (key > first && key < second) {
+    } else if (key == first) {
+        layers.xy = mergeLayer(layers.xy, f);
+    } else if (key < second) {
         third = layers.zw;
         layers.zw = f;
-    } else if (key > second && key < (third.x >> kLayerLowBits)) {
+    } else if (key == second) {
+        layers.zw = mergeLayer(layers.zw, f);
+    } else if (key < k3) {
         third = f;
+    } else if (key == k3) {
+        third = mergeLayer(third, f);
     }
 }
 #endif
