@@ -946,7 +946,7 @@ TEST(PackedLayers, PassThreeFindsTheNearestThreeFragments) {
             const FragmentList list = nn::preparedFragments(fragments.at(x, h - 1 - y));
             glm::uvec4 layers = packedLayersEmpty();
             glm::uvec2 fold = packedLayerEmpty();
-            for (const Fragment& f : list) insertThreeLayers(layers, fold, packLayer(f.depth, glm::vec4(f.color, f.alpha)));
+            for (const Fragment& f : list) insertThreeLayers(layers, fold, f.depth, glm::vec4(f.color, f.alpha));
             const glm::uvec2 got(third[i].x, third[i].y);
             bitsOff += layers != packed[i] || fold != got;
             if (list.empty()) continue;
@@ -977,8 +977,8 @@ TEST(PackedLayers, ThreeLayersMergeAFragmentThatTiesAKeptLayer) {
     for (float z : {0.3f, 0.4685744f, 0.9f}) {
         glm::uvec4 layers = packedLayersEmpty();
         glm::uvec2 third = packedLayerEmpty();
-        insertThreeLayers(layers, third, packLayer(z, dark));
-        insertThreeLayers(layers, third, packLayer(z, light));  // coplanar, drawn later: behind the dark one
+        insertThreeLayers(layers, third, z, dark);
+        insertThreeLayers(layers, third, z, light);  // coplanar, drawn later: behind the dark one
         float z1 = 0.0f, z2 = 0.0f;
         const glm::vec4 first = unpackLayer(glm::uvec2(layers.x, layers.y), z1);
         EXPECT_EQ(z1, z);
@@ -987,9 +987,9 @@ TEST(PackedLayers, ThreeLayersMergeAFragmentThatTiesAKeptLayer) {
         EXPECT_EQ(unpackLayer(glm::uvec2(layers.z, layers.w), z2).a, 0.0f) << "no second layer: the tie merged";
         // The same at the second and the third layer.
         const float nearer = z - 0.01f, farther = z + 0.01f;
-        insertThreeLayers(layers, third, packLayer(farther, other));
-        insertThreeLayers(layers, third, packLayer(farther, other));
-        insertThreeLayers(layers, third, packLayer(nearer, other));  // pushes both back: third = the merged pair
+        insertThreeLayers(layers, third, farther, other);
+        insertThreeLayers(layers, third, farther, other);
+        insertThreeLayers(layers, third, nearer, other);  // pushes both back: third = the merged pair
         float z3 = 0.0f;
         const glm::vec4 last = unpackLayer(third, z3);
         EXPECT_EQ(z3, farther);
@@ -1051,7 +1051,7 @@ TEST(PackedLayers, ThreeLayerCompositeMatchesCpuReference) {
             const OrderedPixel o = orderedPixelOf(list, referenceAt(reference, w, x, y));
             glm::uvec4 l = packedLayersEmpty();
             glm::uvec2 t3 = packedLayerEmpty();
-            for (const Fragment& f : list) insertThreeLayers(l, t3, packLayer(f.depth, glm::vec4(f.color, f.alpha)));
+            for (const Fragment& f : list) insertThreeLayers(l, t3, f.depth, glm::vec4(f.color, f.alpha));
             layers.push_back(l);
             thirds.push_back(glm::uvec4(t3, 0u, 0u));
             sums.push_back(o.sums);

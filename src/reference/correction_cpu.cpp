@@ -140,33 +140,34 @@ glm::uvec4 insertLayer(const glm::uvec4& layers, const glm::uvec2& f) {
     return layers;
 }
 
-glm::uvec2 mergeLayer(const glm::uvec2& kept, const glm::uvec2& f) {
-    float z = 1.0f, zf = 1.0f;
-    const glm::vec4 a = unpackLayer(kept, z), b = unpackLayer(f, zf);
-    const float alpha = a.a + (1.0f - a.a) * b.a;
-    const glm::vec3 c = alpha > 0.0f ? (a.a * glm::vec3(a) + (1.0f - a.a) * b.a * glm::vec3(b)) / alpha : glm::vec3(a);
-    return packLayer(z, glm::vec4(c, alpha));
-}
-
-void insertThreeLayers(glm::uvec4& layers, glm::uvec2& third, const glm::uvec2& f) {
-    const uint32_t key = f.x >> kLayerLowBits, first = layers.x >> kLayerLowBits, second = layers.z >> kLayerLowBits;
+void insertThreeLayers(glm::uvec4& layers, glm::uvec2& third, float z, const glm::vec4& c) {
+    const uint32_t key = layerKey(z), first = layers.x >> kLayerLowBits, second = layers.z >> kLayerLowBits;
     const uint32_t last = third.x >> kLayerLowBits;
-    if (key < first) {
+    const bool tie = key == first || key == second || key == last;
+    // The GLSL's one merge, whatever the fragment meets (the kept layer over it, at its key).
+    float keptDepth = 1.0f;
+    const glm::vec4 kept = unpackLayer(key == first    ? glm::uvec2(layers.x, layers.y)
+                                       : key == second ? glm::uvec2(layers.z, layers.w)
+                                                       : third,
+                                       keptDepth);
+    const float hdrMax = std::exp2(2.0f * float(STARNT_PACKED_LAYER_HDR_LOG2_RANGE));
+    const glm::vec4 behind(glm::clamp(glm::vec3(c), glm::vec3(0.0f), glm::vec3(hdrMax)), std::clamp(c.a, 0.0f, 1.0f));
+    const float alpha = kept.a + (1.0f - kept.a) * behind.a;
+    const glm::vec3 merged = alpha > 0.0f ? (kept.a * glm::vec3(kept) + (1.0f - kept.a) * behind.a * glm::vec3(behind)) / alpha
+                                          : glm::vec3(kept);
+    const glm::uvec2 f = packLayer(tie ? keptDepth : z, tie ? glm::vec4(merged, alpha) : c);
+    if (tie) {
+        if (key == first) layers = {f.x, f.y, layers.z, layers.w};
+        else if (key == second) layers = {layers.x, layers.y, f.x, f.y};
+        else third = f;
+    } else if (key < first) {
         third = {layers.z, layers.w};
         layers = {f.x, f.y, layers.x, layers.y};
-    } else if (key == first) {
-        const glm::uvec2 merged = mergeLayer({layers.x, layers.y}, f);
-        layers = {merged.x, merged.y, layers.z, layers.w};
     } else if (key < second) {
         third = {layers.z, layers.w};
         layers = {layers.x, layers.y, f.x, f.y};
-    } else if (key == second) {
-        const glm::uvec2 merged = mergeLayer({layers.z, layers.w}, f);
-        layers = {layers.x, layers.y, merged.x, merged.y};
     } else if (key < last) {
         third = f;
-    } else if (key == last) {
-        third = mergeLayer(third, f);
     }
 }
 

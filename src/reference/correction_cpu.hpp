@@ -70,10 +70,10 @@ glm::uvec4 insertLayer(const glm::uvec4& layers, const glm::uvec2& fragment);
 glm::vec4 unpackLayer(const glm::uvec2& layer, float& z);
 // Three layers (STARNT_PACKED_THREE_LAYERS): `layers` the nearest two keys, `third` (an RG32UI
 // texel, packedLayerEmpty() when cleared) the next; a fragment whose key equals a kept layer's is
-// merged into it, behind it (the layer over the fragment: coplanar fragments in draw order).
-// mergeLayer: that merge, the kept layer's key.
-glm::uvec2 mergeLayer(const glm::uvec2& kept, const glm::uvec2& fragment);
-void insertThreeLayers(glm::uvec4& layers, glm::uvec2& third, const glm::uvec2& fragment);
+// merged into it, behind it (the layer over the fragment: coplanar fragments in draw order, at
+// the layer's key). The fragment: window depth z, straight colour and alpha c (packed once: its own
+// colour, or the merge).
+void insertThreeLayers(glm::uvec4& layers, glm::uvec2& third, float z, const glm::vec4& c);
 glm::uvec2 packedLayerEmpty();
 float depthBehindReference(float z, float reference);
 std::vector<float> referenceDepthOnCpu(const std::vector<float>& depth, int width, int height);

@@ -82,7 +82,7 @@ void main() {
 #ifdef STARNT_PACKED_THREE_LAYERS
     uvec4 layers = outPackedLayers;
     uvec2 third = outThirdLayer.xy;
-    insertThreeLayers(layers, third, packLayer(gl_FragCoord.z, s));
+    insertThreeLayers(layers, third, gl_FragCoord.z, s);
     outPackedLayers = layers;
     outThirdLayer = uvec4(third, 0u, 0u);
 #else

@@ -121,32 +121,31 @@ uvec4 insertLayer(uvec4 layers, uvec2 f) {
 }
 
 #ifdef STARNT_PACKED_THREE_LAYERS
-// The nearest three keys after fragment `f` met them: `layers` the nearest two, `third` the next. A
-// fragment whose key equals a kept layer's is merged into it, behind it (the layer over the
-// fragment: coplanar fragments composite in draw order, as the A-buffer's stable sort keeps them;
-// left to the closed form they would lie behind the third layer: chess's board, docs/DESIGN.md,
-// "Corrected frames: three layers and no correction").
+// The nearest three keys after a fragment at window depth z, of straight colour and alpha c, met
+// them: `layers` the nearest two, `third` the next. A fragment whose key equals a kept layer's is
+// merged into it, behind it (the layer over the fragment: coplanar fragments composite in draw
+// order, as the A-buffer's stable sort keeps them; left to the closed form they would lie behind
+// the third layer: chess's board, docs/DESIGN.md, "Corrected frames: three layers and no
+// correction"). Written for a core that runs both sides of a branch under a mask (llvmpipe): one
+// unpack and one pack serve every case, the merge's inputs chosen by selects, so a fragment pays
+// for one merge whatever it meets.
 vec4 unpackLayer(uvec2 layer, out float z);
-uvec2 mergeLayer(uvec2 kept, uvec2 f) {
-    float z, zf;
-    vec4 a = unpackLayer(kept, z), b = unpackLayer(f, zf);
-    float alpha = a.a + (1.0 - a.a) * b.a;
-    vec3 c = alpha > 0.0 ? (a.a * a.rgb + (1.0 - a.a) * b.a * b.rgb) / alpha : a.rgb;
-    return packLayer(z, vec4(c, alpha));
-}
-void insertThreeLayers(inout uvec4 layers, inout uvec2 third, uvec2 f) {
-    uint key = f.x >> kLayerLowBits;
+void insertThreeLayers(inout uvec4 layers, inout uvec2 third, float z, vec4 c) {
+    uint key = layerKey(z);
     uint first = layers.x >> kLayerLowBits;
     uint second = layers.z >> kLayerLowBits;
     uint k3 = third.x >> kLayerLowBits;
-    if (key == first || key == second || key == k3) {
-        // One merge for the three layers: a shader core runs a branch for all its lanes when one
-        // takes it, so three merge sites cost three merges (hairball: 200 ms of an interpolated
-        // frame's pass 3 at 1280x720 on llvmpipe) where one suffices.
-        uvec2 merged = mergeLayer(key == first ? layers.xy : key == second ? layers.zw : third, f);
-        if (key == first) layers.xy = merged;
-        else if (key == second) layers.zw = merged;
-        else third = merged;
+    bool tie = key == first || key == second || key == k3;
+    float keptDepth;
+    vec4 kept = unpackLayer(key == first ? layers.xy : key == second ? layers.zw : third, keptDepth);
+    vec4 behind = vec4(clamp(c.rgb, vec3(0.0), vec3(exp2(2.0 * float(STARNT_PACKED_LAYER_HDR_LOG2_RANGE)))), clamp(c.a, 0.0, 1.0));
+    float alpha = kept.a + (1.0 - kept.a) * behind.a;
+    vec3 merged = alpha > 0.0 ? (kept.a * kept.rgb + (1.0 - kept.a) * behind.a * behind.rgb) / alpha : kept.rgb;
+    uvec2 f = packLayer(tie ? keptDepth : z, tie ? vec4(merged, alpha) : c);
+    if (tie) {
+        if (key == first) layers.xy = f;
+        else if (key == second) layers.zw = f;
+        else third = f;
     } else if (key < first) {
         third = layers.zw;
         layers = uvec4(f, layers.xy);
