@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <random>
 
 
@@ -966,6 +967,71 @@ TEST(PackedLayers, PassThreeFindsTheNearestThreeFragments) {
     EXPECT_GT(covered, size_t(300));
     EXPECT_GT(threeDeep, covered / 4);
     EXPECT_LE(thirdOff, covered / 50) << "pixels whose packed third layer is not the third fragment";
+    EXPECT_LE(bitsOff, covered / 50) << "pixels whose packed bits differ from the CPU fold";
+}
+
+// Three layers on the GPU with coplanar surfaces: two quads on the same vertices (the second drawn
+// after the first), one nearer over the left half and one farther behind both. Every fragment of the
+// pair ties, so pass 3 must merge them into one layer (alpha 0.5 over 0.5: 0.75), wherever that
+// layer lands among the three, bit for bit as the CPU fold in draw order.
+TEST(PackedLayers, PassThreeMergesCoplanarFragmentsAsTheCpuFold) {
+    test::glContext();
+    if (!epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) GTEST_SKIP() << "no GL_EXT_shader_framebuffer_fetch";
+    if (!fiveDrawBuffers()) GTEST_SKIP() << "fewer than 5 draw buffers";
+    const auto dir = test::makeTempDir("coplanar");
+    {
+        std::ofstream mtl(dir / "c.mtl");
+        mtl << "newmtl dark\nKd 0.1 0.1 0.1\nd 0.5\nnewmtl light\nKd 0.6 0.6 0.6\nd 0.5\n"
+               "newmtl near\nKd 0.2 0.5 0.3\nd 0.4\nnewmtl far\nKd 0.3 0.2 0.6\nd 0.6\n";
+        std::ofstream obj(dir / "c.obj");
+        obj << "mtllib c.mtl\n"
+               "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"              // 1-4: the coplanar pair
+               "v -1 -1 0.3\nv 0 -1 0.3\nv 0 1 0.3\nv -1 1 0.3\n"      // 5-8: nearer, left half
+               "v -1 -1 -0.3\nv 1 -1 -0.3\nv 1 1 -0.3\nv -1 1 -0.3\n"  // 9-12: farther
+               "vn 0 0 1\n"
+               "usemtl dark\nf 1//1 2//1 3//1 4//1\nusemtl light\nf 1//1 2//1 3//1 4//1\n"
+               "usemtl near\nf 5//1 6//1 7//1 8//1\nusemtl far\nf 9//1 10//1 11//1 12//1\n";
+    }
+    const int w = 48, h = 32;
+    test::TestScene scene(loadScene((dir / "c.obj").string()), w, h, 0.0f, 0.0f, kBackground);
+    FrameDesc frame = scene.frame();
+    DrawCallback draw = scene.gpu->callback(frame.view, frame.projection, SurfaceOptions{});
+    OpaqueScene opaque{kBackground};
+    opaque.begin(frame);
+    NeuralPasses passes{SceneGpu::surfaceShader(), opaque, false, NeuralOptions::Targets::Float32, false, true};
+    passes.findThreeLayers();
+    passes.runPackedNearestAndSums(frame, draw);
+    const std::vector<glm::uvec4> packed = test::readRgbaUint(passes.packedNearest(), w, h);
+    const std::vector<glm::uvec4> third = test::readRgbaUint(passes.thirdLayer(), w, h);
+    const CapturedFrame fragments = scene.capture();
+    size_t covered = 0, tied = 0, merged = 0, mergedBehindNearer = 0, bitsOff = 0;
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * size_t(w) + size_t(x);
+            const FragmentList list = nn::preparedFragments(fragments.at(x, h - 1 - y));
+            glm::uvec4 layers = packedLayersEmpty();
+            glm::uvec2 fold = packedLayerEmpty();
+            for (const Fragment& f : list) insertThreeLayers(layers, fold, f.depth, glm::vec4(f.color, f.alpha));
+            const glm::uvec2 got(third[i].x, third[i].y);
+            bitsOff += layers != packed[i] || fold != got;
+            if (list.empty()) continue;
+            ++covered;
+            for (size_t k = 1; k < list.size(); ++k) tied += list[k].depth == list[k - 1].depth;
+            float z = 0.0f;
+            const glm::vec4 first = unpackLayer(glm::uvec2(packed[i].x, packed[i].y), z);
+            const glm::vec4 second = unpackLayer(glm::uvec2(packed[i].z, packed[i].w), z);
+            const glm::vec4 last = unpackLayer(got, z);
+            const auto isPair = [](const glm::vec4& l) { return std::abs(l.a - 0.75f) < 2e-3f; };
+            merged += isPair(first) || isPair(second) || isPair(last);
+            mergedBehindNearer += isPair(second) && std::abs(first.a - 0.4f) < 2e-3f;
+        }
+    }
+    std::printf("covered %zu, the pair tied on %zu; merged %zu (behind the nearer quad %zu); bits off the CPU fold %zu\n",
+                covered, tied, merged, mergedBehindNearer, bitsOff);
+    EXPECT_GT(covered, size_t(w * h / 4));
+    EXPECT_GT(tied, covered / 2);
+    EXPECT_GE(merged + tied / 50, tied) << "pixels where the coplanar pair is not one layer of alpha 0.75";
+    EXPECT_GT(mergedBehindNearer, covered / 5) << "the nearer quad must push the merged pair back to the second layer";
     EXPECT_LE(bitsOff, covered / 50) << "pixels whose packed bits differ from the CPU fold";
 }
 
