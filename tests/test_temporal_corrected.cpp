@@ -131,6 +131,15 @@ bool fiveDrawBuffers() {
     return drawBuffers >= 5;
 }
 
+// Whether pass 3's packed texels (the nearest two, the third) are the CPU fold of a pixel's
+// fragments in draw order (temporal::insertThreeLayers).
+bool foldMatches(const FragmentList& list, const glm::uvec4& packed, const glm::uvec2& third) {
+    glm::uvec4 layers = packedLayersEmpty();
+    glm::uvec2 fold = packedLayerEmpty();
+    for (const Fragment& f : list) insertThreeLayers(layers, fold, f.depth, glm::vec4(f.color, f.alpha));
+    return layers == packed && fold == third;
+}
+
 MethodOptions correctedOptions() {
     MethodOptions o;
     o.neural.temporalInterval = 2;
@@ -945,11 +954,8 @@ TEST(PackedLayers, PassThreeFindsTheNearestThreeFragments) {
         for (int x = 0; x < w; ++x) {
             const size_t i = size_t(y) * size_t(w) + size_t(x);
             const FragmentList list = nn::preparedFragments(fragments.at(x, h - 1 - y));
-            glm::uvec4 layers = packedLayersEmpty();
-            glm::uvec2 fold = packedLayerEmpty();
-            for (const Fragment& f : list) insertThreeLayers(layers, fold, f.depth, glm::vec4(f.color, f.alpha));
             const glm::uvec2 got(third[i].x, third[i].y);
-            bitsOff += layers != packed[i] || fold != got;
+            bitsOff += !foldMatches(list, packed[i], got);
             if (list.empty()) continue;
             ++covered;
             float z3 = 0.0f;
@@ -1009,11 +1015,8 @@ TEST(PackedLayers, PassThreeMergesCoplanarFragmentsAsTheCpuFold) {
         for (int x = 0; x < w; ++x) {
             const size_t i = size_t(y) * size_t(w) + size_t(x);
             const FragmentList list = nn::preparedFragments(fragments.at(x, h - 1 - y));
-            glm::uvec4 layers = packedLayersEmpty();
-            glm::uvec2 fold = packedLayerEmpty();
-            for (const Fragment& f : list) insertThreeLayers(layers, fold, f.depth, glm::vec4(f.color, f.alpha));
             const glm::uvec2 got(third[i].x, third[i].y);
-            bitsOff += layers != packed[i] || fold != got;
+            bitsOff += !foldMatches(list, packed[i], got);
             if (list.empty()) continue;
             ++covered;
             for (size_t k = 1; k < list.size(); ++k) tied += list[k].depth == list[k - 1].depth;
