@@ -2,8 +2,8 @@
 # The main job: install, build, then render the built-in default scene with the recommended method
 # and every other one, and compare each against the A-buffer ground truth. Writes PNGs, stats and
 # a summary to out/default/. Each method renders 4 untimed warm-up frames (shader compiles, tiles
-# settle) and 12 timed ones; the summary gives their mean (with interpolated frames a median would
-# report one kind of frame only).
+# settle) and 16 timed ones (two groups of the recommended K = 8); the summary gives their mean
+# (with interpolated frames a median would report one kind of frame only).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
@@ -14,17 +14,17 @@ out=out/default
 mkdir -p "$out"
 starnt=build/starnt
 methods=$($starnt methods)
-$starnt render --scene "$scene" --method abuffer "${size[@]}" --warmup 4 --frames 12 \
+$starnt render --scene "$scene" --method abuffer "${size[@]}" --warmup 4 --frames 16 \
   --out "$out/abuffer.png" --exr "$out/abuffer.exr" --stats "$out/abuffer.json"
 summary="$out/summary.md"
 {
   echo "# STAR-NT default run: $scene"
   echo
-  echo "Frame time: mean of 12 timed frames after 4 warm-up frames (glFinish + wall clock). On llvmpipe the"
+  echo "Frame time: mean of 16 timed frames after 4 warm-up frames (glFinish + wall clock). On llvmpipe the"
   echo "exact A-buffer is fast on this small scene (few fragments a pixel, a CPU with caches); its memory grows"
   echo "with the fragment count and its sort with the depth complexity, which is why a GPU engine picks a bounded"
-  echo "approximation. The recommended method renders one real frame, then three corrected interpolated ones"
-  echo "(K = 4; docs/DESIGN.md, \"The recommended configuration\"); its time is the mean over both kinds."
+  echo "approximation. The recommended method renders one real frame, then seven corrected interpolated ones"
+  echo "(K = 8; docs/DESIGN.md, \"The recommended configuration\"); its time is the mean over both kinds."
   echo
   echo "| method | frame ms (mean) | MSE x10^2 | FLIP | GPU memory MiB |"
   echo "|---|---|---|---|---|"
@@ -36,7 +36,7 @@ for m in $methods starnt-full; do
   # starnt runs its adaptive tiles: the warm-up frames let them settle (one level per frame).
   [ "$m" = starnt ] && extra=(--tiles-image "$out/starnt_tiles.png")
   [ "$m" = starnt-full ] && method=starnt && extra=(--spatial off)
-  [ "$m" = abuffer ] || $starnt render --scene "$scene" --method "$method" "${size[@]}" --warmup 4 --frames 12 \
+  [ "$m" = abuffer ] || $starnt render --scene "$scene" --method "$method" "${size[@]}" --warmup 4 --frames 16 \
     --out "$out/$m.png" --stats "$out/$m.json" "${extra[@]}"
   cmp=$($starnt compare --reference "$out/abuffer.png" --test "$out/$m.png" --json --flip-map "$out/${m}_flip.png")
   python3 - "$out/$m.json" "$cmp" "$m" >>"$summary.tmp" <<'PY'

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "starnt/oit_method.hpp"
 #include "starnt/tools/image.hpp"
 #include "starnt/tools/metrics.hpp"
 #include "test_support.hpp"
@@ -88,7 +89,7 @@ TEST(SequenceCli, BadPatternsWriteNothing) {
 
 TEST(SequenceCli, BadTemporalFramesAndPathsFailClearly) {
     const fs::path dir = starnt::test::makeTempDir("seq_cli_bad");
-    expectFailureWritingNothing(sequence(dir, "--method starnt --frames 2 --temporal 5"), dir, "--temporal '5'");
+    expectFailureWritingNothing(sequence(dir, "--method starnt --frames 2 --temporal 9"), dir, "--temporal '9'");
     expectFailureWritingNothing(sequence(dir, "--method starnt --frames 2 --temporal 0"), dir, "--temporal '0'");
     expectFailureWritingNothing(sequence(dir, "--method starnt --frames 2 --temporal x"), dir, "--temporal 'x'");
     expectFailureWritingNothing(sequence(dir, "--method starnt --frames 2 --temporal auto --target-fps 0"), dir, "--target-fps");
@@ -113,6 +114,28 @@ TEST(SequenceCli, TemporalTwoAlternates) {
     for (size_t i = 0; i < lines.size(); ++i) {
         EXPECT_EQ(lines[i]["interpolated"], i % 2 == 1) << "frame " << i << ": " << lines[i].dump();
     }
+}
+
+// Warm-up frames run on to the end of their temporal group, so the timed frames start at a real
+// frame whatever K is: at K = 8 (recommended) 3 warm-up frames become 8, and the timed frames are
+// one real then seven interpolated; the summary counts the 8.
+TEST(SequenceCli, WarmUpEndsAtTheEndOfATemporalGroup) {
+    const fs::path dir = starnt::test::makeTempDir("seq_cli_warmup");
+    const CliRun r = run(sequence(dir, "--method recommended --frames 9 --warmup 3 --stats " + (dir / "summary.json").string()));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::vector<nlohmann::json> lines = readLines(dir / "s.jsonl");
+    ASSERT_EQ(lines.size(), 9u);
+    for (size_t i = 0; i < lines.size(); ++i) {
+        EXPECT_EQ(lines[i]["interpolated"], i % starnt::kRecommendedTemporalInterval != 0) << "frame " << i << ": " << lines[i].dump();
+    }
+    std::ifstream f(dir / "summary.json");
+    const nlohmann::json summary = nlohmann::json::parse(f);
+    EXPECT_EQ(summary["warmup_frames"], starnt::kRecommendedTemporalInterval);
+    // Without temporal frames the warm-up is what was asked.
+    const fs::path plain = starnt::test::makeTempDir("seq_cli_warmup_plain");
+    ASSERT_EQ(run(sequence(plain, "--method starnt-d --frames 2 --warmup 3 --stats " + (plain / "summary.json").string())).exitCode, 0);
+    std::ifstream g(plain / "summary.json");
+    EXPECT_EQ(nlohmann::json::parse(g)["warmup_frames"], 3);
 }
 
 // Every frame record carries the method's GPU memory and the process's resident memory, so a long

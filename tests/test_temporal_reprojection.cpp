@@ -404,7 +404,7 @@ TEST(TemporalFrames, IntervalOneKeepsNothing) {
     }
     EXPECT_EQ(temporal.gpuMemoryBytes(), 0u);
     MethodOptions bad;
-    bad.neural.temporalInterval = 5;
+    bad.neural.temporalInterval = kMaxTemporalInterval + 1;
     EXPECT_THROW(TemporalFrames{bad}, Error);
 }
 

@@ -45,6 +45,9 @@ TEST(TemporalSchedule, FixedIntervalPatternIsExact) {
     TemporalSchedule four(fixedInterval(4));
     EXPECT_EQ(pattern(four, 9), "RiiiRiiiR");
     EXPECT_EQ(four.groupInterval(), 4);
+    TemporalSchedule eight(fixedInterval(starnt::kMaxTemporalInterval));  // beyond SPEC 6's 4
+    EXPECT_EQ(pattern(eight, 17), "RiiiiiiiRiiiiiiiR");
+    EXPECT_EQ(eight.groupInterval(), 8);
 }
 
 TEST(TemporalSchedule, FixedIgnoresMeasurements) {
@@ -188,12 +191,12 @@ TEST(TemporalSchedule, ResetForgetsMeasurements) {
 }
 
 TEST(TemporalSchedule, RejectsBadOptionsClearly) {
-    for (int k : {0, 5, -1, 100}) {
+    for (int k : {0, starnt::kMaxTemporalInterval + 1, -1, 100}) {
         try {
             TemporalSchedule s(fixedInterval(k));
             ADD_FAILURE() << "interval " << k << " accepted";
         } catch (const starnt::Error& e) {
-            EXPECT_NE(std::string(e.what()).find("1..4"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("1..8"), std::string::npos) << e.what();
         }
     }
     for (double fps : {0.0, -30.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {

@@ -69,7 +69,7 @@ TEST(ViewerScript, RejectsBadCommandsNamingThem) {
     EXPECT_NE(errorOf("screenshot a.jpg").find(".png"), std::string::npos);
     EXPECT_NE(errorOf("screenshot a.png all").find("[ui]"), std::string::npos);
     EXPECT_NE(errorOf("method nosuch").find("unknown method"), std::string::npos);
-    EXPECT_NE(errorOf("temporal 7").find("1..4"), std::string::npos);
+    EXPECT_NE(errorOf("temporal 9").find("1..8"), std::string::npos);
     EXPECT_NE(errorOf("scales 10,50").find("25..100"), std::string::npos);
     EXPECT_NE(errorOf("fly 2 0 0 1").find("-1..1"), std::string::npos);
     EXPECT_NE(errorOf("quit now").find("quit"), std::string::npos);

@@ -32,6 +32,11 @@ struct MboitOptions {
 // starnt, dfaoit, hybrid, starnt-residual, hybrid-moments and starnt-d: the neural methods (three
 // passes, docs/DESIGN.md, "Pipeline and formats") and their acceleration (docs/DESIGN.md, "Adaptive tiles and tile-guided resolution"; hybrid-moments and starnt-d run every pass at
 // full resolution and refuse tiles, reduced scales, corner inference and joint upsampling).
+// The longest fixed temporal interval K: SPEC 6's 4 doubled, because corrected frames with three
+// layers take nothing from the real frame but a reference depth, and their error does not grow
+// with K (docs/DESIGN.md, "The recommended configuration", "Why K = 8").
+constexpr int kMaxTemporalInterval = 8;
+
 struct NeuralOptions {
     // Weights file; empty = the shipped default for the method. hybrid and hybrid-moments have no
     // network.
@@ -71,8 +76,9 @@ struct NeuralOptions {
     enum class Inference { Full, Corners };
     Inference inference = Inference::Full;
     // Temporal reprojection: one real frame, then temporalInterval - 1 interpolated frames
-    // (1 = off, at most 4). temporalAuto picks the largest interval whose group (one real frame,
-    // interval - 1 interpolated ones, at their measured costs) fits in one frame at targetFps.
+    // (1 = off, at most kMaxTemporalInterval = 8). temporalAuto picks the largest interval up to 4
+    // (SPEC 6's rule) whose group (one real frame, interval - 1 interpolated ones, at their measured
+    // costs) fits in one frame at targetFps.
     int temporalInterval = 1;
     bool temporalAuto = false;
     // What an interpolated frame renders (docs/DESIGN.md, "Temporal reprojection"): Warp = the paper (the last real frame's

@@ -122,7 +122,7 @@ public:
 // kRecommendedTemporalInterval - 1 corrected interpolated frames. recommendedOptions returns
 // `options` with that interval where it asks for every frame real (interval 1, not auto); every
 // other option is kept. docs/INTEGRATION.md, "Which method".
-constexpr int kRecommendedTemporalInterval = 4;
+constexpr int kRecommendedTemporalInterval = 8;
 MethodOptions recommendedOptions(MethodOptions options = {});
 
 // Names accepted by createMethod, in a stable order.

@@ -25,7 +25,7 @@ const WordFlag kWordFlags[] = {
      "neural methods: adaptive tiles on|off|default (default: on for starnt)"},
     {"--scales", &AccelerationFlags::scales, parseScalesOption, "neural methods: pass 2/3 scales, auto or P2,P3 in %"},
     {"--inference", &AccelerationFlags::inference, parseInferenceOption, "neural methods: full|corners"},
-    {"--temporal", &AccelerationFlags::temporal, parseTemporalOption, "neural methods: off|auto|K (K in 1..4)"},
+    {"--temporal", &AccelerationFlags::temporal, parseTemporalOption, "neural methods: off|auto|K (K in 1..8; auto up to 4)"},
     {"--scale-rule", &AccelerationFlags::scaleRule, parseScaleRuleOption,
      "neural methods: w_bar -> scales: snapped|continuous|step"},
     {"--tile-signal", &AccelerationFlags::tileSignal, parseTileSignalOption,

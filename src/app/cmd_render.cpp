@@ -102,7 +102,8 @@ void declareRenderOptions(CLI::App& app, const std::shared_ptr<RenderArgs>& args
     cmd->add_flag("--unlit", a.unlit, "output base colour unshaded for every material");
     cmd->add_option("--frames", a.frames, "frames to render; timings are medians without the first")->capture_default_str();
     cmd->add_option("--warmup", a.warmup,
-                    "untimed frames at the first camera before the timed ones (shader compiles, tiles settle); with it, "
+                    "untimed frames at the first camera before the timed ones (shader compiles, tiles settle; with "
+                    "interpolated frames, on to the end of a group, so the first timed frame is real); with it, "
                     "the first frame is timed too")
         ->capture_default_str();
     cmd->add_option("--peel-layers", a.peelLayers, "peel: layers (0 = until empty, exact)")->capture_default_str();

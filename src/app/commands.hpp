@@ -20,7 +20,7 @@ struct AccelerationFlags {
     std::string spatial = "default";  // on | off | default (the method's own: on for starnt)
     std::string scales = "auto";      // auto | P2,P3 in percent
     std::string inference = "full";   // full | corners
-    std::string temporal = "off";     // off | auto | K in 1..4
+    std::string temporal = "off";     // off | auto | K in 1..8
     double targetFps = 60.0;
     std::string scaleRule = "snapped";      // snapped | continuous | step
     std::string tileSignal = "back";        // back | composite

@@ -113,10 +113,11 @@ void header(std::ostringstream& md, const Results& r) {
     md << "| command | `" << r.commandLine << "` |\n";
     md << "| wall time | " << fixed(r.wallSeconds, 1) << " s |\n\n";
     md << "Frame times are means over the " << r.plan.frames << " timed frames, after " << r.plan.warmupFrames
-       << " untimed warm-up frames at the first camera (shader compiles; tiles settle): the same statistic for "
+       << " untimed warm-up frames at the first camera (shader compiles; tiles settle; with interpolated frames, on "
+          "to the end of a group, so that the timed frames start at a real one): the same statistic for "
           "every variant, table and plots (interpolated and probe frames make periodic sequences); with interpolated "
           "frames, the long-run mean: the real and the interpolated frames' means weighted by their shares in the "
-          "schedule (1/K real), as a window of frames holds a whole number of real ones (3 in 10 at K = 4 from a "
+          "schedule (1/K real), as a window of frames holds a whole number of real ones (at K = 8, 2 in 10 from a "
           "real frame; the plain means are in \"Against itself\"), "
           "in a run of the path with nothing between its frames (the errors come from a second run that "
           "reads every frame back); glFinish + wall clock"

@@ -109,15 +109,25 @@ private:
         frame.projection = camera.projection(float(job_.width) / float(job_.height));
     }
 
-    // Untimed frames at the first camera: shader compiles; the tiles settle.
+    // Untimed frames at the first camera: shader compiles; the tiles settle. At least
+    // job_.warmupFrames, then on to the end of the temporal group they stopped in, so that the timed
+    // frames start at a real frame whatever K is (docs/DESIGN.md, "Benchmark").
     void warmUp() {
-        for (int w = 0; w < job_.warmupFrames; ++w) {
+        int lastReal = 0, interval = 1;
+        const int cap = job_.warmupFrames + kMaxTemporalInterval;
+        while (warmedUp_ < job_.warmupFrames || (warmedUp_ > 0 && warmedUp_ - lastReal < interval && warmedUp_ < cap)) {
             FrameDesc warm = frame_;
             aimAt(warm, cameraOf(0));
             warm.timing = nullptr;
             scene_.drawOpaque(warm, job_.surface);
             method_->render(warm, scene_.callback(warm.view, warm.projection, job_.surface));
             glFinish();
+            const FrameStats stats = method_->lastFrameStats();
+            if (!stats.interpolated()) {
+                lastReal = warmedUp_;
+                interval = stats.neural ? std::max(1, stats.neural->temporalInterval) : 1;
+            }
+            ++warmedUp_;
         }
     }
 
@@ -254,7 +264,7 @@ private:
             {"scene_memory_bytes", scene_.gpuMemoryBytes()},
             {"frames", job_.frames},
             {"timed_frames", frameMs_.size()},
-            {"warmup_frames", job_.warmupFrames},
+            {"warmup_frames", warmedUp_},
             {"interpolated_frames", interpolatedFrames_},
             {"pass_timing", gl::passTimingDescription()},
             {"method_stats", methodStats},
@@ -300,6 +310,7 @@ private:
     std::map<std::string, std::vector<double>> passMs_;
     std::map<std::string, gl::PassCounters> counterSums_;
     int interpolatedFrames_ = 0;
+    int warmedUp_ = 0;  // warm-up frames rendered (warmUp: at least job_.warmupFrames)
     // Errors of the compared frames, by kind, and in order (for the flash).
     std::vector<double> mseReal_, mseInterp_, flipReal_, flipInterp_;
     std::vector<std::pair<bool, double>> msePerFrame_;

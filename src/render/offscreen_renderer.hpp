@@ -39,7 +39,8 @@ struct RenderJob {
     int frames = 1;  // timings are medians over the frames after the first (shader warm-up)
     // Frames rendered first at the first camera, neither timed nor compared nor passed to onFrame
     // (shader compiles; tiles that move one level a frame). With warm-up frames every one of the
-    // `frames` frames is timed.
+    // `frames` frames is timed. With temporal frames the warm-up runs on to the end of its group, so
+    // that the first timed frame is real ("warmup_frames" in the summary counts them all).
     int warmupFrames = 0;
     // When set (e.g. "abuffer"), every frame is also rendered (untimed) with this method at the same
     // camera and compared: per-frame "mse"/"flip", and means split into real and interpolated frames.

@@ -46,10 +46,10 @@ void parseTemporalOption(const std::string& text, MethodOptions& options) {
     } else if (text == "auto") {
         options.neural.temporalAuto = true;
         options.neural.temporalInterval = 1;
-    } else if (text.size() == 1 && text[0] >= '1' && text[0] <= '4') {
+    } else if (text.size() == 1 && text[0] >= '1' && text[0] - '0' <= kMaxTemporalInterval) {
         options.neural.temporalInterval = text[0] - '0';
     } else {
-        throw Error("--temporal '" + text + "': expected off, auto or an interval K in 1..4");
+        throw Error("--temporal '" + text + "': expected off, auto or an interval K in 1.." + std::to_string(kMaxTemporalInterval));
     }
 }
 

@@ -14,7 +14,7 @@ void parseSpatialOption(const std::string& text, MethodOptions& options);
 void parseScalesOption(const std::string& text, MethodOptions& options);
 // "full" | "corners".
 void parseInferenceOption(const std::string& text, MethodOptions& options);
-// "off" | "auto" | "K" with K in 1..4.
+// "off" | "auto" | "K" with K in 1..kMaxTemporalInterval (8).
 void parseTemporalOption(const std::string& text, MethodOptions& options);
 // "snapped" | "continuous" | "step" (docs/DESIGN.md, "Adaptive tiles and tile-guided resolution").
 void parseScaleRuleOption(const std::string& text, MethodOptions& options);

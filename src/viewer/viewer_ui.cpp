@@ -118,7 +118,7 @@ void accelerationSection(ViewerSettings& next, std::string& problem) {
     std::string inference = next.options.neural.inference == NeuralOptions::Inference::Corners ? "corners" : "full";
     if (combo("inference", {"full", "corners"}, inference)) setOrReport(next, "inference", inference, problem);
     std::string temporal = temporalText(next.options);
-    if (combo("temporal", {"off", "auto", "2", "3", "4"}, temporal)) setOrReport(next, "temporal", temporal, problem);
+    if (combo("temporal", {"off", "auto", "2", "3", "4", "8"}, temporal)) setOrReport(next, "temporal", temporal, problem);
     std::string mode = temporalModeText(next.options.neural.temporalMode);
     if (combo("interpolated frames", {"refresh", "correct", "warp"}, mode)) setOrReport(next, "temporal-mode", mode, problem);
     static float targetFps = 60.0f;  // edited locally; applied when the drag ends (a rebuild each step would stall)

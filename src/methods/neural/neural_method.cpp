@@ -342,7 +342,7 @@ private:
         if (!config.tailMoments) {
             missing = "a tail-moment method (hybrid-moments, starnt-d, recommended)";
         } else if (!corrected) {
-            missing = "corrected frames (--temporal 2..4 or auto with --temporal-mode correct)";
+            missing = "corrected frames (--temporal 2..8 or auto with --temporal-mode correct)";
         } else if (!o.neural.correctedOnePass) {
             missing = "corrected frames in one geometry pass (--corrected-passes 1)";
         } else if (!epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) {
@@ -369,7 +369,9 @@ private:
         if (!scaleOk(o.neural.fixedScale2) || !scaleOk(o.neural.fixedScale3) || ((o.neural.fixedScale2 == 0.0f) != (o.neural.fixedScale3 == 0.0f))) {
             throw Error("fixed pass scales must both be 0 (from the tiles) or both within 0.25..1");
         }
-        if (o.neural.temporalInterval < 1 || o.neural.temporalInterval > 4) throw Error("temporal interval must be within 1..4");
+        if (o.neural.temporalInterval < 1 || o.neural.temporalInterval > kMaxTemporalInterval) {
+            throw Error("temporal interval must be within 1.." + std::to_string(kMaxTemporalInterval));
+        }
         if (config.tailMoments) {
             // Its moments are relative to pass 2's depth at the same pixel: no reduced pass, no upsampling.
             const bool reduced = o.neural.fixedScale2 > 0.0f && !(o.neural.fixedScale2 == 1.0f && o.neural.fixedScale3 == 1.0f);

@@ -43,7 +43,7 @@ struct TemporalPassTargets {
 
 class TemporalFrames {
 public:
-    // Throws starnt::Error for an interval outside 1..4 or a bad target rate. Needs a current GL
+    // Throws starnt::Error for an interval outside 1..kMaxTemporalInterval or a bad target rate. Needs a current GL
     // context (builds the reprojection programs; picks the timing source from the renderer).
     // `orderedBehind`: the method has tail moments, and its corrected frames weigh what lies behind
     // the nearest layer by depth (CorrectedFrames' `ordered`).

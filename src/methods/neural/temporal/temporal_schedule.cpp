@@ -10,8 +10,8 @@ namespace starnt {
 
 TemporalSchedule::TemporalSchedule(const MethodOptions& options)
     : auto_(options.neural.temporalAuto), fixedInterval_(options.neural.temporalInterval), targetFps_(options.neural.targetFps) {
-    if (!auto_ && (fixedInterval_ < 1 || fixedInterval_ > kMaxInterval)) {
-        throw Error("temporal interval must be in 1..4, got " + std::to_string(fixedInterval_));
+    if (!auto_ && (fixedInterval_ < 1 || fixedInterval_ > kMaxTemporalInterval)) {
+        throw Error("temporal interval must be in 1.." + std::to_string(kMaxTemporalInterval) + ", got " + std::to_string(fixedInterval_));
     }
     if (!std::isfinite(targetFps_) || !(targetFps_ > 0.0)) {
         throw Error("temporal target frame rate must be finite and positive, got " + std::to_string(targetFps_));
@@ -55,12 +55,12 @@ int TemporalSchedule::interval() const {
     // Until an interpolated frame was timed, count it at a real frame's cost (the paper's rule),
     // but interpolate at least once so that its cost gets measured: without a measurement a rate
     // between the target and twice the target would keep k = 1 for ever.
-    if (interpolated_.empty()) return std::clamp(int(std::min(targetMs / std::max(real, 1e-9), 4.0)), 2, kMaxInterval);
+    if (interpolated_.empty()) return std::clamp(int(std::min(targetMs / std::max(real, 1e-9), double(kMaxAutoInterval))), 2, kMaxAutoInterval);
     const double interpolated = interpolated_.mean();
-    if (interpolated <= 0.0) return kMaxInterval;  // immeasurably fast
+    if (interpolated <= 0.0) return kMaxAutoInterval;  // immeasurably fast
     // Compare before converting: a huge quotient must not overflow the int.
     const double extra = std::floor((targetMs - real) / interpolated);
-    if (!(extra < double(kMaxInterval - 1))) return kMaxInterval;
+    if (!(extra < double(kMaxAutoInterval - 1))) return kMaxAutoInterval;
     return 1 + int(extra);
 }
 

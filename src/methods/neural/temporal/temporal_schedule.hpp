@@ -4,7 +4,8 @@
 // Frames come in groups: one real frame, then interval - 1 interpolated frames. The interval of a
 // group is fixed when its real frame is issued, so it changes only at real frames.
 //   fixed K:  interval = K (1 = every frame real).
-//   auto:     the largest interval k <= 4 whose group (one real frame of R ms, k - 1 interpolated
+//   fixed K is at most kMaxTemporalInterval (8).
+//   auto:     the largest interval k <= 4 (SPEC 6) whose group (one real frame of R ms, k - 1 interpolated
 //             frames of I ms) fits in one target frame time T = 1000 / targetFps:
 //                 R + (k - 1) I <= T   ->   k = clamp(1 + floor((T - R) / I), 1, 4),
 //             R and I the means of the last kAverageWindow real and interpolated frames. Real
@@ -25,10 +26,10 @@ namespace starnt {
 
 class TemporalSchedule {
 public:
-    static constexpr int kMaxInterval = 4;
+    static constexpr int kMaxAutoInterval = 4;  // SPEC 6's cap for auto
     static constexpr int kAverageWindow = 8;  // real frames in the running mean
 
-    // Throws starnt::Error for an interval outside 1..4 or a target rate that is not finite and > 0.
+    // Throws starnt::Error for a fixed interval outside 1..kMaxTemporalInterval or a target rate that is not finite and > 0.
     explicit TemporalSchedule(const MethodOptions& options);
 
     // Advances to the next frame and says whether it is real. The first frame, the first after
