@@ -20,7 +20,8 @@ summary="$out/summary.md"
 {
   echo "# STAR-NT default run: $scene"
   echo
-  echo "Frame time: mean of 16 timed frames after 4 warm-up frames (glFinish + wall clock). On llvmpipe the"
+  echo "Frame time: mean of 16 timed frames after 4 warm-up frames (temporal ones: to the end of a group;"
+  echo "glFinish + wall clock). On llvmpipe the"
   echo "exact A-buffer is fast on this small scene (few fragments a pixel, a CPU with caches); its memory grows"
   echo "with the fragment count and its sort with the depth complexity, which is why a GPU engine picks a bounded"
   echo "approximation. The recommended method renders one real frame, then seven corrected interpolated ones"
