@@ -155,6 +155,16 @@ TEST(BenchPlan, RejectsBadRequests) {
     request.scenes = {};
     request.cameraPath = "spiral:1";
     EXPECT_THROW(bench::makePlan(request), Error);
+    request.cameraPath = {};
+    for (int rounds : {0, -1, bench::kMaxTimingRounds + 1}) {
+        request.timingRounds = rounds;
+        try {
+            bench::makePlan(request);
+            ADD_FAILURE() << "timing rounds " << rounds << " accepted";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("--timing-rounds"), std::string::npos) << e.what();
+        }
+    }
 }
 
 TEST(BenchResults, QMetricIsImprovementOverUnsortedPerMillisecond) {
@@ -405,6 +415,36 @@ TEST(BenchCli, FailuresAreRecordedAndTheRunGoesOn) {
     const std::string report = slurp(dir / "report.md");
     EXPECT_NE(report.find("ground truth failed"), std::string::npos);
     EXPECT_NE(report.find("Plots were skipped"), std::string::npos);
+    fs::remove_all(dir);
+}
+
+// Timing rounds: every variant timed again in a second round; each keeps the times of its faster
+// round (frame_ms_long_run is the least of frame_ms_rounds, and its per-frame times are that
+// round's: their mean is the summary's), and the errors of its one compared run.
+TEST(BenchCli, TimingRoundsKeepEachVariantsFastestRound) {
+    fs::path dir = test::makeTempDir("bench_rounds");
+    CliRun r = runCli("bench --suite-dir /nonexistent/suite --scenes builtin:panes --methods wboit,dfaoit,recommended --width 64 "
+                      "--height 48 --frames 3 --timing-rounds 2 --no-plots --out " + dir.string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const json j = readJson(dir / "results.json");
+    EXPECT_EQ(j["settings"]["timing_rounds"], 2);
+    EXPECT_NE(j["command_line"].get<std::string>().find("--timing-rounds 2"), std::string::npos);
+    for (const json& c : j["scenes"][0]["methods"]) {
+        ASSERT_EQ(c["status"], "ok") << c["variant"];
+        const json& rounds = c["stats"]["frame_ms_rounds"];
+        ASSERT_EQ(rounds.size(), 2u) << c["variant"];
+        const double fastest = std::min(rounds[0].get<double>(), rounds[1].get<double>());
+        EXPECT_DOUBLE_EQ(c["stats"]["frame_ms_long_run"].get<double>(), fastest) << c["variant"];
+        const int kept = c["stats"]["timing_round"].get<int>();
+        ASSERT_TRUE(kept == 1 || kept == 2) << c["variant"];
+        EXPECT_DOUBLE_EQ(rounds[size_t(kept - 1)].get<double>(), fastest) << c["variant"];
+        double sum = 0.0;
+        for (const json& f : c["frames"]) sum += f["frame_ms"].get<double>();
+        EXPECT_NEAR(c["stats"]["frame_ms_mean"].get<double>(), sum / 3.0, 1e-9) << c["variant"];
+        EXPECT_TRUE(c["stats"].contains("error")) << c["variant"];
+        EXPECT_GT(c["quality"]["mse"].get<double>(), 0.0) << c["variant"];
+    }
+    EXPECT_NE(slurp(dir / "report.md").find("fastest of 2"), std::string::npos);
     fs::remove_all(dir);
 }
 

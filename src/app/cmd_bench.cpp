@@ -47,6 +47,7 @@ std::string commandLine(const bench::Request& r, const std::string& out, bool no
     if (!r.cameraPath.empty()) line += " --camera-path " + r.cameraPath;
     if (r.abufferCapMib > 0.0) line += " --abuffer-cap-mib " + std::to_string(r.abufferCapMib);
     if (r.api != "gl") line += " --api " + r.api;
+    if (r.timingRounds != 1) line += " --timing-rounds " + std::to_string(r.timingRounds);
     line += " --suite-dir " + r.suiteDir;
     if (noPlots) line += " --no-plots";
     return line + " --out " + out;
@@ -80,6 +81,10 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--abuffer-cap-mib", a->request.abufferCapMib, "A-buffer memory cap in MiB (default 2048)")
         ->check(CLI::Range(0.0, kMaxAbufferCapMib));  // 0: the default
     cmd->add_option("--api", a->request.api, "gl (OpenGL 4.5 core) or gles (OpenGL ES 3.2)")->capture_default_str();
+    cmd->add_option("--timing-rounds", a->request.timingRounds,
+                    "timed runs of the path per variant, in alternating order; each variant keeps its fastest (1..10; "
+                    "2 or more on a noisy machine)")
+        ->capture_default_str();
     cmd->add_option("--python", a->python, "Python with matplotlib for the plots")->capture_default_str();
     cmd->add_flag("--no-plots", a->noPlots, "skip the plots");
     cmd->callback([a] {

@@ -239,6 +239,10 @@ Plan makePlan(const Request& request) {
     plan.qualityEvery = preset.qualityEvery;
     checkImageSize(plan.width, plan.height);
     if (plan.frames < 1 || plan.frames > 10000) throw Error("--frames must be in 1..10000");
+    if (request.timingRounds < 1 || request.timingRounds > kMaxTimingRounds) {
+        throw Error("--timing-rounds must be in 1.." + std::to_string(kMaxTimingRounds) + ", got " + std::to_string(request.timingRounds));
+    }
+    plan.timingRounds = request.timingRounds;
     // 0 = the default cap; anything else is checked and converted without wrapping (1e30 MiB).
     plan.api = parseGlApi(request.api);
     plan.abufferCapBytes = request.abufferCapMib == 0.0 ? AbufferOptions{}.memoryCapBytes

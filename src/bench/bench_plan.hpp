@@ -69,6 +69,7 @@ struct Request {
     std::string cameraPath;
     double abufferCapMib = 0.0;  // 0: MethodOptions default
     std::string api = "gl";      // gl | gles: the context the whole run renders in
+    int timingRounds = 1;        // --timing-rounds: Plan::timingRounds
 };
 
 // The resolved run: concrete scenes (sources made absolute), variants and sizes.
@@ -88,7 +89,12 @@ struct Plan {
     std::string suiteNote;  // one line on where the scenes came from
     size_t abufferCapBytes = 0;
     GlApi api = GlApi::Desktop;
+    // Timed runs of the path per variant, 1..kMaxTimingRounds (docs/DESIGN.md, "Benchmark"): after
+    // every variant's first, each further round times them all again, in the opposite order to the
+    // round before, and a variant keeps its fastest round's times.
+    int timingRounds = 1;
 };
+constexpr int kMaxTimingRounds = 10;
 
 // Resolves names and checks every value before anything renders; throws starnt::Error with the
 // offending name or value.

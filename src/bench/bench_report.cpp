@@ -120,7 +120,11 @@ void header(std::ostringstream& md, const Results& r) {
           "schedule (1/K real), as a window of frames holds a whole number of real ones (at K = 8, 2 in 10 from a "
           "real frame; the plain means are in \"Against itself\"), "
           "in a run of the path with nothing between its frames (the errors come from a second run that "
-          "reads every frame back); glFinish + wall clock"
+          "reads every frame back)"
+       << (r.plan.timingRounds > 1 ? "; each variant's fastest of " + std::to_string(r.plan.timingRounds) +
+                                         " such runs, timed in alternating order (round 2 backwards through the variants)"
+                                   : std::string())
+       << "; glFinish + wall clock"
        << (m.gl.software ? "; on a CPU rasteriser they rank methods by work done, not by GPU speed" : "")
        << "; per-pass times are " << (m.gl.software ? "glFinish + wall clock around each pass" : "GL_TIMESTAMP pairs")
        << ". Errors are means over "

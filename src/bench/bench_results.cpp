@@ -198,7 +198,9 @@ json toJson(const Results& r) {
           {"api", glApiName(r.plan.api)},
           {"timing", "mean over the timed frames, after untimed warm-up frames, in a run of the path without readbacks "
                      "or error measurement between frames (frame_ms_mean_with_comparison: the run that measured the "
-                     "errors); glFinish + wall clock per frame"},
+                     "errors); glFinish + wall clock per frame; with timing_rounds > 1 the fastest of that many such runs "
+                     "(frame_ms_rounds), the variants timed in alternating order"},
+          {"timing_rounds", r.plan.timingRounds},
           {"quality", "mean over every compared frame (every frame, or those with i mod quality_every < 3) of MSE (sRGB) "
                       "and LDR-FLIP mean (67.02 px/deg) against the ground truth"},
           {"quality_every", r.plan.qualityEvery},
