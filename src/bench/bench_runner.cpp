@@ -99,6 +99,14 @@ private:
         }
     }
 
+    // The scene's job with the variant's method and options (every run of a variant starts from it).
+    RenderJob variantJob(const Scene& scene, const Variant& variant) const {
+        RenderJob job = baseJob(plan_, spec_, scene);
+        job.method = variant.method;
+        job.methodOptions = variant.options;
+        return job;
+    }
+
     // Two runs of the path per variant (docs/DESIGN.md, "Benchmark"): the times come from a run with
     // nothing between its frames; the errors from a second run that reads every frame back and
     // measures it against the ground truth (CPU MSE and FLIP), whose frame times are kept only as
@@ -111,9 +119,7 @@ private:
         c.frames = nlohmann::json::array();
         progress_.begin(label_ + ": " + variant.name);
         const auto start = std::chrono::steady_clock::now();
-        RenderJob job = baseJob(plan_, spec_, scene);
-        job.method = variant.method;
-        job.methodOptions = variant.options;
+        RenderJob job = variantJob(scene, variant);
         // The tile overlay is read after the timed frames; the compared run reads it when there is one.
         job.readTileOverlay = !sceneResult.groundTruthOk;
         size_t framesDone = 0;
@@ -191,9 +197,7 @@ private:
                 progress_.skip(size_t(plan_.frames));
                 continue;
             }
-            RenderJob job = baseJob(plan_, spec_, scene);
-            job.method = variant.method;
-            job.methodOptions = variant.options;
+            RenderJob job = variantJob(scene, variant);
             std::vector<nlohmann::json> timedFrames;
             job.onFrame = [&](const FrameRecord& record) {
                 timedFrames.push_back(record.stats);
