@@ -855,6 +855,50 @@ TEST(PackedLayers, KeysOrderDepthsOneUlpApartAsTheDepthTestDoes) {
     EXPECT_EQ(farthest, 1.0f);
 }
 
+// A layer's colour codec (packed_nearest.h): steps of at most 2e-3 up to 1, and above 1 the
+// logarithm read off the float bits, whose steps lie between 1.9 % and 4 % of the colour (the true
+// logarithm's were 2.7 % everywhere); codes never reverse; STARNT_MAX_SURFACE_COLOR decodes to
+// itself; each channel's decoded colour encodes to its own code.
+TEST(PackedLayers, ColourCodecKeepsItsStepsInAndAboveTheUnitRange) {
+    const float z = 0.5f;
+    auto roundTrip = [&](float c) {
+        float depth = 0.0f;
+        return unpackLayer(packLayer(z, glm::vec4(c, c, c, 0.5f)), depth);
+    };
+    float largestLow = 0.0f, largestHighRelative = 0.0f, smallestHighStep = 1.0f, largestHighStep = 0.0f;
+    float previous = -1.0f;
+    for (int i = 0; i <= 4000; ++i) {
+        const float c = float(i) / 4000.0f;
+        const glm::vec4 got = roundTrip(c);
+        largestLow = std::max(largestLow, std::abs(got.r - c));
+        EXPECT_GE(got.r, previous) << c;
+        previous = got.r;
+        EXPECT_EQ(roundTrip(got.r).r, got.r) << "a decoded colour encodes to its own code: " << c;
+        EXPECT_EQ(roundTrip(got.b).b, got.b) << c;
+    }
+    EXPECT_LE(largestLow, 2e-3f);
+    float previousDecoded = roundTrip(1.0f).r;
+    for (float c = 1.0f; c <= 1024.0f; c *= 1.001f) {
+        const glm::vec4 got = roundTrip(c);
+        largestHighRelative = std::max(largestHighRelative, std::abs(got.r / c - 1.0f));
+        EXPECT_GE(got.r, previousDecoded) << c;
+        if (got.r > previousDecoded && previousDecoded > 1.0f) {
+            smallestHighStep = std::min(smallestHighStep, got.r / previousDecoded - 1.0f);
+            largestHighStep = std::max(largestHighStep, got.r / previousDecoded - 1.0f);
+        }
+        previousDecoded = got.r;
+        EXPECT_EQ(roundTrip(got.r).r, got.r) << c;
+        EXPECT_EQ(roundTrip(got.b).b, got.b) << c;
+    }
+    std::printf("colour codec: largest error %.5f below 1, %.4f relative above; steps above 1 %.4f-%.4f\n", largestLow,
+                largestHighRelative, smallestHighStep, largestHighStep);
+    EXPECT_LE(largestHighRelative, 0.021f);
+    EXPECT_GE(smallestHighStep, 0.018f);
+    EXPECT_LE(largestHighStep, 0.04f);
+    EXPECT_EQ(roundTrip(1024.0f), glm::vec4(1024.0f, 1024.0f, 1024.0f, roundTrip(0.0f).a));
+    EXPECT_NEAR(roundTrip(4096.0f).r, 1024.0f, 1.0f) << "clamped to STARNT_MAX_SURFACE_COLOR";
+}
+
 // The closed form behind two exact layers: with one fragment behind the second it is exact, and
 // from the moments in u over every fragment (an interpolated frame's) it equals what the moments
 // summed behind the second layer in v = u - u2 give (a real frame's), up to rounding.

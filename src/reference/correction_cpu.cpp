@@ -97,15 +97,20 @@ float layerSteps(uint32_t bits) { return float((1u << bits) - 1u); }
 constexpr float kLayerLdrShare = float(STARNT_PACKED_LAYER_LDR_SHARE);
 constexpr float kLayerHdrScale = (1.0f - kLayerLdrShare) / float(STARNT_PACKED_LAYER_HDR_LOG2_RANGE);
 
+// packed_nearest.glsl's bitsLog2 and bitsExp2: log2 of r >= 1 from its float bits, linear between
+// powers of two, and its inverse.
+float bitsLog2(float r) { return float(std::bit_cast<uint32_t>(std::max(r, 1.0f)) - 0x3F800000u) * (1.0f / 8388608.0f); }
+float bitsExp2(float y) { return std::bit_cast<float>(0x3F800000u + uint32_t(std::max(y, 0.0f) * 8388608.0f)); }
+
 uint32_t layerColour(float c, uint32_t bits) {
     const float r = std::sqrt(std::clamp(c, 0.0f, std::exp2(2.0f * float(STARNT_PACKED_LAYER_HDR_LOG2_RANGE))));
-    const float x = r <= 1.0f ? kLayerLdrShare * r : kLayerLdrShare + kLayerHdrScale * std::log2(r);
+    const float x = r <= 1.0f ? kLayerLdrShare * r : kLayerLdrShare + kLayerHdrScale * bitsLog2(r);
     return uint32_t(std::floor(x * layerSteps(bits) + 0.5f));
 }
 
 float unpackedLayerColour(uint32_t word, uint32_t shift, uint32_t bits) {
     const float x = float((word >> shift) & ((1u << bits) - 1u)) / layerSteps(bits);
-    const float r = x <= kLayerLdrShare ? x / kLayerLdrShare : std::exp2((x - kLayerLdrShare) / kLayerHdrScale);
+    const float r = x <= kLayerLdrShare ? x / kLayerLdrShare : bitsExp2((x - kLayerLdrShare) / kLayerHdrScale);
     return r * r;
 }
 

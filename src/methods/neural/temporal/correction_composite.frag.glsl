@@ -107,6 +107,8 @@ void main() {
 #else
             behind = closedFormBehind(fresh, texelFetch(u_sumAlphaColor, p, 0), transmittance, background());
 #endif
+#ifndef STARNT_PACKED_THREE_LAYERS
+            // (Three layers: the real frames keep no correction, u_useCorrection is false.)
             vec2 c = (vec2(p) + 0.5) / vec2(u_size) * 2.0 - 1.0;
             vec4 old = u_newToOld * vec4(c, depth * 2.0 - 1.0, 1.0);
             if (u_useCorrection && old.w > 0.0) {
@@ -145,6 +147,7 @@ void main() {
                     }
                 }
             }
+#endif
         }
         color = fresh.a * fresh.rgb + open * max(behind, vec3(0.0));
     }

@@ -74,15 +74,21 @@ float layerSteps(int bits) { return float((1 << bits) - 1); }
 const float kLayerLdrShare = float(STARNT_PACKED_LAYER_LDR_SHARE);
 const float kLayerHdrScale = (1.0 - kLayerLdrShare) / float(STARNT_PACKED_LAYER_HDR_LOG2_RANGE);
 
+// log2 r for r >= 1 read off its float bits (exponent plus mantissa fraction: exact at powers of two,
+// linear between) and its inverse: no transcendental function in the per-fragment pack and unpack
+// (packed_nearest.h; docs/DESIGN.md, "Corrected frames: three layers and no correction").
+float bitsLog2(float r) { return float(floatBitsToUint(max(r, 1.0)) - kPackedOne) * (1.0 / 8388608.0); }
+float bitsExp2(float y) { return uintBitsToFloat(kPackedOne + uint(max(y, 0.0) * 8388608.0)); }
+
 uint layerColour(float c, int bits) {
     float r = sqrt(clamp(c, 0.0, exp2(2.0 * float(STARNT_PACKED_LAYER_HDR_LOG2_RANGE))));
-    float x = r <= 1.0 ? kLayerLdrShare * r : kLayerLdrShare + kLayerHdrScale * log2(r);
+    float x = r <= 1.0 ? kLayerLdrShare * r : kLayerLdrShare + kLayerHdrScale * bitsLog2(r);
     return uint(floor(x * layerSteps(bits) + 0.5));
 }
 
 float unpackedLayerColour(uint word, uint shift, int bits) {
     float x = float((word >> shift) & ((1u << uint(bits)) - 1u)) / layerSteps(bits);
-    float r = x <= kLayerLdrShare ? x / kLayerLdrShare : exp2((x - kLayerLdrShare) / kLayerHdrScale);
+    float r = x <= kLayerLdrShare ? x / kLayerLdrShare : bitsExp2((x - kLayerLdrShare) / kLayerHdrScale);
     return r * r;
 }
 
