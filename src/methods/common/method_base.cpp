@@ -9,13 +9,6 @@ namespace starnt {
 MethodBase::MethodBase(SurfaceShader surface)
     : surface_(std::move(surface)), fullscreenVao_(gl::makeEmptyVertexArray()) {}
 
-gl::Program buildSurfaceProgram(const SurfaceShader& surface, const std::string& label, const std::string& fragmentFile,
-                                const std::string& defines) {
-    std::string fragment = surface.fragment + "\n#include \"methods/common/surface_fetch.glsl\"\n" +
-                           "#include \"" + fragmentFile + "\"\n";
-    return gl::buildProgram(label, surface.vertex, fragment, defines);
-}
-
 gl::Program MethodBase::buildGeometryProgram(const std::string& label, const std::string& fragmentFile,
                                              const std::string& defines) const {
     return buildSurfaceProgram(surface_, label, fragmentFile, defines);

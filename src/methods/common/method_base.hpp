@@ -6,14 +6,10 @@
 #include "gl/shader.hpp"
 #include "gl/target_clears.hpp"
 #include "methods/common/opaque_scene.hpp"
+#include "methods/common/surface_program.hpp"
 #include "starnt/oit_method.hpp"
 
 namespace starnt {
-
-// A geometry-pass program: the engine's surface shader wrapped by a method's fragment file (which
-// calls fetchSurfaceOrDiscard()).
-gl::Program buildSurfaceProgram(const SurfaceShader& surface, const std::string& label, const std::string& fragmentFile,
-                                const std::string& defines = {});
 
 class MethodBase : public OitMethod {
 public:

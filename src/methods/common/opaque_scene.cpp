@@ -98,13 +98,19 @@ void OpaqueScene::writeDepth(int width, int height, int fullWidth, int fullHeigh
     glBindSampler(STARNT_UNIT_OPAQUE, 0);
 }
 
-void OpaqueScene::clipInShader(const gl::Program& program, int width, int height, int fullWidth, int fullHeight) const {
-    glUniform1i(program.uniform("u_opaqueClip"), depth_ ? 1 : 0);
-    if (!depth_) return;
+const gl::Program& OpaqueScene::clipInShader(SurfaceProgram& variants, int width, int height, int fullWidth,
+                                             int fullHeight) const {
+    if (!depth_) {
+        glUseProgram(variants.id());
+        return variants.plain();
+    }
+    const gl::Program& program = variants.clipping();
+    glUseProgram(program.id());
     glUniform2i(program.uniform("u_opaqueSize"), width, height);
     glUniform2i(program.uniform("u_opaqueFullSize"), fullWidth, fullHeight);
     glUniform1i(program.uniform("u_opaqueReversed"), currentDepthConvention().reversed ? 1 : 0);
     bindOpaqueDepth();
+    return program;
 }
 
 void OpaqueScene::beginDepthTest(GLuint framebuffer, int width, int height, int fullWidth, int fullHeight) {

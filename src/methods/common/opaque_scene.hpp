@@ -14,6 +14,7 @@
 
 #include "gl/gl_util.hpp"
 #include "gl/shader.hpp"
+#include "methods/common/surface_program.hpp"
 #include "starnt/bindings.h"
 #include "starnt/oit_method.hpp"
 
@@ -32,12 +33,13 @@ public:
     // Whether the frame's geometry passes are clipped by an opaque depth.
     bool clips() const { return depth_ != 0; }
 
-    // For a pass with a depth target of its own (its program bound) rendering a rectangle of
-    // width x height of a frame of fullWidth x fullHeight: the clip in its fragment shader
-    // (surface_fetch.glsl), on when the frame clips and off otherwise; a reduced texel takes the
-    // opaque depth of the full pixel holding its sample (reduced_grid.hpp), as pass 3's copy does,
-    // so pass 1, 2 and 3 keep the same fragments.
-    void clipInShader(const gl::Program& program, int width, int height, int fullWidth, int fullHeight) const;
+    // For a pass with a depth target of its own rendering a rectangle of width x height of a frame
+    // of fullWidth x fullHeight: binds and returns the variant of `program` to draw with, the one
+    // that clips in its fragment shader (surface_fetch.glsl) when the frame clips, with its uniforms
+    // and the opaque depth bound, else the plain one; a reduced texel takes the opaque depth of the
+    // full pixel holding its sample (reduced_grid.hpp), as pass 3's copy does, so pass 1, 2 and 3
+    // keep the same fragments.
+    const gl::Program& clipInShader(SurfaceProgram& program, int width, int height, int fullWidth, int fullHeight) const;
     // For a pass without a depth target of its own, rendering into `framebuffer` (bound, viewport
     // and scissor set, rectangle as above): when the frame clips, attaches the method's copy of
     // the opaque depth and enables the depth test (LESS, no depth writes). endDepthTest detaches

@@ -110,13 +110,10 @@ std::string layerPassDefines(NeuralOptions::Targets targets, bool narrowLayers) 
 NeuralPasses::NeuralPasses(const SurfaceShader& surface, OpaqueScene& opaque, bool colorSums, NeuralOptions::Targets targets,
                            bool narrowLayers, bool tailMoments)
     : opaque_(opaque),
-      pass1_(buildSurfaceProgram(surface, "neural_pass1", "methods/neural/pass1_nearest.frag.glsl",
-                                 layerPassDefines(targets, narrowLayers))),
-      pass2_(buildSurfaceProgram(surface, "neural_pass2", "methods/neural/pass2_second.frag.glsl",
-                                 layerPassDefines(targets, narrowLayers))),
-      pass3_(buildSurfaceProgram(surface, "neural_pass3", "methods/neural/pass3_accumulate.frag.glsl",
-                                 std::string(colorSums ? "" : "#define STARNT_COUNT_ONLY\n") +
-                                     tailMomentsDefine(tailMoments))),
+      pass1_(surface, "neural_pass1", "methods/neural/pass1_nearest.frag.glsl", layerPassDefines(targets, narrowLayers)),
+      pass2_(surface, "neural_pass2", "methods/neural/pass2_second.frag.glsl", layerPassDefines(targets, narrowLayers)),
+      pass3_(surface, "neural_pass3", "methods/neural/pass3_accumulate.frag.glsl",
+             std::string(colorSums ? "" : "#define STARNT_COUNT_ONLY\n") + tailMomentsDefine(tailMoments)),
       tailResolve_(buildTailResolveProgram(std::string(colorSums ? "" : "#define STARNT_COUNT_ONLY\n") + targetsDefine(targets))),
       emptyVao_(gl::makeEmptyVertexArray()),
       colorSums_(colorSums),
@@ -259,9 +256,8 @@ void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) 
     }
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
-    glUseProgram(pass1_.id());
-    opaque_.clipInShader(pass1_, width_, height_, width_, height_);
-    MethodBase::runGeometryPass("pass1", pass1_, frame, draw);
+    const gl::Program& pass1 = opaque_.clipInShader(pass1_, width_, height_, width_, height_);
+    MethodBase::runGeometryPass("pass1", pass1, frame, draw);
     resetPassState();
 }
 
@@ -283,13 +279,12 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
         if (narrowLayers_) glColorMaski(1, GL_FALSE, GL_TRUE, GL_FALSE, GL_FALSE);  // a2 beside pass 1's a1
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
-        glUseProgram(pass2_.id());
-        opaque_.clipInShader(pass2_, pass2Size.width, pass2Size.height, full.width, full.height);
-        glUniform1f(pass2_.uniform("u_peelEpsilon"), peelEpsilon);
-        glUniform2i(pass2_.uniform("u_fullSize"), full.width, full.height);
-        glUniform2i(pass2_.uniform("u_reducedSize"), pass2Size.width, pass2Size.height);
+        const gl::Program& pass2 = opaque_.clipInShader(pass2_, pass2Size.width, pass2Size.height, full.width, full.height);
+        glUniform1f(pass2.uniform("u_peelEpsilon"), peelEpsilon);
+        glUniform2i(pass2.uniform("u_fullSize"), full.width, full.height);
+        glUniform2i(pass2.uniform("u_reducedSize"), pass2Size.width, pass2Size.height);
         gl::bindTexture(0, nearestDepth_.id());
-        MethodBase::runGeometryPass("pass2", pass2_, frame, draw);
+        MethodBase::runGeometryPass("pass2", pass2, frame, draw);
         resetPassState();
     }
     runSums(frame, draw, pass3Size, behindReference && tailMoments_ && pass3Size == full ? behindReference() : 0);
@@ -304,7 +299,7 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
 
 void NeuralPasses::prepareRealBehindMoments() {
     if (!pass3Behind_.id()) {
-        pass3Behind_ = buildSurfaceProgram(surface_, "neural_pass3_behind", "methods/neural/pass3_accumulate.frag.glsl",
+        pass3Behind_ = SurfaceProgram(surface_, "neural_pass3_behind", "methods/neural/pass3_accumulate.frag.glsl",
                                            std::string(colorSums_ ? "" : "#define STARNT_COUNT_ONLY\n") +
                                                tailMomentsDefine(tailMoments_) + behindMomentsDefine() +
                                                (twoLayers_ ? "#define STARNT_BEHIND_SECOND\n" : ""));
@@ -327,7 +322,7 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
     behindSummed_ = behindReference != 0 && behindMomentsFit_;
     behindReference_ = behindSummed_ ? behindReference : 0;
     GLuint framebuffer = pass3Fb_.id();
-    const gl::Program* program = &pass3_;
+    SurfaceProgram* program = &pass3_;
     if (behindSummed_) {
         prepareRealBehindMoments();
         allocatePackedNearest();
@@ -347,6 +342,7 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
         if (!pass3TailFb_.id()) pass3TailFb_ = gl::makeFramebuffer({&alphaColor_, &colorCount_, &transmittance_}, &secondDepth_);
         framebuffer = pass3TailFb_.id();
     }
+    const gl::Program* drawn = &program->plain();  // the variant that clips in its shader where it does
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     clears_.color(0, zero);
     clears_.color(1, zero);
@@ -355,8 +351,7 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_GREATER);  // behind the second layer, which pass 2's depth holds (1 where none)
         glDepthMask(GL_FALSE);
-        glUseProgram(program->id());
-        opaque_.clipInShader(*program, full.width, full.height, full.width, full.height);
+        drawn = &opaque_.clipInShader(*program, full.width, full.height, full.width, full.height);
     } else {
         opaque_.beginDepthTest(framebuffer, pass3Size.width, pass3Size.height, full.width, full.height);
     }
@@ -392,14 +387,8 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
             glBindShadingRateImageNV(0);
         }
     } rates(pass3Size == full ? pass3Rates_ : 0);
-    MethodBase::runGeometryPass("pass3", *program, frame, draw);
-    if (pass3HoldsTails_) {
-        // The other frames clip by the depth test, with the opaque depth unbound from the shader.
-        glUseProgram(program->id());
-        glUniform1i(program->uniform("u_opaqueClip"), 0);
-    } else {
-        opaque_.endDepthTest(framebuffer);
-    }
+    MethodBase::runGeometryPass("pass3", *drawn, frame, draw);
+    if (!pass3HoldsTails_) opaque_.endDepthTest(framebuffer);
     resetPassState();
 }
 
@@ -428,7 +417,7 @@ void NeuralPasses::runNearestAndSums(const FrameDesc& frame, const DrawCallback&
 
 void NeuralPasses::preparePackedNearestAndSums() {
     if (!pass3Packed_.id()) {
-        pass3Packed_ = buildSurfaceProgram(surface_, "neural_pass3_packed", "methods/neural/pass3_accumulate.frag.glsl",
+        pass3Packed_ = SurfaceProgram(surface_, "neural_pass3_packed", "methods/neural/pass3_accumulate.frag.glsl",
                                            std::string("#define STARNT_SUMS_ONLY\n#define STARNT_PACKED_NEAREST\n") +
                                                behindMomentsDefine() +
                                                (threeLayers_ ? "#define STARNT_PACKED_THREE_LAYERS\n" : "") +
@@ -504,9 +493,8 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
         beginSecondMomentAndOpticalDepth(1);
         beginBehindMoment(3, reference);
     }
-    glUseProgram(pass3Packed_.id());
-    opaque_.clipInShader(pass3Packed_, width_, height_, width_, height_);
-    MethodBase::runGeometryPass("pass3", pass3Packed_, frame, draw);
+    const gl::Program& pass3 = opaque_.clipInShader(pass3Packed_, width_, height_, width_, height_);
+    MethodBase::runGeometryPass("pass3", pass3, frame, draw);
     resetPassState();
 }
 

@@ -212,9 +212,10 @@ private:
     void widenCountBesideBehind();
     const char* behindMomentsDefine() const { return tailMoments_ ? "#define STARNT_BEHIND_MOMENTS\n" : ""; }
     OpaqueScene& opaque_;
-    gl::Program pass1_;
-    gl::Program pass2_;
-    gl::Program pass3_;
+    // (SurfaceProgram: the variant that clips by the opaque depth in its shader built where a frame has one.)
+    SurfaceProgram pass1_;
+    SurfaceProgram pass2_;
+    SurfaceProgram pass3_;
     gl::Program tailResolve_;
     gl::VertexArrayHandle emptyVao_;
     int width_ = 0, height_ = 0;
@@ -238,7 +239,7 @@ private:
     gl::Program pass3Sums_;
     gl::FramebufferHandle sumsFb_;
     // runPackedNearestAndSums' pass 3 and its targets: the sums and the packed nearest fragment.
-    gl::Program pass3Packed_;
+    SurfaceProgram pass3Packed_;
     gl::Texture2D packedNearest_;  // allocated on first need
     bool twoLayers_ = false;       // findTwoLayers
     gl::Texture2D packedLayers_;   // the nearest two fragments (twoLayers_), allocated on first need
@@ -246,7 +247,7 @@ private:
     gl::Texture2D thirdLayer_;     // the third (threeLayers_), allocated with packedLayers_
     // A real frame's moments behind the reference (the first in packedNearest_, free then; the
     // second beside the count).
-    gl::Program pass3Behind_;
+    SurfaceProgram pass3Behind_;
     gl::FramebufferHandle pass3BehindFb_;
     bool behindSummed_ = false;
     GLuint behindReference_ = 0;  // what the last behindSummed_ pass 3 read (not owned)

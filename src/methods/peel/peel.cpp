@@ -15,7 +15,7 @@ public:
     PeelMethod(const SurfaceShader& surface, const MethodOptions& options)
         : MethodBase(surface),
           layersWanted_(options.peel.layers),
-          layer_(buildGeometryProgram("peel_layer", "methods/peel/peel_layer.frag.glsl")),
+          layer_(surface_, "peel_layer", "methods/peel/peel_layer.frag.glsl"),
           accumulate_(buildFullscreenProgram("peel_accumulate", "methods/peel/peel_accumulate.frag.glsl")),
           composite_(buildFullscreenProgram("peel_composite", "methods/peel/peel_composite.frag.glsl")) {
         if (layersWanted_ < 0 || layersWanted_ > kMaxLayers) {
@@ -67,13 +67,12 @@ public:
                 glEnable(GL_DEPTH_TEST);
                 glDepthFunc(GL_LESS);
                 glDepthMask(GL_TRUE);
-                glUseProgram(layer_.id());
-                opaque_.clipInShader(layer_, width_, height_, width_, height_);
-                glUniform1i(layer_.uniform("u_firstLayer"), layer == 0 ? 1 : 0);
+                const gl::Program& program = opaque_.clipInShader(layer_, width_, height_, width_, height_);
+                glUniform1i(program.uniform("u_firstLayer"), layer == 0 ? 1 : 0);
                 gl::bindTexture(0, depth_[cur ^ 1].id());
                 glBeginQuery(GL_ANY_SAMPLES_PASSED, query_.id());
                 try {
-                    runGeometryPass("peel", layer_, frame, draw);
+                    runGeometryPass("peel", program, frame, draw);
                 } catch (...) {
                     glEndQuery(GL_ANY_SAMPLES_PASSED);  // an engine's exception must not leave the query running
                     resetPassState();
@@ -105,7 +104,8 @@ public:
 private:
     int layersWanted_;
     int layersRendered_ = 0;
-    gl::Program layer_, accumulate_, composite_;
+    SurfaceProgram layer_;  // clips by the opaque depth in its shader (its depth target is its own)
+    gl::Program accumulate_, composite_;
     gl::Texture2D layerColor_, accum_, depth_[2];
     gl::FramebufferHandle layerFb_[2], accumFb_;
     gl::QueryHandle query_;
