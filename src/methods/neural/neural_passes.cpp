@@ -279,7 +279,12 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
         if (narrowLayers_) glColorMaski(1, GL_FALSE, GL_TRUE, GL_FALSE, GL_FALSE);  // a2 beside pass 1's a1
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
-        const gl::Program& pass2 = opaque_.clipInShader(pass2_, pass2Size.width, pass2Size.height, full.width, full.height);
+        if (reduced2 && !pass2Reduced_.id()) {
+            pass2Reduced_ = SurfaceProgram(surface_, "neural_pass2_reduced", "methods/neural/pass2_second.frag.glsl",
+                                           layerPassDefines(targets_, narrowLayers_) + "#define STARNT_REDUCED_PEEL\n");
+        }
+        const gl::Program& pass2 =
+            opaque_.clipInShader(reduced2 ? pass2Reduced_ : pass2_, pass2Size.width, pass2Size.height, full.width, full.height);
         glUniform1f(pass2.uniform("u_peelEpsilon"), peelEpsilon);
         glUniform2i(pass2.uniform("u_fullSize"), full.width, full.height);
         glUniform2i(pass2.uniform("u_reducedSize"), pass2Size.width, pass2Size.height);

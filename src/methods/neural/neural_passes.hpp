@@ -215,6 +215,7 @@ private:
     // (SurfaceProgram: the variant that clips by the opaque depth in its shader built where a frame has one.)
     SurfaceProgram pass1_;
     SurfaceProgram pass2_;
+    SurfaceProgram pass2Reduced_;  // peels against the maximum over a reduced pixel's footprint; built on first need
     SurfaceProgram pass3_;
     gl::Program tailResolve_;
     gl::VertexArrayHandle emptyVao_;
