@@ -1220,6 +1220,109 @@ TEST(PackedLayers, ThreeLayerCompositeMatchesCpuReference) {
     EXPECT_LE(off, size_t(w * h / 100)) << "pixels off the CPU reference";
 }
 
+// The composite of an interpolated frame with three layers clears pass 3's five targets on a
+// software rasteriser (NeuralPasses::compositeClearsTargets): the same image as the composite that
+// writes only the output; afterwards every texel of the five holds its clear value; and the next
+// pass 3, which then clears only its depth, writes what a pass after the clears writes.
+TEST(PackedLayers, CompositeClearsThePassThreeTargetsItRead) {
+    test::glContext();
+    if (!epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) GTEST_SKIP() << "no GL_EXT_shader_framebuffer_fetch";
+    if (!fiveDrawBuffers()) GTEST_SKIP() << "fewer than 5 draw buffers";
+    TubesPasses t;
+    const int w = t.w, h = t.h;
+    NeuralPasses& passes = t.passes;
+    passes.findThreeLayers(true);
+    if (!passes.compositeClearsTargets()) GTEST_SKIP() << "the composite clears the targets on desktop GL with a software rasteriser only";
+    // A real frame to interpolate from: its composite and passes are not what this test looks at.
+    std::mt19937 rng(7);
+    const RandomPasses real = randomPasses(w, h, rng);
+    std::vector<glm::vec4> grey(real.nearest.size(), glm::vec4(0.5f, 0.5f, 0.5f, 1.0f));
+    gl::Texture2D rc = uploadRgba(grey, w, h), rd = uploadDepth(real.depth, w, h), rn = uploadRgba(real.nearest, w, h),
+                  rs = uploadRgba(real.sums, w, h);
+    TemporalFrames temporal(correctedOptions(), true, 3);
+    const glm::mat4 oldVP = t.frame.projection * t.frame.view;
+    ASSERT_TRUE(temporal.beginFrame(w, h));
+    temporal.endRealFrame(rc.id(), {rn.id(), rd.id(), rs.id(), 0u}, oldVP, w, h, OpaqueScene(kBackground));
+
+    auto readTargets = [&] {
+        std::vector<std::vector<glm::uvec4>> out;
+        for (GLuint texture : passes.packedTargets()) {
+            if (gl::textureInternalFormat(texture) == GL_RGBA32UI || gl::textureInternalFormat(texture) == GL_RG32UI) {
+                out.push_back(test::readRgbaUint(texture, w, h));
+            } else {
+                std::vector<glm::uvec4> bits;
+                for (const glm::vec4& v : readRgba(texture, w, h)) bits.push_back(glm::floatBitsToUint(v));
+                out.push_back(bits);
+            }
+        }
+        return out;
+    };
+    auto interpolate = [&](GLuint output, bool clears) {
+        if (temporal.beginFrame(w, h)) ADD_FAILURE() << "expected an interpolated frame";
+        TemporalPassTargets targets{.nearestDepth = passes.nearestDepth().id(), .sumAlphaColor = passes.alphaColor().id(),
+                                    .packedNearest = passes.packedNearest()};
+        targets.behindMoment1 = passes.behindMoment1();
+        targets.behindMoment2 = passes.behindMoment2();
+        targets.thirdLayer = passes.thirdLayer();
+        if (clears) targets.clearByComposite = passes.packedTargets();
+        temporal.interpolate(oldVP, targets, OpaqueScene(kBackground), output);
+        glFinish();
+    };
+    passes.runPackedNearestAndSums(t.frame, t.draw, temporal.behindReference());
+    const auto fresh = readTargets();
+    gl::Texture2D plain(GL_RGBA32F, w, h), clearing(GL_RGBA32F, w, h);
+    interpolate(plain.id(), false);
+    EXPECT_EQ(readTargets(), fresh) << "the composite without clears writes only its output";
+    temporal.reset();
+    ASSERT_TRUE(temporal.beginFrame(w, h));
+    temporal.endRealFrame(rc.id(), {rn.id(), rd.id(), rs.id(), 0u}, oldVP, w, h, OpaqueScene(kBackground));
+    interpolate(clearing.id(), true);
+    EXPECT_EQ(readRgba(clearing.id(), w, h), readRgba(plain.id(), w, h)) << "the same image";
+
+    // Every texel of the five at its clear value (NeuralPasses::runPackedNearestAndSums' clears).
+    const auto cleared = readTargets();
+    const glm::uvec4 emptyLayers(STARNT_PACKED_LAYER_EMPTY, 0u, STARNT_PACKED_LAYER_EMPTY, 0u);
+    size_t reached = 0, off = 0;
+    for (size_t i = 0; i < size_t(w * h); ++i) {
+        reached += fresh[0][i] != emptyLayers;
+        off += cleared[0][i] != emptyLayers;
+        off += glm::uvec2(cleared[1][i]) != glm::uvec2(emptyLayers);
+        off += cleared[2][i] != glm::uvec4(0u);                // sum a C, sum a (RGBA32F)
+        off += cleared[3][i] != glm::uvec4(0u);                // sum a C u, sum a u (RGBA32F)
+        off += glm::uvec2(cleared[4][i]) != glm::uvec2(0u);    // sum a u^2, sum -ln(1 - a) (RG32F)
+    }
+    EXPECT_GT(reached, size_t(w * h / 10)) << "pass 3 reaches a tenth of the pixels at least (430 of 3072 here)";
+    EXPECT_EQ(off, 0u) << "target values left after the clearing composite";
+
+    // The next pass 3 finds them clear and clears only its depth: what it writes equals the first.
+    passes.targetsClearedByComposite();
+    passes.runPackedNearestAndSums(t.frame, t.draw, temporal.behindReference());
+    EXPECT_EQ(readTargets(), fresh) << "a pass 3 over the targets the composite cleared";
+    // A real frame's passes write three of them: the pass after it clears them again.
+    passes.run(t.frame, t.draw, NeuralPasses::kDefaultPeelEpsilon, {w, h}, {w, h});
+    passes.runPackedNearestAndSums(t.frame, t.draw, temporal.behindReference());
+    EXPECT_EQ(readTargets(), fresh) << "a pass 3 after a real frame's passes";
+}
+
+// Whole methods: the frames of recommended's configuration with the composite clearing the
+// targets equal those with the clears, bit for bit, through groups of interpolated frames and the
+// real frames between them, as the camera turns.
+TEST(PackedLayers, FramesWithTheCompositeClearingTheTargetsEqualThoseWithTheClears) {
+    test::TestScene c(makeBuiltinScene("tubes", 3), 80, 56, 30.0f, 15.0f, kBackground);
+    if (!epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) GTEST_SKIP() << "no GL_EXT_shader_framebuffer_fetch";
+    if (!fiveDrawBuffers()) GTEST_SKIP() << "fewer than 5 draw buffers";
+    const std::vector<float> yaws = {0.0f, 2.0f, 4.0f, 6.0f, 8.0f, 10.0f, 12.0f, 14.0f, 16.0f, 18.0f};
+    MethodOptions clearing = correctedOptions();
+    clearing.neural.temporalInterval = 4;
+    clearing.neural.correctedLayers = NeuralOptions::CorrectedLayers::Three;
+    MethodOptions clears = clearing;
+    clears.neural.compositeClearsTargets = false;
+    const auto a = renderSequence(c, clearing, yaws, "starnt-d");
+    const auto b = renderSequence(c, clears, yaws, "starnt-d");
+    for (size_t f = 0; f < yaws.size(); ++f) EXPECT_EQ(a[f], b[f]) << "frame " << f;
+    EXPECT_NE(a[1], a[2]) << "the camera turns";
+}
+
 // End to end (tubes, turning 2 degrees a frame, K = 2): with three layers the real frames render as
 // at K = 1 (no moments behind the second layer, no correction kept: starnt-d's frames bit for bit)
 // and the interpolated frames are nearer the A-buffer than with two layers and the correction.

@@ -123,6 +123,13 @@ struct NeuralOptions {
     // to the pass where the composite cannot (corner inference, joint upsampling, reduced pass 3,
     // skipEmptyPixels off). false: always the pass, for comparison.
     bool fusedCorrectionCapture = true;
+    // Corrected frames with three layers, on desktop GL with a software rasteriser (llvmpipe): the
+    // interpolated frame's composite writes the clear values back into the targets of its pass 3
+    // at every pixel it shades, so that the next interpolated frame clears only its depth
+    // (docs/DESIGN.md, "Corrected frames: the composite clears pass 3's targets"). The same images;
+    // false: the clears, for comparison. On a GPU (clears are free there) and on OpenGL ES it has no
+    // effect.
+    bool compositeClearsTargets = true;
     // Per-tile shading rates for pass 3 through the driver's shading-rate image (docs/DESIGN.md,
     // "Per-tile shading rates on GPUs"; GL_NV_shading_rate_image, a GPU feature): with the adaptive
     // tiles and the scale guard, each 16x16 tile's pass-3 fragments are shaded once per pixel, per

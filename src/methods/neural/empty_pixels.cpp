@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -10,23 +11,34 @@
 
 namespace starnt {
 
+const GLenum EmptyPixelSkip::kDrawBuffers[EmptyPixelSkip::kMaxTargets] = {
+    GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3,
+    GL_COLOR_ATTACHMENT4, GL_COLOR_ATTACHMENT5, GL_COLOR_ATTACHMENT6, GL_COLOR_ATTACHMENT7};
+
 EmptyPixelSkip::EmptyPixelSkip()
     : background_(gl::buildProgram("infer_background", gl::embeddedSource("methods/common/fullscreen.vert.glsl"),
                                    gl::embeddedSource("methods/neural/infer_background.frag.glsl"))) {}
 
-void EmptyPixelSkip::bindCovered(GLuint colorTexture, GLuint pass1Depth, int width, int height, GLuint secondColor) {
+void EmptyPixelSkip::bindCovered(GLuint colorTexture, GLuint pass1Depth, int width, int height, GLuint secondColor,
+                                 std::span<const GLuint> moreTargets) {
     if (!framebuffer_) framebuffer_ = gl::makeFramebufferName();
-    // Attached on every call: the textures are the caller's and may have been reallocated.
-    gl::attachTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, colorTexture);
-    if (secondColor || second_) gl::attachTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT1, secondColor);
+    // Attached on every call: the textures are the caller's and may have been reallocated. The
+    // attachments a call does not use are detached, so that none keeps a texture alive.
+    std::vector<GLuint> colors{colorTexture};
+    if (secondColor) colors.push_back(secondColor);
+    colors.insert(colors.end(), moreTargets.begin(), moreTargets.end());
+    if (colors.size() > kMaxTargets) throw Error("internal: more composite targets than EmptyPixelSkip attaches");
+    for (size_t i = 0; i < std::max(colors.size(), attached_); ++i) {
+        gl::attachTexture(framebuffer_.id(), GLenum(GL_COLOR_ATTACHMENT0 + i), i < colors.size() ? colors[i] : 0u);
+    }
+    attached_ = colors.size();
     second_ = secondColor != 0;
     if (gl::attachTexture(framebuffer_.id(), GL_DEPTH_ATTACHMENT, pass1Depth) != GL_FRAMEBUFFER_COMPLETE) {
         throw Error("internal: the output and pass-1 depth do not form a complete framebuffer");
     }
     cleared_ = false;
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
-    const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glDrawBuffers(second_ ? 2 : 1, buffers);
+    glDrawBuffers(GLsizei(attached_), kDrawBuffers);
     glViewport(0, 0, width, height);
     glDisable(GL_BLEND);
     glDisable(GL_SCISSOR_TEST);
@@ -58,6 +70,7 @@ bool EmptyPixelSkip::clearToBackground(const OpaqueScene& background, bool halfO
 }
 
 void EmptyPixelSkip::fillEmpty(const OpaqueScene& background, bool halfOutput, const gl::VertexArrayHandle& emptyVao) {
+    glDrawBuffers(second_ ? 2 : 1, kDrawBuffers);  // the background program writes nothing else
     if (!cleared_) {
         glDepthFunc(GL_LEQUAL);
         glUseProgram(background_.id());

@@ -15,6 +15,8 @@
 // Not usable when the shader itself samples pass 1's depth (joint upsampling): that would be a
 // rendering feedback loop (GL 4.5 section 9.3.1); the caller draws without it then.
 #pragma once
+#include <span>
+
 #include <glm/glm.hpp>
 
 #include "gl/gl_util.hpp"
@@ -33,7 +35,11 @@ public:
     // Throws starnt::Error if the framebuffer is incomplete.
     // `secondColor` (optional): a second target at draw buffer 1 that the composite writes too
     // (the fused capture of corrected frames); fillEmpty writes (0, 0, 0, -1) there, "hidden".
-    void bindCovered(GLuint colorTexture, GLuint pass1Depth, int width, int height, GLuint secondColor = 0);
+    // `moreTargets`: further targets the composite writes, at the draw buffers after those (the
+    // interpolated frames' pass-3 targets it clears: NeuralPasses::compositeClearsTargets);
+    // neither clearToBackground nor fillEmpty writes them. At most 8 targets in all.
+    void bindCovered(GLuint colorTexture, GLuint pass1Depth, int width, int height, GLuint secondColor = 0,
+                     std::span<const GLuint> moreTargets = {});
     // Before the covered pixels are drawn, where the background is one colour and the composite
     // does not read the output (a texture of the caller's own, not a pass target written in place):
     // clears the bound targets to what fillEmpty would write, which then draws nothing. Returns
@@ -48,7 +54,10 @@ public:
 
 private:
     gl::Program background_;
+    static constexpr size_t kMaxTargets = 8;
+    static const GLenum kDrawBuffers[kMaxTargets];
     gl::FramebufferHandle framebuffer_;
+    size_t attached_ = 0;  // colour attachments of framebuffer_, the output's included
     bool second_ = false;  // a second target is attached
     bool cleared_ = false;  // clearToBackground wrote the empty pixels of this composite
 };

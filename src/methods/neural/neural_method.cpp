@@ -48,7 +48,7 @@ public:
         shadingRates_ = shadingRatesApply();
         if (shadingRates_) tiles_->enableShadingRates();
         if (temporal_.interpolates() && temporal_.corrects()) {
-            if (layers_ == 3) passes_.findThreeLayers();
+            if (layers_ == 3) passes_.findThreeLayers(options_.neural.compositeClearsTargets);
             else if (layers_ == 2) passes_.findTwoLayers();
             if (options_.neural.correctedOnePass) passes_.preparePackedNearestAndSums();
             else passes_.prepareNearestAndSums();
@@ -185,10 +185,12 @@ public:
             if (temporal_.interpolatedPasses() == TemporalFrames::Passes::PackedNearestAndSums) {
                 targets.packedNearest = passes_.packedNearest();
                 targets.thirdLayer = passes_.thirdLayer();
+                if (passes_.compositeClearsTargets()) targets.clearByComposite = passes_.packedTargets();
             }
             targets.behindMoment1 = passes_.behindMoment1();
             targets.behindMoment2 = passes_.behindMoment2();
             temporal_.interpolate(viewProjection, targets, opaque_, out_.texture, frame.timing);
+            if (targets.clearByComposite[0]) passes_.targetsClearedByComposite();
             return;
         }
         const bool transmittanceInAlpha = premultipliedHistory && !frame.premultipliedOutput;

@@ -3,6 +3,8 @@
 #include <bit>
 #include <cstdio>
 
+#include "gl/gpu_timer.hpp"
+
 #include "methods/neural/temporal/packed_nearest.h"
 #include "methods/neural/tiles/tile_constants.h"
 #include "starnt/error.hpp"
@@ -263,6 +265,7 @@ void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) 
 
 void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float peelEpsilon, Size2 pass2Size,
                        Size2 pass3Size, const std::function<GLuint()>& behindReference) {
+    clearedTargets_ = {};  // pass 3 writes three of them, and the output may go into one
     runNearest(frame, draw);
     const Size2 full{width_, height_};
     pass2Size_ = pass2Size;
@@ -405,6 +408,7 @@ void NeuralPasses::prepareNearestAndSums() {
 }
 
 void NeuralPasses::runNearestAndSums(const FrameDesc& frame, const DrawCallback& draw, GLuint reference) {
+    clearedTargets_ = {};  // its pass 3 writes three of them
     runNearest(frame, draw);
     prepareNearestAndSums();
     if (tailMoments_) widenCountBesideBehind();
@@ -420,6 +424,23 @@ void NeuralPasses::runNearestAndSums(const FrameDesc& frame, const DrawCallback&
     resetPassState();
 }
 
+void NeuralPasses::findThreeLayers(bool compositeClears) {
+    twoLayers_ = threeLayers_ = tailMoments_;
+    // Only where a clear costs what writing every texel does (a software rasteriser) and where the
+    // composite may write the textures it reads: the GL 4.5 exception for a texel read and written
+    // by the same fragment invocation (section 9.3.1), which OpenGL ES does not make.
+    compositeClears_ = threeLayers_ && compositeClears && !gl::isEs() && gl::currentContextIsSoftware();
+}
+
+std::array<GLuint, 5> NeuralPasses::packedTargets() const {
+    return {packedLayers_.id(), thirdLayer_.id(), alphaColor_.id(), tailMoment1_.id(), colorCount_.id()};
+}
+
+void NeuralPasses::targetsClearedByComposite() {
+    if (!compositeClears_) throw Error("internal: the composite cleared the targets of a pass that clears them itself");
+    clearedTargets_ = packedTargets();
+}
+
 void NeuralPasses::preparePackedNearestAndSums() {
     if (!pass3Packed_.id()) {
         pass3Packed_ = SurfaceProgram(surface_, "neural_pass3_packed", "methods/neural/pass3_accumulate.frag.glsl",
@@ -432,16 +453,16 @@ void NeuralPasses::preparePackedNearestAndSums() {
     }
 }
 
-void NeuralPasses::beginBehindMoment(GLuint target, GLuint reference) {
+void NeuralPasses::beginBehindMoment(GLuint target, GLuint reference, bool clear) {
     const float zero[4] = {0, 0, 0, 0};
-    clears_.color(GLint(target), zero);
+    if (clear) clears_.color(GLint(target), zero);
     glBlendFunci(target, GL_ONE, GL_ONE);
     gl::bindTexture(1, reference);  // pass3_accumulate.frag.glsl's u_reference
 }
 
-void NeuralPasses::beginSecondMomentAndOpticalDepth(GLuint target) {
+void NeuralPasses::beginSecondMomentAndOpticalDepth(GLuint target, bool clear) {
     const float zero[4] = {0, 0, 0, 0};
-    clears_.color(GLint(target), zero);
+    if (clear) clears_.color(GLint(target), zero);
     glBlendFunci(target, GL_ONE, GL_ONE);  // sum a u^2; sum -ln(1 - a)
 }
 
@@ -474,9 +495,13 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
     gl::ScopedPass timing(frame.timing, "pass3");
     glBindFramebuffer(GL_FRAMEBUFFER, packedFb_.id());
     glViewport(0, 0, width_, height_);
+    // The last interpolated frame's composite wrote back the clear values wherever this pass wrote
+    // (compositeClearsTargets()): only the depth, which marks those pixels, is cleared then.
+    const bool clear = !compositeClears_ || clearedTargets_ != packedTargets();
+    clearedTargets_ = {};
     const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1}, farDepth = 1.0f;
-    clears_.color(0, zero);
-    clears_.color(1, one);
+    if (clear) clears_.color(0, zero);
+    if (clear && !tailMoments_) clears_.color(1, one);  // the tail-moment methods' target 1 is cleared below
     glClearBufferfv(GL_DEPTH, 0, &farDepth);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_ALWAYS);
@@ -486,8 +511,8 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
     if (twoLayers_) {
         // Read and rewritten by every fragment (framebuffer fetch); an integer target blends nothing.
         const GLuint empty[4] = {STARNT_PACKED_LAYER_EMPTY, 0u, STARNT_PACKED_LAYER_EMPTY, 0u};
-        clears_.colorUint(2, empty);
-        if (threeLayers_) clears_.colorUint(4, empty);
+        if (clear) clears_.colorUint(2, empty);
+        if (clear && threeLayers_) clears_.colorUint(4, empty);
     } else {
         const float emptyPixel = std::bit_cast<float>(STARNT_PACKED_EMPTY_BITS);
         const float empty[4] = {emptyPixel, emptyPixel, emptyPixel, emptyPixel};
@@ -495,8 +520,8 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
         glBlendEquationi(2, GL_MIN);  // blend factors do not apply to MIN
     }
     if (tailMoments_) {
-        beginSecondMomentAndOpticalDepth(1);
-        beginBehindMoment(3, reference);
+        beginSecondMomentAndOpticalDepth(1, clear);
+        beginBehindMoment(3, reference, clear);
     }
     const gl::Program& pass3 = opaque_.clipInShader(pass3Packed_, width_, height_, width_, height_);
     MethodBase::runGeometryPass("pass3", pass3, frame, draw);

@@ -29,6 +29,7 @@
 // run them at full resolution every 8th to 32nd real frame, so the full size is the peak anyway, and
 // reallocating at every probe would only churn.
 #pragma once
+#include <array>
 #include <functional>
 #include <string>
 
@@ -158,8 +159,24 @@ public:
     void findTwoLayers() { twoLayers_ = tailMoments_; }
     // The same and the third layer in an RG32UI target of its own (thirdLayer(); needs 5 draw
     // buffers): docs/DESIGN.md, "Corrected frames: three layers and no correction".
-    void findThreeLayers() { twoLayers_ = threeLayers_ = tailMoments_; }
+    // `compositeClears`: NeuralOptions::compositeClearsTargets (compositeClearsTargets() below).
+    void findThreeLayers(bool compositeClears = false);
     GLuint thirdLayer() const { return threeLayers_ ? thirdLayer_.id() : 0u; }
+    // Three layers on desktop GL with a software rasteriser, unless turned off (findThreeLayers;
+    // docs/DESIGN.md, "Corrected frames: the composite clears pass 3's targets"): there clears of
+    // runPackedNearestAndSums' five targets took 5-8 ms of a 14-20 ms interpolated frame at
+    // 1280x720, where the composite, which reads all five at each pixel any fragment reached, can
+    // write their clear values back for a fraction of that. When the composite did so after a
+    // runPackedNearestAndSums (targetsClearedByComposite()), the next one clears only its depth.
+    bool compositeClearsTargets() const { return compositeClears_; }
+    // The five targets and the value the composite writes back into each (the clears of
+    // runPackedNearestAndSums), in the composite's draw-buffer order after its output:
+    // packedNearest(), thirdLayer(), alphaColor(), behindMoment1(), behindMoment2().
+    std::array<GLuint, 5> packedTargets() const;
+    // Says that the composite wrote the clear values at every pixel the last
+    // runPackedNearestAndSums reached (its cover depth below 1). Any other pass into those targets
+    // (a real frame's, a reallocation) undoes it.
+    void targetsClearedByComposite();
     // The moments an interpolated frame of a tail-moment method summed behind its reference (targets
     // its real frames' inference has read by then): (sum a C u, sum a u) in the first tail-moment
     // target, and in the count's (RG32F) sum a u^2 in .r and the optical depth sum -ln(1 - a) in .g
@@ -204,8 +221,9 @@ private:
     // The moments behind the reference (pass3_accumulate.frag.glsl, STARNT_BEHIND_MOMENTS): clears and
     // blends `target` of the bound framebuffer for (sum a C u, sum a u), binds `reference`;
     // beginSecondMomentAndOpticalDepth the interpolated frames' target of sum a u^2 and sum -ln(1 - a).
-    void beginBehindMoment(GLuint target, GLuint reference);
-    void beginSecondMomentAndOpticalDepth(GLuint target);
+    // `clear` false: the target holds zeros already (compositeClearsTargets()).
+    void beginBehindMoment(GLuint target, GLuint reference, bool clear = true);
+    void beginSecondMomentAndOpticalDepth(GLuint target, bool clear = true);
     void makeSumsFramebuffer();
     // The count's target made RG32F (once; it stays so through resizes): the moments behind the
     // reference use its second channel (pass3_accumulate.frag.glsl).
@@ -245,6 +263,10 @@ private:
     bool twoLayers_ = false;       // findTwoLayers
     gl::Texture2D packedLayers_;   // the nearest two fragments (twoLayers_), allocated on first need
     bool threeLayers_ = false;     // findThreeLayers
+    bool compositeClears_ = false;  // compositeClearsTargets()
+    // The targets as targetsClearedByComposite found them (0 = not clear): runPackedNearestAndSums
+    // skips their clears only if they are still these textures.
+    std::array<GLuint, 5> clearedTargets_{};
     gl::Texture2D thirdLayer_;     // the third (threeLayers_), allocated with packedLayers_
     // A real frame's moments behind the reference (the first in packedNearest_, free then; the
     // second beside the count).

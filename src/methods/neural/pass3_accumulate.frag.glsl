@@ -80,6 +80,11 @@ void main() {
     outTransmittance = vec4(0.0, 0.0, 0.0, s.a);
 #if defined(STARNT_PACKED_TWO_LAYERS)
 #ifdef STARNT_PACKED_THREE_LAYERS
+    // The depth target only marks the pixels a fragment reached, for the composite's early test
+    // (GREATER than its far-plane triangle): a fragment on the far plane marks its pixel too, so
+    // that a composite that writes back the clear values (NeuralPasses::compositeClearsTargets)
+    // reaches every pixel this pass wrote.
+    gl_FragDepth = min(gl_FragCoord.z, uintBitsToFloat(0x3F7FFFFFu));
     uvec4 layers = outPackedLayers;
     uvec2 third = outThirdLayer.xy;
     insertThreeLayers(layers, third, gl_FragCoord.z, s);

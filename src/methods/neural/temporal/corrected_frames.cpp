@@ -11,6 +11,11 @@ namespace starnt::temporal {
 
 namespace {
 const char* orderedDefine(bool ordered) { return ordered ? "#define STARNT_ORDERED_BEHIND\n" : ""; }
+std::string packedCompositeDefines(bool ordered, int layers) {
+    return std::string("#define STARNT_PACKED_NEAREST\n") + orderedDefine(ordered) +
+           (ordered && layers >= 2 ? "#define STARNT_PACKED_TWO_LAYERS\n" : "") +
+           (ordered && layers >= 3 ? "#define STARNT_PACKED_THREE_LAYERS\n" : "");
+}
 }  // namespace
 
 CorrectedFrames::CorrectedFrames(bool ordered, int layers)
@@ -20,9 +25,7 @@ CorrectedFrames::CorrectedFrames(bool ordered, int layers)
       capture_(buildTemporalPass("correction_capture", "reprojection_behind.frag.glsl", "#define STARNT_BEHIND_CORRECTION 1\n")),
       composite_(buildTemporalPass("correction_composite", "correction_composite.frag.glsl", orderedDefine(ordered))),
       compositePacked_(buildTemporalPass("correction_composite_packed", "correction_composite.frag.glsl",
-                                         std::string("#define STARNT_PACKED_NEAREST\n") + orderedDefine(ordered) +
-                                             (ordered && layers >= 2 ? "#define STARNT_PACKED_TWO_LAYERS\n" : "") +
-                                             (ordered && layers >= 3 ? "#define STARNT_PACKED_THREE_LAYERS\n" : ""))),
+                                         packedCompositeDefines(ordered, layers))),
       emptyVao_(gl::makeEmptyVertexArray()) {
     if (ordered) {
         referenceTilesPass_ = buildTemporalPass("corrected_reference_tiles", "reference_depth.frag.glsl");
@@ -140,7 +143,8 @@ void CorrectedFrames::composite(const glm::mat4& newViewProj, GLuint nearest, GL
 
 void CorrectedFrames::compositePacked(const glm::mat4& newViewProj, GLuint packedNearest, GLuint coverDepth,
                                       GLuint sumAlphaColor, GLuint transmittance, const OpaqueScene& background,
-                                      GLuint output, GLuint behindMoment1, GLuint behindMoment2, GLuint thirdLayer) {
+                                      GLuint output, GLuint behindMoment1, GLuint behindMoment2, GLuint thirdLayer,
+                                      std::span<const GLuint> clearTargets) {
     if (!hasFrame_) throw Error("internal: a corrected frame before any real frame was captured");
     if (gl::textureInternalFormat(packedNearest) != (twoLayers_ ? GL_RGBA32UI : GL_RGBA32F)) {
         throw Error(twoLayers_ ? "internal: the packed two layers must be an RGBA32UI texture"
@@ -149,10 +153,17 @@ void CorrectedFrames::compositePacked(const glm::mat4& newViewProj, GLuint packe
     if (threeLayers_ && (!thirdLayer || gl::textureInternalFormat(thirdLayer) != GL_RG32UI)) {
         throw Error("internal: the packed third layer must be an RG32UI texture");
     }
+    if (!clearTargets.empty() && (!threeLayers_ || clearTargets.size() != 5)) {
+        throw Error("internal: the composite clears the five targets of three layers' pass 3 only");
+    }
     const bool halfOutput = gl::textureInternalFormat(output) == GL_RGBA16F;  // before any binding (ES)
-    emptyPixels_.bindCovered(output, coverDepth, width_, height_);
+    if (!clearTargets.empty() && !compositePackedClears_.id()) {
+        compositePackedClears_ = buildTemporalPass("correction_composite_packed_clears", "correction_composite.frag.glsl",
+                                                   packedCompositeDefines(ordered_, 3) + "#define STARNT_CLEARS_TARGETS\n");
+    }
+    emptyPixels_.bindCovered(output, coverDepth, width_, height_, 0, clearTargets);
     emptyPixels_.clearToBackground(background, halfOutput);  // the output is not read here
-    setCompositeUniforms(compositePacked_, newViewProj, background, halfOutput);
+    setCompositeUniforms(clearTargets.empty() ? compositePacked_ : compositePackedClears_, newViewProj, background, halfOutput);
     bindComposite(packedNearest, thirdLayer, sumAlphaColor, transmittance, behindMoment1, behindMoment2);
     gl::drawFullscreenTriangle(emptyVao_);
     emptyPixels_.fillEmpty(background, halfOutput, emptyVao_);

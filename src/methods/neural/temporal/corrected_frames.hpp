@@ -4,6 +4,8 @@
 // depth), and the composite of an interpolated frame from its own passes (pass 3 alone with the
 // packed nearest layer, or passes 1 and 3).
 #pragma once
+#include <span>
+
 #include <glm/glm.hpp>
 
 #include "gl/gl_util.hpp"
@@ -62,9 +64,13 @@ public:
     // The same from pass 3 alone: `packedNearest` holds the nearest fragment it found by blending
     // (packed_nearest.glsl), `coverDepth` (DEPTH_COMPONENT32F) a depth below 1 where pass 3 kept a
     // fragment, which the early empty-pixel test runs against (the composite does not sample it).
+    // `clearTargets` (three layers only; NeuralPasses::compositeClearsTargets): the composite
+    // writes the clear values of pass 3 into these (NeuralPasses::packedTargets: the packed layers,
+    // the third layer, the sums and the two moment targets, the textures it reads) at every pixel
+    // it shades; empty: it writes nothing but the output.
     void compositePacked(const glm::mat4& newViewProj, GLuint packedNearest, GLuint coverDepth, GLuint sumAlphaColor,
                          GLuint transmittance, const OpaqueScene& background, GLuint output, GLuint behindMoment1 = 0,
-                         GLuint behindMoment2 = 0, GLuint thirdLayer = 0);
+                         GLuint behindMoment2 = 0, GLuint thirdLayer = 0, std::span<const GLuint> clearTargets = {});
     // Ordered only: the kept frame's reference depth (R32F, one texel per
     // STARNT_ORDERED_REFERENCE_TILE pixels squared; reference_depth.frag.glsl), which an
     // interpolated frame's pass 3 reads; 0 before the first kept frame or when not ordered.
@@ -96,6 +102,7 @@ private:
     bool threeLayers_ = false;
     bool referenceFresh_ = false;  // prepareReference ran in this real frame
     gl::Program capture_, composite_, compositePacked_;
+    gl::Program compositePackedClears_;  // compositePacked with clearTargets (STARNT_CLEARS_TARGETS), built on first need
     gl::Program referenceTilesPass_, referenceAroundPass_;  // ordered only
     gl::Texture2D referenceTiles_, reference_;
     void setCompositeUniforms(const gl::Program& program, const glm::mat4& newViewProj, const OpaqueScene& background,

@@ -56,7 +56,21 @@ bool sameSurface(float keptInverseDepth, float reference) {
     return keptInverseDepth > 0.0 && abs(keptInverseDepth / reference - 1.0) <= float(STARNT_TEMPORAL_SAME_SURFACE);
 }
 
+#ifdef STARNT_CLEARS_TARGETS
+// Three layers on a software rasteriser (NeuralPasses::compositeClearsTargets; docs/DESIGN.md,
+// "Corrected frames: the composite clears pass 3's targets"): having read them at its own pixel,
+// the composite writes back the values pass 3 clears them to, so the next pass 3 need not clear
+// them. Each texel is read and written by this invocation alone (texelFetch at gl_FragCoord), the
+// exception GL 4.5 makes for a texture read while it is a render target (section 9.3.1).
+layout(location = 0) out vec4 o_color;
+layout(location = 1) out highp uvec4 o_clearPackedLayers;
+layout(location = 2) out highp uvec4 o_clearThirdLayer;
+layout(location = 3) out vec4 o_clearSumAlphaColor;
+layout(location = 4) out vec4 o_clearBehindMoment1;
+layout(location = 5) out vec4 o_clearBehindMoment2;
+#else
 out vec4 o_color;
+#endif
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
@@ -152,4 +166,12 @@ void main() {
         color = fresh.a * fresh.rgb + open * max(behind, vec3(0.0));
     }
     o_color = outputValue(vec4(color, outputAlpha(transmittance)), u_halfOutput);
+#ifdef STARNT_CLEARS_TARGETS
+    const uvec4 emptyLayers = uvec4(STARNT_PACKED_LAYER_EMPTY, 0u, STARNT_PACKED_LAYER_EMPTY, 0u);
+    o_clearPackedLayers = emptyLayers;
+    o_clearThirdLayer = emptyLayers;
+    o_clearSumAlphaColor = vec4(0.0);
+    o_clearBehindMoment1 = vec4(0.0);
+    o_clearBehindMoment2 = vec4(0.0);
+#endif
 }

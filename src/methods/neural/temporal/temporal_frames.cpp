@@ -68,7 +68,9 @@ void TemporalFrames::interpolate(const glm::mat4& viewProj, const TemporalPassTa
             if (passes.packedNearest) {
                 corrected_->compositePacked(viewProj, passes.packedNearest, passes.nearestDepth, passes.sumAlphaColor,
                                             passes.transmittance, background, outputTexture, passes.behindMoment1,
-                                            passes.behindMoment2, passes.thirdLayer);
+                                            passes.behindMoment2, passes.thirdLayer,
+                                            passes.clearByComposite[0] ? std::span<const GLuint>(passes.clearByComposite)
+                                                                       : std::span<const GLuint>());
             } else {
                 corrected_->composite(viewProj, passes.nearest, passes.nearestDepth, passes.sumAlphaColor, passes.transmittance,
                                       background, outputTexture, passes.behindMoment1, passes.behindMoment2);

@@ -13,6 +13,7 @@
 // The mode (warp, refresh, correct) is TemporalFrames' business: the caller renders the passes it
 // asks for and hands over the targets.
 #pragma once
+#include <array>
 #include <memory>
 
 #include <glm/glm.hpp>
@@ -39,6 +40,9 @@ struct TemporalPassTargets {
     GLuint behindMoment1 = 0, behindMoment2 = 0;
     // Three layers (packedNearest the nearest two): pass 3's third layer, RG32UI.
     GLuint thirdLayer = 0;
+    // Three layers, where the composite clears pass 3's targets (NeuralPasses::compositeClearsTargets):
+    // NeuralPasses::packedTargets(); all 0 where pass 3 clears them itself.
+    std::array<GLuint, 5> clearByComposite{};
 };
 
 class TemporalFrames {
