@@ -411,6 +411,26 @@ TEST(TemporalCorrected, PassThreeSumsTheMomentsBehindTheReference) {
         EXPECT_GT(behind, size_t(200)) << "pixels with fragments behind the reference";
         EXPECT_LE(off, size_t(w * h / 200)) << (onePass ? "one pass" : "two passes") << ": pixels off the CPU sums";
     }
+    // Three layers: pass 3 reads the reference beside the third layer (packed_nearest.h), where its
+    // clear put it; the same sums.
+    if (epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch") && fiveDrawBuffers()) {
+        NeuralPasses three(SceneGpu::surfaceShader(), opaque, false, NeuralOptions::Targets::Float32, false, true);
+        three.findThreeLayers();
+        three.runPackedNearestAndSums(frame, draw, referenceTexture.id());
+        const std::vector<glm::vec4> first = readRgba(three.behindMoment1(), w, h), second = readRgba(three.behindMoment2(), w, h);
+        const std::vector<glm::uvec4> thirds = test::readRgbaUint(three.thirdLayer(), w, h);
+        size_t off = 0, referenceOff = 0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const size_t i = size_t(y) * size_t(w) + size_t(x);
+                const FragmentList list = nn::preparedFragments(fragments.at(x, h - 1 - y));
+                const OrderedBehind want = behindMomentsOf(list, referenceAt(reference, w, x, y));
+                off += !momentsNear(first[i], second[i].r, want);
+                referenceOff += thirds[i].z != glm::floatBitsToUint(referenceAt(reference, w, x, y));
+            }
+        EXPECT_EQ(referenceOff, 0u) << "three layers: texels whose reference differs from the tile's";
+        EXPECT_LE(off, size_t(w * h / 200)) << "three layers: pixels off the CPU sums";
+    }
     // A real frame: the same sums over every fragment (its composite recentres them at pass 1's
     // fragment as an interpolated frame's does), sum a u^2 beside the count.
     passes.run(frame, draw, NeuralPasses::kDefaultPeelEpsilon, {w, h}, {w, h}, [&] { return referenceTexture.id(); });
@@ -989,7 +1009,7 @@ TEST(PackedLayers, PassThreeFindsTheNearestThreeFragments) {
     passes.findThreeLayers();
     passes.runPackedNearestAndSums(t.frame, t.draw);
     ASSERT_EQ(gl::textureInternalFormat(passes.packedNearest()), GLenum(GL_RGBA32UI));
-    ASSERT_EQ(gl::textureInternalFormat(passes.thirdLayer()), GLenum(GL_RG32UI));
+    ASSERT_EQ(gl::textureInternalFormat(passes.thirdLayer()), GLenum(GL_RGBA32UI));
     const std::vector<glm::uvec4> packed = test::readRgbaUint(passes.packedNearest(), w, h);
     const std::vector<glm::uvec4> third = test::readRgbaUint(passes.thirdLayer(), w, h);  // .xy
     const CapturedFrame fragments = t.scene.capture();
@@ -1155,7 +1175,7 @@ TEST(PackedLayers, ThreeLayerCompositeMatchesCpuReference) {
     const RandomPasses real = randomPasses(w, h, rng);
     const std::vector<float> reference = referenceDepthOnCpu(real.depth, w, h);
     std::vector<glm::uvec4> layers;
-    std::vector<glm::uvec4> thirds;  // RG32UI uploads from RGBA_INTEGER texels
+    std::vector<glm::uvec4> thirds;  // the third layer and the reference depth's bits (packed_nearest.h)
     std::vector<glm::vec4> sums, first, second;
     std::vector<float> cover;  // the cover depth: below 1 where pass 3 kept a fragment
     for (int y = 0; y < h; ++y)
@@ -1166,7 +1186,7 @@ TEST(PackedLayers, ThreeLayerCompositeMatchesCpuReference) {
             glm::uvec2 t3 = packedLayerEmpty();
             for (const Fragment& f : list) insertThreeLayers(l, t3, f.depth, glm::vec4(f.color, f.alpha));
             layers.push_back(l);
-            thirds.push_back(glm::uvec4(t3, 0u, 0u));
+            thirds.push_back(glm::uvec4(t3, glm::floatBitsToUint(referenceAt(reference, w, x, y)), 0u));
             sums.push_back(o.sums);
             first.push_back(o.moments.moment1);
             second.push_back(glm::vec4(o.moments.moment2, o.opticalDepth, 0.0f, 0.0f));
@@ -1174,11 +1194,9 @@ TEST(PackedLayers, ThreeLayerCompositeMatchesCpuReference) {
         }
     std::vector<glm::vec4> composite(real.nearest.size(), glm::vec4(0.5f, 0.5f, 0.5f, 1.0f));
     gl::Texture2D rc = uploadRgba(composite, w, h), rd = uploadDepth(real.depth, w, h), rn = uploadRgba(real.nearest, w, h);
-    gl::Texture2D packedTexture(GL_RGBA32UI, w, h), thirdTexture(GL_RG32UI, w, h);
-    std::vector<glm::uvec2> thirdsRg;
-    for (const glm::uvec4& t : thirds) thirdsRg.emplace_back(t.x, t.y);
+    gl::Texture2D packedTexture(GL_RGBA32UI, w, h), thirdTexture(GL_RGBA32UI, w, h);
     gl::uploadTexture(packedTexture.id(), w, h, GL_RGBA_INTEGER, GL_UNSIGNED_INT, layers.data());
-    gl::uploadTexture(thirdTexture.id(), w, h, GL_RG_INTEGER, GL_UNSIGNED_INT, thirdsRg.data());
+    gl::uploadTexture(thirdTexture.id(), w, h, GL_RGBA_INTEGER, GL_UNSIGNED_INT, thirds.data());
     gl::Texture2D fs = uploadRgba(sums, w, h), m1 = uploadRgba(first, w, h), m2 = uploadRgba(second, w, h),
                   fd = uploadDepth(cover, w, h), output(GL_RGBA32F, w, h);
     TemporalFrames temporal(correctedOptions(), true, 3);
@@ -1286,7 +1304,7 @@ TEST(PackedLayers, CompositeClearsThePassThreeTargetsItRead) {
     for (size_t i = 0; i < size_t(w * h); ++i) {
         reached += fresh[0][i] != emptyLayers;
         off += cleared[0][i] != emptyLayers;
-        off += glm::uvec2(cleared[1][i]) != glm::uvec2(emptyLayers);
+        off += glm::uvec2(cleared[1][i]) != glm::uvec2(emptyLayers) || cleared[1][i].z != fresh[1][i].z;  // the reference stays
         off += cleared[2][i] != glm::uvec4(0u);                // sum a C, sum a (RGBA32F)
         off += cleared[3][i] != glm::uvec4(0u);                // sum a C u, sum a u (RGBA32F)
         off += glm::uvec2(cleared[4][i]) != glm::uvec2(0u);    // sum a u^2, sum -ln(1 - a) (RG32F)

@@ -68,8 +68,8 @@ glm::uvec2 packLayer(float z, const glm::vec4& c);
 glm::uvec4 packedLayersEmpty();
 glm::uvec4 insertLayer(const glm::uvec4& layers, const glm::uvec2& fragment);
 glm::vec4 unpackLayer(const glm::uvec2& layer, float& z);
-// Three layers (STARNT_PACKED_THREE_LAYERS): `layers` the nearest two keys, `third` (an RG32UI
-// texel, packedLayerEmpty() when cleared) the next; a fragment whose key equals a kept layer's is
+// Three layers (STARNT_PACKED_THREE_LAYERS): `layers` the nearest two keys, `third` (the .xy of
+// an RGBA32UI texel, packedLayerEmpty() when cleared) the next; a fragment whose key equals a kept layer's is
 // merged into it, behind it (the layer over the fragment: coplanar fragments in draw order, at
 // the layer's key). The fragment: window depth z, straight colour and alpha c (packed once: its own
 // colour, or the merge).

@@ -474,9 +474,10 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
         // The two layers: an integer target of their own (the real frames keep their moments behind
         // the reference in packedNearest_, a float one).
         if (twoLayers_) packedLayers_ = gl::Texture2D(GL_RGBA32UI, width_, height_);
-        if (threeLayers_) thirdLayer_ = gl::Texture2D(GL_RG32UI, width_, height_);
+        if (threeLayers_) thirdLayer_ = gl::Texture2D(GL_RGBA32UI, width_, height_);
         else allocatePackedNearest();
         packedFb_.reset();
+        thirdLayerClearFb_.reset();
     }
     if (tailMoments_) widenCountBesideBehind();
     if (!packedFb_.id()) {
@@ -493,12 +494,13 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
     pass3Size_ = {width_, height_};
     resetPassState();
     gl::ScopedPass timing(frame.timing, "pass3");
-    glBindFramebuffer(GL_FRAMEBUFFER, packedFb_.id());
-    glViewport(0, 0, width_, height_);
     // The last interpolated frame's composite wrote back the clear values wherever this pass wrote
     // (compositeClearsTargets()): only the depth, which marks those pixels, is cleared then.
     const bool clear = !compositeClears_ || clearedTargets_ != packedTargets();
     clearedTargets_ = {};
+    if (clear && threeLayers_) clearThirdLayer(reference);
+    glBindFramebuffer(GL_FRAMEBUFFER, packedFb_.id());
+    glViewport(0, 0, width_, height_);
     const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1}, farDepth = 1.0f;
     if (clear) clears_.color(0, zero);
     if (clear && !tailMoments_) clears_.color(1, one);  // the tail-moment methods' target 1 is cleared below
@@ -511,8 +513,7 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
     if (twoLayers_) {
         // Read and rewritten by every fragment (framebuffer fetch); an integer target blends nothing.
         const GLuint empty[4] = {STARNT_PACKED_LAYER_EMPTY, 0u, STARNT_PACKED_LAYER_EMPTY, 0u};
-        if (clear) clears_.colorUint(2, empty);
-        if (clear && threeLayers_) clears_.colorUint(4, empty);
+        if (clear) clears_.colorUint(2, empty);  // (the third layer's: clearThirdLayer)
     } else {
         const float emptyPixel = std::bit_cast<float>(STARNT_PACKED_EMPTY_BITS);
         const float empty[4] = {emptyPixel, emptyPixel, emptyPixel, emptyPixel};
@@ -526,6 +527,21 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
     const gl::Program& pass3 = opaque_.clipInShader(pass3Packed_, width_, height_, width_, height_);
     MethodBase::runGeometryPass("pass3", pass3, frame, draw);
     resetPassState();
+}
+
+void NeuralPasses::clearThirdLayer(GLuint reference) {
+    if (!thirdLayerClear_.id()) {
+        thirdLayerClear_ = gl::buildProgram("third_layer_clear", gl::embeddedSource("methods/common/fullscreen.vert.glsl"),
+                                            gl::embeddedSource("methods/neural/temporal/third_layer_clear.frag.glsl"));
+    }
+    if (!thirdLayerClearFb_.id()) thirdLayerClearFb_ = gl::makeFramebuffer({&thirdLayer_});
+    glBindFramebuffer(GL_FRAMEBUFFER, thirdLayerClearFb_.id());
+    glViewport(0, 0, width_, height_);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glUseProgram(thirdLayerClear_.id());
+    gl::bindTexture(1, reference);  // third_layer_clear.frag.glsl's u_reference
+    gl::drawFullscreenTriangle(emptyVao_);
 }
 
 void NeuralPasses::bindInputs(const gl::Program& program) const {

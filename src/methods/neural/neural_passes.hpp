@@ -157,7 +157,7 @@ public:
     // GL_EXT_shader_framebuffer_fetch; packed_nearest.h): packedNearest() is then RGBA32UI. Call
     // before preparePackedNearestAndSums.
     void findTwoLayers() { twoLayers_ = tailMoments_; }
-    // The same and the third layer in an RG32UI target of its own (thirdLayer(); needs 5 draw
+    // The same and the third layer in an RGBA32UI target of its own, beside the reference depth (thirdLayer(); needs 5 draw
     // buffers): docs/DESIGN.md, "Corrected frames: three layers and no correction".
     // `compositeClears`: NeuralOptions::compositeClearsTargets (compositeClearsTargets() below).
     void findThreeLayers(bool compositeClears = false);
@@ -267,7 +267,11 @@ private:
     // The targets as targetsClearedByComposite found them (0 = not clear): runPackedNearestAndSums
     // skips their clears only if they are still these textures.
     std::array<GLuint, 5> clearedTargets_{};
-    gl::Texture2D thirdLayer_;     // the third (threeLayers_), allocated with packedLayers_
+    gl::Texture2D thirdLayer_;     // the third (threeLayers_) and the reference depth, allocated with packedLayers_
+    // The third layer's clear: no layer and the reference depth of `reference` (packed_nearest.h).
+    void clearThirdLayer(GLuint reference);
+    gl::Program thirdLayerClear_;  // third_layer_clear.frag.glsl, built on first need
+    gl::FramebufferHandle thirdLayerClearFb_;
     // A real frame's moments behind the reference (the first in packedNearest_, free then; the
     // second beside the count).
     SurfaceProgram pass3Behind_;

@@ -16,7 +16,8 @@
 //   or with STARNT_PACKED_TWO_LAYERS (framebuffer fetch, the tail-moment methods):
 //   target 2 (RGBA32UI, read and rewritten):          the nearest two fragments (packed_nearest.h)
 //   and with STARNT_PACKED_THREE_LAYERS:
-//   target 4 (RG32UI, read and rewritten):            the third nearest (insertThreeLayers)
+//   target 4 (RGBA32UI, read and rewritten):          the third nearest (insertThreeLayers) and the
+//                                                      reference depth (packed_nearest.h)
 //   and with STARNT_BEHIND_MOMENTS (corrected frames of the tail-moment methods), u a fragment's
 //   depth behind the reference depth (ordered_behind.glsl), over every fragment:
 //   target 1 (the count's, RG32F, blend ONE/ONE):      sum a u^2, sum -ln(1 - a) (the optical
@@ -59,7 +60,9 @@ layout(location = 2) out vec4 outTransmittance;
 #ifdef STARNT_BEHIND_MOMENTS
 #include "methods/neural/temporal/ordered_behind.glsl"
 layout(location = STARNT_BEHIND_MOMENT1_LOCATION) out vec4 outBehindMoment1;
+#ifndef STARNT_PACKED_THREE_LAYERS  // (there the reference comes with the third layer's texel)
 layout(binding = 1) uniform highp sampler2D u_reference;  // reference_depth.frag.glsl, one texel a tile
+#endif
 #endif
 #ifdef STARNT_TAIL_MOMENTS
 layout(location = 3) out vec4 outTailMoment1;
@@ -86,10 +89,11 @@ void main() {
     // reaches every pixel this pass wrote.
     gl_FragDepth = min(gl_FragCoord.z, uintBitsToFloat(0x3F7FFFFFu));
     uvec4 layers = outPackedLayers;
-    uvec2 third = outThirdLayer.xy;
+    uvec4 thirdTexel = outThirdLayer;  // the third layer, and the reference depth beside it
+    uvec2 third = thirdTexel.xy;
     insertThreeLayers(layers, third, gl_FragCoord.z, s);
     outPackedLayers = layers;
-    outThirdLayer = uvec4(third, 0u, 0u);
+    outThirdLayer = uvec4(third, thirdTexel.zw);
 #else
     outPackedLayers = insertLayer(outPackedLayers, packLayer(gl_FragCoord.z, s));
 #endif
@@ -100,7 +104,11 @@ void main() {
     float second = texelFetch(u_secondDepth, ivec2(gl_FragCoord.xy), 0).r;
 #endif
 #ifdef STARNT_BEHIND_MOMENTS
+#ifdef STARNT_PACKED_THREE_LAYERS
+    float reference = uintBitsToFloat(thirdTexel.z);
+#else
     float reference = texelFetch(u_reference, ivec2(gl_FragCoord.xy) / STARNT_ORDERED_REFERENCE_TILE, 0).r;
+#endif
 #ifdef STARNT_BEHIND_SECOND
     // Behind pass 2's layer only, in v = u - u2 (ordered_behind.glsl: orderedClosedFormBehindSecondFromMoments).
     float behind = gl_FragCoord.z > second ? depthBehindReference(gl_FragCoord.z, reference) - depthBehindReference(second, reference)

@@ -150,8 +150,8 @@ void CorrectedFrames::compositePacked(const glm::mat4& newViewProj, GLuint packe
         throw Error(twoLayers_ ? "internal: the packed two layers must be an RGBA32UI texture"
                                : "internal: the packed nearest fragment must be an RGBA32F texture");
     }
-    if (threeLayers_ && (!thirdLayer || gl::textureInternalFormat(thirdLayer) != GL_RG32UI)) {
-        throw Error("internal: the packed third layer must be an RG32UI texture");
+    if (threeLayers_ && (!thirdLayer || gl::textureInternalFormat(thirdLayer) != GL_RGBA32UI)) {
+        throw Error("internal: the packed third layer must be an RGBA32UI texture");
     }
     if (!clearTargets.empty() && (!threeLayers_ || clearTargets.size() != 5)) {
         throw Error("internal: the composite clears the five targets of three layers' pass 3 only");

@@ -20,9 +20,9 @@
 #include "methods/neural/temporal/packed_nearest.glsl"
 layout(binding = 0) uniform highp usampler2D u_packedLayers;  // fresh pass 3: the nearest two fragments, packed
 #ifdef STARNT_PACKED_THREE_LAYERS
-// And the third (an RG32UI target of its own): what lies behind it weighed by depth. The real frames
-// keep no correction then (u_useCorrection false; docs/DESIGN.md, "Corrected frames: three layers
-// and no correction").
+// And the third (an RGBA32UI target of its own, beside the reference depth: packed_nearest.h): what
+// lies behind it weighed by depth. The real frames keep no correction then (u_useCorrection false;
+// docs/DESIGN.md, "Corrected frames: three layers and no correction").
 layout(binding = 1) uniform highp usampler2D u_thirdLayer;  // fresh pass 3: the third nearest fragment, packed
 #endif
 #elif defined(STARNT_PACKED_NEAREST)
@@ -81,7 +81,8 @@ void main() {
     vec4 second = unpackLayer(layers.zw, secondDepth);
 #ifdef STARNT_PACKED_THREE_LAYERS
     float thirdDepth;
-    vec4 third = unpackLayer(texelFetch(u_thirdLayer, p, 0).xy, thirdDepth);
+    uvec4 thirdTexel = texelFetch(u_thirdLayer, p, 0);  // the third layer, and the reference depth beside it
+    vec4 third = unpackLayer(thirdTexel.xy, thirdDepth);
 #endif
 #elif defined(STARNT_PACKED_NEAREST)
     float depth;
@@ -106,7 +107,7 @@ void main() {
 #ifdef STARNT_PACKED_THREE_LAYERS
             behind = orderedClosedFormBehindThreeLayers(fresh, depth, second, secondDepth, third, thirdDepth, texelFetch(u_sumAlphaColor, p, 0),
                                                       transmittance, texelFetch(u_behindMoment1, p, 0), secondAndTransmittance.x,
-                                                      texelFetch(u_reference, p / STARNT_ORDERED_REFERENCE_TILE, 0).r,
+                                                      uintBitsToFloat(thirdTexel.z),
                                                       background());
 #else
             behind = orderedClosedFormBehindTwoLayers(fresh, depth, second, secondDepth, texelFetch(u_sumAlphaColor, p, 0),
@@ -169,7 +170,7 @@ void main() {
 #ifdef STARNT_CLEARS_TARGETS
     const uvec4 emptyLayers = uvec4(STARNT_PACKED_LAYER_EMPTY, 0u, STARNT_PACKED_LAYER_EMPTY, 0u);
     o_clearPackedLayers = emptyLayers;
-    o_clearThirdLayer = emptyLayers;
+    o_clearThirdLayer = uvec4(emptyLayers.xy, thirdTexel.zw);  // the reference depth stays
     o_clearSumAlphaColor = vec4(0.0);
     o_clearBehindMoment1 = vec4(0.0);
     o_clearBehindMoment2 = vec4(0.0);

@@ -49,8 +49,12 @@
 // a layer's loses to it (the first drawn stays, as pass 1's LESS depth test and pass 2's peel keep
 // it). Clear: x and z STARNT_PACKED_LAYER_EMPTY (the largest key, every other bit set), y and w 0.
 // Three layers (STARNT_PACKED_THREE_LAYERS; docs/DESIGN.md, "Corrected frames: three layers and no
-// correction"): the third nearest in an RG32UI target of its own, in the same 64 bits, cleared to
-// (STARNT_PACKED_LAYER_EMPTY, 0).
+// correction"): the third nearest in an RGBA32UI target of its own, in the same 64 bits (.xy),
+// cleared to (STARNT_PACKED_LAYER_EMPTY, 0); beside it (.z) the float bits of the pixel's reference
+// depth (ordered_behind.glsl), which pass 3 reads there and writes back unchanged: a texel its
+// framebuffer fetch has read anyway, where a texture fetch for every fragment cost 35-45 ms of a
+// 420-450 ms interpolated frame on llvmpipe (hairball, 1280x720). Written with the clear
+// (third_layer_clear.frag.glsl) or by the composite that clears the targets; .w is 0.
 #define STARNT_PACKED_LAYER_KEY_BITS 25
 #define STARNT_PACKED_LAYER_ALPHA_BITS 10
 #define STARNT_PACKED_LAYER_R_BITS 10

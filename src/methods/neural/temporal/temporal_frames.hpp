@@ -38,7 +38,7 @@ struct TemporalPassTargets {
     // Corrected frames of the tail-moment methods: pass 3's moments behind the reference depth
     // (ordered_behind.glsl).
     GLuint behindMoment1 = 0, behindMoment2 = 0;
-    // Three layers (packedNearest the nearest two): pass 3's third layer, RG32UI.
+    // Three layers (packedNearest the nearest two): pass 3's third layer and the reference depth, RGBA32UI.
     GLuint thirdLayer = 0;
     // Three layers, where the composite clears pass 3's targets (NeuralPasses::compositeClearsTargets):
     // NeuralPasses::packedTargets(); all 0 where pass 3 clears them itself.
