@@ -128,13 +128,17 @@ float depthOfLayerKey(uint32_t key) {
 }
 }  // namespace
 
-glm::uvec2 packLayer(float z, const glm::vec4& c) {
+namespace {
+glm::uvec2 packLayerAtKey(uint32_t key, const glm::vec4& c) {
     const uint32_t alpha = uint32_t(std::floor(std::clamp(c.a, 0.0f, 1.0f) * layerSteps(STARNT_PACKED_LAYER_ALPHA_BITS) + 0.5f));
-    return {(layerKey(z) << kLayerLowBits) | (alpha >> kLayerAlphaLow),
+    return {(key << kLayerLowBits) | (alpha >> kLayerAlphaLow),
             (alpha << kLayerAShift) | layerColour(c.r, STARNT_PACKED_LAYER_R_BITS) |
                 (layerColour(c.g, STARNT_PACKED_LAYER_G_BITS) << kLayerGShift) |
                 (layerColour(c.b, STARNT_PACKED_LAYER_B_BITS) << kLayerBShift)};
 }
+}  // namespace
+
+glm::uvec2 packLayer(float z, const glm::vec4& c) { return packLayerAtKey(layerKey(z), c); }
 
 glm::uvec4 packedLayersEmpty() { return {STARNT_PACKED_LAYER_EMPTY, 0u, STARNT_PACKED_LAYER_EMPTY, 0u}; }
 
@@ -150,7 +154,7 @@ void insertThreeLayers(glm::uvec4& layers, glm::uvec2& third, float z, const glm
     const uint32_t last = third.x >> kLayerLowBits;
     const bool tie = key == first || key == second || key == last;
     // The GLSL's one merge, whatever the fragment meets (the kept layer over it, at its key).
-    float keptDepth = 1.0f;
+    float keptDepth = 1.0f;  // (the key is the fragment's: a tie shares it)
     const glm::vec4 kept = unpackLayer(key == first    ? glm::uvec2(layers.x, layers.y)
                                        : key == second ? glm::uvec2(layers.z, layers.w)
                                                        : third,
@@ -160,7 +164,7 @@ void insertThreeLayers(glm::uvec4& layers, glm::uvec2& third, float z, const glm
     const float alpha = kept.a + (1.0f - kept.a) * behind.a;
     const glm::vec3 merged = alpha > 0.0f ? (kept.a * glm::vec3(kept) + (1.0f - kept.a) * behind.a * glm::vec3(behind)) / alpha
                                           : glm::vec3(kept);
-    const glm::uvec2 f = packLayer(tie ? keptDepth : z, tie ? glm::vec4(merged, alpha) : c);
+    const glm::uvec2 f = packLayerAtKey(key, tie ? glm::vec4(merged, alpha) : c);
     if (tie) {
         if (key == first) layers = {f.x, f.y, layers.z, layers.w};
         else if (key == second) layers = {layers.x, layers.y, f.x, f.y};

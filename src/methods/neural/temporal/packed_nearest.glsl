@@ -107,14 +107,15 @@ float depthOfLayerKey(uint key) {
                                      ((1u << STARNT_PACKED_LAYER_COARSE_SHIFT) >> 1));
 }
 
-// One layer's two words (packed_nearest.h).
-uvec2 packLayer(float z, vec4 c) {
+// One layer's two words (packed_nearest.h), at `key` (layerKey).
+uvec2 packLayerAtKey(uint key, vec4 c) {
     uint alpha = uint(floor(clamp(c.a, 0.0, 1.0) * layerSteps(STARNT_PACKED_LAYER_ALPHA_BITS) + 0.5));
-    return uvec2((layerKey(z) << kLayerLowBits) | (alpha >> kLayerAlphaLow),
+    return uvec2((key << kLayerLowBits) | (alpha >> kLayerAlphaLow),
                  (alpha << kLayerAShift) | layerColour(c.r, STARNT_PACKED_LAYER_R_BITS) |
                      (layerColour(c.g, STARNT_PACKED_LAYER_G_BITS) << kLayerGShift) |
                      (layerColour(c.b, STARNT_PACKED_LAYER_B_BITS) << kLayerBShift));
 }
+uvec2 packLayer(float z, vec4 c) { return packLayerAtKey(layerKey(z), c); }
 
 // The two layers after fragment `f` (packLayer) met them: the nearest, then the nearest with a
 // larger key; on equal keys the layer already kept stays.
@@ -147,7 +148,7 @@ void insertThreeLayers(inout uvec4 layers, inout uvec2 third, float z, vec4 c) {
     vec4 behind = vec4(clamp(c.rgb, vec3(0.0), vec3(exp2(2.0 * float(STARNT_PACKED_LAYER_HDR_LOG2_RANGE)))), clamp(c.a, 0.0, 1.0));
     float alpha = kept.a + (1.0 - kept.a) * behind.a;
     vec3 merged = alpha > 0.0 ? (kept.a * kept.rgb + (1.0 - kept.a) * behind.a * behind.rgb) / alpha : kept.rgb;
-    uvec2 f = packLayer(tie ? keptDepth : z, tie ? vec4(merged, alpha) : c);
+    uvec2 f = packLayerAtKey(key, tie ? vec4(merged, alpha) : c);  // a tie shares the kept layer's key
     if (tie) {
         if (key == first) layers.xy = f;
         else if (key == second) layers.zw = f;
