@@ -90,6 +90,11 @@ TEST(BenchPlan, VariantsCarryTheirOptions) {
     const auto& recommended = bench::findVariant("recommended");
     EXPECT_EQ(recommended.method, "recommended");
     EXPECT_EQ(recommended.accelerationOff, "starnt-d");
+    const auto& recommendedK2 = bench::findVariant("recommended-k2");
+    EXPECT_EQ(recommendedK2.method, "recommended");
+    EXPECT_EQ(recommendedK2.options.neural.temporalInterval, 2);
+    EXPECT_EQ(recommendedOptions(recommendedK2.options).neural.temporalInterval, 2) << "K = 2 stays 2";
+    EXPECT_EQ(recommendedK2.accelerationOff, "starnt-d");
     EXPECT_EQ(total.accelerationOff, "starnt");
     EXPECT_EQ(bench::findVariant("starnt").accelerationOff, "starnt-full");
     EXPECT_EQ(bench::findVariant("starnt-d").accelerationOff, "");

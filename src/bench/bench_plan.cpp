@@ -70,6 +70,11 @@ const std::vector<Variant>& allVariants() {
                                 "the recommended configuration: starnt-d's tail, temporal K = " +
                                     std::to_string(kRecommendedTemporalInterval) + " with corrected frames"),
                     "starnt-d", "K = " + std::to_string(kRecommendedTemporalInterval) + " corrected"),
+        // The lead issue's K = 2 against K = 1, for the recommended configuration itself.
+        accelerated(makeVariant("recommended-k2", "recommended",
+                                "the recommended configuration at K = 2: one real frame, then one corrected interpolated frame",
+                                [](MethodOptions& o) { o.neural.temporalInterval = 2; }),
+                    "starnt-d", "K = 2 corrected"),
         accelerated(makeVariant("starnt-vrs", "starnt",
                                 "STAR-NT, tiles on with per-tile pass-3 shading rates through the driver's shading-rate image "
                                 "where it has one (GPU; elsewhere the same as starnt)",
