@@ -131,6 +131,13 @@ bool fiveDrawBuffers() {
     return drawBuffers >= 5;
 }
 
+// What the context lacks for three layers (NeuralMethod::correctedLayers), or null.
+const char* threeLayersMissing() {
+    if (!epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) return "no GL_EXT_shader_framebuffer_fetch";
+    if (!fiveDrawBuffers()) return "fewer than 5 draw buffers";
+    return nullptr;
+}
+
 // Whether pass 3's packed texels (the nearest two, the third) are the CPU fold of a pixel's
 // fragments in draw order (temporal::insertThreeLayers).
 bool foldMatches(const FragmentList& list, const glm::uvec4& packed, const glm::uvec2& third) {
@@ -413,7 +420,7 @@ TEST(TemporalCorrected, PassThreeSumsTheMomentsBehindTheReference) {
     }
     // Three layers: pass 3 reads the reference beside the third layer (packed_nearest.h), where its
     // clear put it; the same sums.
-    if (epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch") && fiveDrawBuffers()) {
+    if (!threeLayersMissing()) {
         NeuralPasses three(SceneGpu::surfaceShader(), opaque, false, NeuralOptions::Targets::Float32, false, true);
         three.findThreeLayers();
         three.runPackedNearestAndSums(frame, draw, referenceTexture.id());
@@ -668,8 +675,7 @@ TEST(TemporalCorrected, StillCameraGivesTheRealFrame) {
 // frame's own error, and they are no farther from the A-buffer.
 TEST(TemporalCorrected, ThreeLayersAtAStillCameraAreNoFartherFromTheABufferThanTheRealFrame) {
     test::TestScene c(makeBuiltinScene("tubes", 3), 96, 64, 30.0f, 15.0f, kBackground);
-    if (!epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) GTEST_SKIP() << "no GL_EXT_shader_framebuffer_fetch";
-    if (!fiveDrawBuffers()) GTEST_SKIP() << "fewer than 5 draw buffers";
+    if (const char* missing = threeLayersMissing()) GTEST_SKIP() << missing;
     const auto frames = renderSequence(c, correctedOptions(), {0.0f, 0.0f, 0.0f, 0.0f}, "recommended");
     const auto exact = renderSequence(c, MethodOptions{}, {0.0f}, "abuffer");
     auto mse = [](const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b) {
@@ -997,12 +1003,11 @@ TEST(PackedLayers, InterpolatedFramesNearerTheABufferWithTwoLayers) {
 }
 
 // Three layers (docs/DESIGN.md, "Corrected frames: three layers and no correction"): pass 3 keeps the
-// nearest two fragments as before and the third in an RG32UI target, bit for bit the CPU fold of the
+// nearest two fragments as before and the third in an RGBA32UI target, bit for bit the CPU fold of the
 // captured fragments (temporal::insertThreeLayers); the third decodes to the third fragment.
 TEST(PackedLayers, PassThreeFindsTheNearestThreeFragments) {
     test::glContext();
-    if (!epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) GTEST_SKIP() << "no GL_EXT_shader_framebuffer_fetch";
-    if (!fiveDrawBuffers()) GTEST_SKIP() << "fewer than 5 draw buffers";
+    if (const char* missing = threeLayersMissing()) GTEST_SKIP() << missing;
     TubesPasses t;
     const int w = t.w, h = t.h;
     NeuralPasses& passes = t.passes;
@@ -1046,8 +1051,7 @@ TEST(PackedLayers, PassThreeFindsTheNearestThreeFragments) {
 // layer lands among the three, bit for bit as the CPU fold in draw order.
 TEST(PackedLayers, PassThreeMergesCoplanarFragmentsAsTheCpuFold) {
     test::glContext();
-    if (!epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) GTEST_SKIP() << "no GL_EXT_shader_framebuffer_fetch";
-    if (!fiveDrawBuffers()) GTEST_SKIP() << "fewer than 5 draw buffers";
+    if (const char* missing = threeLayersMissing()) GTEST_SKIP() << missing;
     const auto dir = test::makeTempDir("coplanar");
     {
         std::ofstream mtl(dir / "c.mtl");
@@ -1244,8 +1248,7 @@ TEST(PackedLayers, ThreeLayerCompositeMatchesCpuReference) {
 // pass 3, which then clears only its depth, writes what a pass after the clears writes.
 TEST(PackedLayers, CompositeClearsThePassThreeTargetsItRead) {
     test::glContext();
-    if (!epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) GTEST_SKIP() << "no GL_EXT_shader_framebuffer_fetch";
-    if (!fiveDrawBuffers()) GTEST_SKIP() << "fewer than 5 draw buffers";
+    if (const char* missing = threeLayersMissing()) GTEST_SKIP() << missing;
     TubesPasses t;
     const int w = t.w, h = t.h;
     NeuralPasses& passes = t.passes;
@@ -1327,8 +1330,7 @@ TEST(PackedLayers, CompositeClearsThePassThreeTargetsItRead) {
 // real frames between them, as the camera turns.
 TEST(PackedLayers, FramesWithTheCompositeClearingTheTargetsEqualThoseWithTheClears) {
     test::TestScene c(makeBuiltinScene("tubes", 3), 80, 56, 30.0f, 15.0f, kBackground);
-    if (!epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) GTEST_SKIP() << "no GL_EXT_shader_framebuffer_fetch";
-    if (!fiveDrawBuffers()) GTEST_SKIP() << "fewer than 5 draw buffers";
+    if (const char* missing = threeLayersMissing()) GTEST_SKIP() << missing;
     const std::vector<float> yaws = {0.0f, 2.0f, 4.0f, 6.0f, 8.0f, 10.0f, 12.0f, 14.0f, 16.0f, 18.0f};
     MethodOptions clearing = correctedOptions();
     clearing.neural.temporalInterval = 4;
@@ -1346,8 +1348,7 @@ TEST(PackedLayers, FramesWithTheCompositeClearingTheTargetsEqualThoseWithTheClea
 // and the interpolated frames are nearer the A-buffer than with two layers and the correction.
 TEST(PackedLayers, ThreeLayersLeaveRealFramesAsAtKOneAndBringInterpolatedFramesNearer) {
     test::TestScene c(makeBuiltinScene("tubes", 3), 96, 64, 30.0f, 15.0f, kBackground);
-    if (!epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) GTEST_SKIP() << "no GL_EXT_shader_framebuffer_fetch";
-    if (!fiveDrawBuffers()) GTEST_SKIP() << "fewer than 5 draw buffers";
+    if (const char* missing = threeLayersMissing()) GTEST_SKIP() << missing;
     const std::vector<float> yaws = {0.0f, 2.0f, 4.0f, 6.0f, 8.0f, 10.0f};
     MethodOptions two = correctedOptions(), three = correctedOptions(), still;
     two.neural.correctedLayers = NeuralOptions::CorrectedLayers::Two;
