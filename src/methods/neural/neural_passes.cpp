@@ -157,6 +157,7 @@ void NeuralPasses::resize(int width, int height) {
     if (width == width_ && height == height_) return;
     width_ = width;
     height_ = height;
+    clearedTargets_ = {};  // new textures (GL may hand a freed name back)
     const bool compact = targets_ == NeuralOptions::Targets::Compact;
     const GLenum color = compact ? GL_RGBA16F : GL_RGBA32F, single = compact ? GL_R16F : GL_R32F;
     const GLenum layer = narrowLayers_ ? GL_RGB10_A2 : color;
@@ -207,6 +208,7 @@ void NeuralPasses::widenCountBesideBehind() {
     // (m2 / a - mean^2) needs it.
     countBesideBehind_ = true;
     colorCount_ = gl::Texture2D(GL_RG32F, width_, height_, GL_LINEAR);
+    clearedTargets_ = {};  // a new texture (GL may hand a freed name back)
     makePass3Framebuffer();
     makeSumsFramebuffer();
     packedFb_.reset();
@@ -478,6 +480,7 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
         else allocatePackedNearest();
         packedFb_.reset();
         thirdLayerClearFb_.reset();
+        clearedTargets_ = {};  // new textures (GL may hand a freed name back)
     }
     if (tailMoments_) widenCountBesideBehind();
     if (!packedFb_.id()) {

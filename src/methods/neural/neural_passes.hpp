@@ -265,7 +265,8 @@ private:
     bool threeLayers_ = false;     // findThreeLayers
     bool compositeClears_ = false;  // compositeClearsTargets()
     // The targets as targetsClearedByComposite found them (0 = not clear): runPackedNearestAndSums
-    // skips their clears only if they are still these textures.
+    // skips their clears only if they are still these textures. Every other pass into them and
+    // every reallocation empties it.
     std::array<GLuint, 5> clearedTargets_{};
     gl::Texture2D thirdLayer_;     // the third (threeLayers_) and the reference depth, allocated with packedLayers_
     // The third layer's clear: no layer and the reference depth of `reference` (packed_nearest.h).
