@@ -398,23 +398,27 @@ TEST(TemporalCorrected, PassThreeSumsTheMomentsBehindTheReference) {
         for (int k = 0; k < 4; ++k) near = near && std::abs(first[k] - want.moment1[k]) <= 1e-4f + 2e-3f * std::abs(want.moment1[k]);
         return near && std::abs(second - want.moment2) <= 1e-4f + 4e-3f * std::abs(want.moment2);
     };
+    // visit(i, x, y, fragments, CPU moments behind the reference) for every pixel (GL order).
+    const auto eachPixel = [&](const auto& visit) {
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const FragmentList list = nn::preparedFragments(fragments.at(x, h - 1 - y));
+                visit(size_t(y) * size_t(w) + size_t(x), x, y, list, behindMomentsOf(list, referenceAt(reference, w, x, y)));
+            }
+    };
     for (bool onePass : {true, false}) {
         if (onePass) passes.runPackedNearestAndSums(frame, draw, referenceTexture.id());
         else passes.runNearestAndSums(frame, draw, referenceTexture.id());
         const std::vector<glm::vec4> first = readRgba(passes.behindMoment1(), w, h), second = readRgba(passes.behindMoment2(), w, h);
         size_t behind = 0, off = 0;
-        for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x) {
-                const size_t i = size_t(y) * size_t(w) + size_t(x);
-                const FragmentList list = nn::preparedFragments(fragments.at(x, h - 1 - y));
-                const OrderedBehind want = behindMomentsOf(list, referenceAt(reference, w, x, y));
-                float t = 1.0f;
-                for (const Fragment& f : list) t *= 1.0f - f.alpha;
-                behind += want.moment1.a > 0.0f;
-                // sum a u^2 and, beside it, the transmittance as an optical depth.
-                const bool near = momentsNear(first[i], second[i].r, want) && std::abs(std::exp(-second[i].g) - t) <= 1e-4f + 1e-3f * t;
-                off += !near;
-            }
+        eachPixel([&](size_t i, int, int, const FragmentList& list, const OrderedBehind& want) {
+            float t = 1.0f;
+            for (const Fragment& f : list) t *= 1.0f - f.alpha;
+            behind += want.moment1.a > 0.0f;
+            // sum a u^2 and, beside it, the transmittance as an optical depth.
+            const bool near = momentsNear(first[i], second[i].r, want) && std::abs(std::exp(-second[i].g) - t) <= 1e-4f + 1e-3f * t;
+            off += !near;
+        });
         EXPECT_GT(behind, size_t(200)) << "pixels with fragments behind the reference";
         EXPECT_LE(off, size_t(w * h / 200)) << (onePass ? "one pass" : "two passes") << ": pixels off the CPU sums";
     }
@@ -427,14 +431,10 @@ TEST(TemporalCorrected, PassThreeSumsTheMomentsBehindTheReference) {
         const std::vector<glm::vec4> first = readRgba(three.behindMoment1(), w, h), second = readRgba(three.behindMoment2(), w, h);
         const std::vector<glm::uvec4> thirds = test::readRgbaUint(three.thirdLayer(), w, h);
         size_t off = 0, referenceOff = 0;
-        for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x) {
-                const size_t i = size_t(y) * size_t(w) + size_t(x);
-                const FragmentList list = nn::preparedFragments(fragments.at(x, h - 1 - y));
-                const OrderedBehind want = behindMomentsOf(list, referenceAt(reference, w, x, y));
-                off += !momentsNear(first[i], second[i].r, want);
-                referenceOff += thirds[i].z != glm::floatBitsToUint(referenceAt(reference, w, x, y));
-            }
+        eachPixel([&](size_t i, int x, int y, const FragmentList&, const OrderedBehind& want) {
+            off += !momentsNear(first[i], second[i].r, want);
+            referenceOff += thirds[i].z != glm::floatBitsToUint(referenceAt(reference, w, x, y));
+        });
         EXPECT_EQ(referenceOff, 0u) << "three layers: texels whose reference differs from the tile's";
         EXPECT_LE(off, size_t(w * h / 200)) << "three layers: pixels off the CPU sums";
     }
@@ -445,15 +445,11 @@ TEST(TemporalCorrected, PassThreeSumsTheMomentsBehindTheReference) {
     EXPECT_EQ(passes.realBehindReference(), referenceTexture.id());
     const std::vector<glm::vec4> first = readRgba(passes.realBehindMoment1(), w, h), second = readRgba(passes.colorCount().id(), w, h);
     size_t behind = 0, off = 0;
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const size_t i = size_t(y) * size_t(w) + size_t(x);
-            const FragmentList list = nn::preparedFragments(fragments.at(x, h - 1 - y));
-            const OrderedBehind want = behindMomentsOf(list, referenceAt(reference, w, x, y));
-            behind += want.moment1.a > 0.0f;
-            const bool near = momentsNear(first[i], second[i].g, want) && second[i].r == float(list.size());  // the count beside it
-            off += !near;
-        }
+    eachPixel([&](size_t i, int, int, const FragmentList& list, const OrderedBehind& want) {
+        behind += want.moment1.a > 0.0f;
+        const bool near = momentsNear(first[i], second[i].g, want) && second[i].r == float(list.size());  // the count beside it
+        off += !near;
+    });
     EXPECT_GT(behind, size_t(200)) << "real frame: pixels with fragments behind the reference";
     EXPECT_LE(off, size_t(w * h / 200)) << "real frame: pixels off the CPU sums";
     passes.run(frame, draw, NeuralPasses::kDefaultPeelEpsilon, {w, h}, {w, h});

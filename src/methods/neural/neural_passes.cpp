@@ -157,7 +157,7 @@ void NeuralPasses::resize(int width, int height) {
     if (width == width_ && height == height_) return;
     width_ = width;
     height_ = height;
-    clearedTargets_ = {};  // new textures (GL may hand a freed name back)
+    targetsClear_ = false;  // new textures
     const bool compact = targets_ == NeuralOptions::Targets::Compact;
     const GLenum color = compact ? GL_RGBA16F : GL_RGBA32F, single = compact ? GL_R16F : GL_R32F;
     const GLenum layer = narrowLayers_ ? GL_RGB10_A2 : color;
@@ -208,7 +208,7 @@ void NeuralPasses::widenCountBesideBehind() {
     // (m2 / a - mean^2) needs it.
     countBesideBehind_ = true;
     colorCount_ = gl::Texture2D(GL_RG32F, width_, height_, GL_LINEAR);
-    clearedTargets_ = {};  // a new texture (GL may hand a freed name back)
+    targetsClear_ = false;  // a new texture
     makePass3Framebuffer();
     makeSumsFramebuffer();
     packedFb_.reset();
@@ -267,7 +267,7 @@ void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) 
 
 void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float peelEpsilon, Size2 pass2Size,
                        Size2 pass3Size, const std::function<GLuint()>& behindReference) {
-    clearedTargets_ = {};  // pass 3 writes three of them, and the output may go into one
+    targetsClear_ = false;  // pass 3 writes three of them, and the output may go into one
     runNearest(frame, draw);
     const Size2 full{width_, height_};
     pass2Size_ = pass2Size;
@@ -410,7 +410,7 @@ void NeuralPasses::prepareNearestAndSums() {
 }
 
 void NeuralPasses::runNearestAndSums(const FrameDesc& frame, const DrawCallback& draw, GLuint reference) {
-    clearedTargets_ = {};  // its pass 3 writes three of them
+    targetsClear_ = false;  // its pass 3 writes three of them
     runNearest(frame, draw);
     prepareNearestAndSums();
     if (tailMoments_) widenCountBesideBehind();
@@ -440,7 +440,7 @@ std::array<GLuint, 5> NeuralPasses::packedTargets() const {
 
 void NeuralPasses::targetsClearedByComposite() {
     if (!compositeClears_) throw Error("internal: the composite cleared the targets of a pass that clears them itself");
-    clearedTargets_ = packedTargets();
+    targetsClear_ = true;
 }
 
 void NeuralPasses::preparePackedNearestAndSums() {
@@ -480,7 +480,7 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
         else allocatePackedNearest();
         packedFb_.reset();
         thirdLayerClearFb_.reset();
-        clearedTargets_ = {};  // new textures (GL may hand a freed name back)
+        targetsClear_ = false;  // new textures
     }
     if (tailMoments_) widenCountBesideBehind();
     if (!packedFb_.id()) {
@@ -499,8 +499,8 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
     gl::ScopedPass timing(frame.timing, "pass3");
     // The last interpolated frame's composite wrote back the clear values wherever this pass wrote
     // (compositeClearsTargets()): only the depth, which marks those pixels, is cleared then.
-    const bool clear = !compositeClears_ || clearedTargets_ != packedTargets();
-    clearedTargets_ = {};
+    const bool clear = !compositeClears_ || !targetsClear_;
+    targetsClear_ = false;
     if (clear && threeLayers_) clearThirdLayer(reference);
     glBindFramebuffer(GL_FRAMEBUFFER, packedFb_.id());
     glViewport(0, 0, width_, height_);

@@ -169,9 +169,9 @@ public:
     // write their clear values back for a fraction of that. When the composite did so after a
     // runPackedNearestAndSums (targetsClearedByComposite()), the next one clears only its depth.
     bool compositeClearsTargets() const { return compositeClears_; }
-    // The five targets and the value the composite writes back into each (the clears of
-    // runPackedNearestAndSums), in the composite's draw-buffer order after its output:
-    // packedNearest(), thirdLayer(), alphaColor(), behindMoment1(), behindMoment2().
+    // The five targets the composite writes the clear values of runPackedNearestAndSums back into,
+    // in its draw-buffer order after its output: packedNearest(), thirdLayer(), alphaColor(),
+    // behindMoment1(), behindMoment2().
     std::array<GLuint, 5> packedTargets() const;
     // Says that the composite wrote the clear values at every pixel the last
     // runPackedNearestAndSums reached (its cover depth below 1). Any other pass into those targets
@@ -264,10 +264,9 @@ private:
     gl::Texture2D packedLayers_;   // the nearest two fragments (twoLayers_), allocated on first need
     bool threeLayers_ = false;     // findThreeLayers
     bool compositeClears_ = false;  // compositeClearsTargets()
-    // The targets as targetsClearedByComposite found them (0 = not clear): runPackedNearestAndSums
-    // skips their clears only if they are still these textures. Every other pass into them and
-    // every reallocation empties it.
-    std::array<GLuint, 5> clearedTargets_{};
+    // targetsClearedByComposite said so since the last runPackedNearestAndSums: it skips their
+    // clears then. Every other pass into them and every reallocation of one of them resets it.
+    bool targetsClear_ = false;
     gl::Texture2D thirdLayer_;     // the third (threeLayers_) and the reference depth, allocated with packedLayers_
     // The third layer's clear: no layer and the reference depth of `reference` (packed_nearest.h).
     void clearThirdLayer(GLuint reference);
