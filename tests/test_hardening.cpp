@@ -634,4 +634,13 @@ TEST(Hardening, LongRendersShowProgressAndTemporalMeans) {
     EXPECT_NEAR(stats["frame_ms_long_run"].get<double>(),
                 0.5 * (stats["real_frame_ms_mean"].get<double>() + stats["interpolated_frame_ms_mean"].get<double>()), 1e-9);
     EXPECT_CONTAINS(t.out, "a frame over a long run");
+    EXPECT_EQ(t.out.find("no real frame was timed"), std::string::npos) << t.out;
+
+    // Three frames at K = 4: the untimed first frame is the only real one, which the summary says
+    // rather than printing a real-frame mean of nothing.
+    const CliRun u = run("render --scene builtin:panes --method starnt --temporal 4 --width 32 --height 24 --frames 3 --out " +
+                         (dir / "u.png").string());
+    ASSERT_EQ(u.exitCode, 0) << u.err;
+    EXPECT_CONTAINS(u.out, "real frames none timed");
+    EXPECT_CONTAINS(u.out, "no real frame was timed");
 }

@@ -238,13 +238,21 @@ void runRender(const RenderArgs& a) {
     if (!timedMs[1].empty()) {
         // Temporal run: the median lands on interpolated frames; give the means instead.
         const size_t timed = timedMs[0].size() + timedMs[1].size();
-        std::printf("%s: %s %dx%d, frame %.2f ms (mean of %zu), real frames %.2f ms (mean of %zu), interpolated "
-                    "%.2f ms (mean of %zu), %.2f ms a frame over a long run, max %u fragments/pixel -> %s\n",
+        char real[64] = "none timed";
+        if (!timedMs[0].empty()) std::snprintf(real, sizeof real, "%.2f ms (mean of %zu)", meanOf(timedMs[0]), timedMs[0].size());
+        std::printf("%s: %s %dx%d, frame %.2f ms (mean of %zu), real frames %s, interpolated %.2f ms (mean of %zu), "
+                    "%.2f ms a frame over a long run, max %u fragments/pixel -> %s\n",
                     a.method.c_str(), a.scene.c_str(), a.width, a.height,
                     (meanOf(timedMs[0]) * double(timedMs[0].size()) + meanOf(timedMs[1]) * double(timedMs[1].size())) /
                         double(timed),
-                    timed, meanOf(timedMs[0]), timedMs[0].size(), meanOf(timedMs[1]), timedMs[1].size(),
-                    out.stats["frame_ms_long_run"].get<double>(), out.stats["max_fragments"].get<unsigned>(), a.out.c_str());
+                    timed, real, meanOf(timedMs[1]), timedMs[1].size(), out.stats["frame_ms_long_run"].get<double>(),
+                    out.stats["max_fragments"].get<unsigned>(), a.out.c_str());
+        if (timedMs[0].empty()) {
+            // The first frame (untimed) was the only real one: the long-run figure is then the
+            // interpolated frames' mean alone, which no schedule achieves.
+            std::printf("no real frame was timed, so the long-run figure leaves the real frames out: render more frames "
+                        "than the temporal interval, or add --warmup\n");
+        }
     } else {
         std::printf("%s: %s %dx%d, frame %.2f ms (median of %d), max %u fragments/pixel -> %s\n", a.method.c_str(),
                     a.scene.c_str(), a.width, a.height, out.stats["frame_ms"].get<double>(),
