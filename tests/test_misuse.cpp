@@ -146,6 +146,44 @@ TEST(Misuse, EngineStateLeftSetDoesNotChangeTheImage) {
     }
 }
 
+// State no pass sets for itself, left by an engine: a sampler object on every unit the methods read
+// from (an integer target filtered linearly reads as 0), rasterizer discard (a transform-feedback
+// pass) and a logic op. A real and an interpolated frame of every method: the undisturbed images.
+TEST(Misuse, EngineSamplersDiscardAndLogicOpDoNotChangeTheImage) {
+    test::TestScene c(makeBuiltinScene("tubes", 3), 48, 32, 30.0f, 15.0f, kBackground);
+    GLuint sampler = 0;
+    glGenSamplers(1, &sampler);
+    glSamplerParameteri(sampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glSamplerParameteri(sampler, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glSamplerParameteri(sampler, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    for (auto& [name, options] : everyMethod()) {
+        auto method = createMethod(name, SceneGpu::surfaceShader(), options);
+        std::vector<std::vector<glm::vec4>> undisturbed;
+        for (int i = 0; i < 2; ++i) undisturbed.push_back(renderOnce(*method, c));
+        method->resetHistory();
+        for (int i = 0; i < 2; ++i) {
+            for (GLuint unit = 0; unit < 16; ++unit) glBindSampler(unit, sampler);
+            glEnable(GL_RASTERIZER_DISCARD);
+            if (epoxy_is_desktop_gl()) {
+                glEnable(GL_COLOR_LOGIC_OP);
+                glLogicOp(GL_XOR);
+            }
+            const auto disturbed = renderOnce(*method, c);
+            glDisable(GL_RASTERIZER_DISCARD);  // (before anything of the test's own is drawn)
+            if (epoxy_is_desktop_gl()) glDisable(GL_COLOR_LOGIC_OP);
+            EXPECT_LE(largestDifference(disturbed, undisturbed[i]), 1e-6f) << name << ", frame " << i;
+            EXPECT_EQ(takeGlError(), GLenum(GL_NO_ERROR)) << name;
+            GLint bound = 0;
+            glActiveTexture(GL_TEXTURE9);
+            glGetIntegerv(GL_SAMPLER_BINDING, &bound);
+            glActiveTexture(GL_TEXTURE0);
+            EXPECT_EQ(GLuint(bound), sampler) << name << ": the engine's units 9 and above are its own";
+        }
+        for (GLuint unit = 0; unit < 16; ++unit) glBindSampler(unit, 0);
+    }
+    glDeleteSamplers(1, &sampler);
+}
+
 // The suite's GL tests fail on any GL error raised while they run (test_support.cpp, KHR_debug):
 // the watch itself sees an error provoked on purpose.
 TEST(Misuse, TheSuiteSeesGlErrors) {

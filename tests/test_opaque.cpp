@@ -10,6 +10,8 @@
 #include <map>
 #include <sstream>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "gl/gl_util.hpp"
 #include "gl/gpu_timer.hpp"
 #include "gl/shader.hpp"
@@ -567,4 +569,127 @@ TEST(DepthConventions, ReversedZAndZeroToOneGiveTheDefaultConventionsImage) {
     auto m = createMethod("wboit", SceneGpu::surfaceShader());
     EXPECT_NE(test::errorOf([&] { m->render(flat, s.gpu->callback(flat.view, flat.projection, {})); }).find("FrameDesc::projection"),
               std::string::npos);
+}
+
+// Clip control's GL_UPPER_LEFT origin (engines ported from Direct3D or Vulkan): the engine's draws
+// land upside down in the window, and so must what the methods compute from the projection
+// (temporal reprojection). Two frames with the camera turned between them, so that the second,
+// interpolated frame of the temporal methods reprojects; every image equals the lower-left
+// origin's upside down.
+TEST(DepthConventions, UpperLeftOriginGivesTheSameImageUpsideDown) {
+    test::TestScene s(makeBuiltinScene("tubes", 3), kW, kH, 30.0f, 20.0f, kBackground);
+    if (gl::isEs() && !epoxy_has_gl_extension("GL_EXT_clip_control")) GTEST_SKIP() << "no clip control on this ES context";
+    auto setOrigin = [](bool upperLeft) {
+        const GLenum origin = upperLeft ? GL_UPPER_LEFT : GL_LOWER_LEFT;
+        if (gl::isEs()) glClipControlEXT(origin, GL_NEGATIVE_ONE_TO_ONE);
+        else glClipControl(origin, GL_NEGATIVE_ONE_TO_ONE);
+    };
+    MethodOptions warp, temporal;
+    warp.neural.temporalInterval = temporal.neural.temporalInterval = 2;
+    warp.neural.temporalMode = NeuralOptions::TemporalMode::Warp;
+    const std::pair<const char*, MethodOptions> cases[] = {
+        {"wboit", {}}, {"starnt", warp}, {"starnt-d", temporal}, {"recommended", {}}};
+    for (const auto& [method, options] : cases) {
+        auto framesWith = [&](bool upperLeft) {
+            auto m = createMethod(method, SceneGpu::surfaceShader(), options);
+            std::vector<std::vector<float>> images;
+            for (int i = 0; i < 2; ++i) {
+                FrameDesc f = s.frame();
+                f.view = f.view * glm::rotate(glm::mat4(1.0f), glm::radians(5.0f * float(i)), glm::vec3(1, 0.5f, 0));
+                setOrigin(upperLeft);
+                m->render(f, s.gpu->callback(f.view, f.projection, {}));
+                setOrigin(false);
+                images.push_back(gl::readTextureFloats(m->outputTexture(), kW, kH, 4));
+            }
+            EXPECT_EQ(m->lastFrameStats().interpolated(), std::string(method) != "wboit") << method;
+            return images;
+        };
+        const auto lowerLeft = framesWith(false), upperLeft = framesWith(true);
+        for (size_t i = 0; i < lowerLeft.size(); ++i) {
+            float worst = 0.0f;
+            size_t off = 0;
+            for (int y = 0; y < kH; ++y) {
+                for (int x = 0; x < kW; ++x) {
+                    for (int c = 0; c < 3; ++c) {
+                        const float want = lowerLeft[i][(size_t(y) * kW + x) * 4 + c];
+                        const float got = upperLeft[i][(size_t(kH - 1 - y) * kW + x) * 4 + c];
+                        worst = std::max(worst, std::abs(got - want));
+                        off += !(std::abs(got - want) <= 0.02f);
+                    }
+                }
+            }
+            // The same samples, mirrored: only a tie in the fill rule could move a pixel.
+            EXPECT_LE(off, 6u) << method << ", frame " << i << ": worst " << worst;
+        }
+    }
+}
+
+// An engine's opaque textures with read state a sampler object does not hold: a depth pyramid's
+// base level above 0, a depth-stencil texture set to return its stencil, a swizzle. The methods read
+// level 0's depth and colour as if none were set, and give the engine its state back.
+TEST(Opaque, TheEnginesBaseLevelStencilModeAndSwizzleAreIgnoredAndKept) {
+    test::TestScene s(makeBuiltinScene("tubes", 3), kW, kH, 30.0f, 20.0f, kBackground);
+    OpaqueImage o = makeOpaque(s.capture());
+    OpaqueImage o24 = o;
+    const EngineTextures plain = upload(o, false), depth24 = upload(o24, true);
+    // The same depth and colour in two-level textures whose level 1 holds something else.
+    auto twoLevels = [&](GLenum format, GLenum pixelFormat, const void* level0) {
+        GLuint t = 0;
+        glGenTextures(1, &t);
+        glBindTexture(GL_TEXTURE_2D, t);
+        glTexStorage2D(GL_TEXTURE_2D, 2, format, kW, kH);
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kW, kH, pixelFormat, GL_FLOAT, level0);
+        const std::vector<float> other(size_t(kW) * kH * 4, 0.0f);
+        glTexSubImage2D(GL_TEXTURE_2D, 1, 0, 0, kW / 2, kH / 2, pixelFormat, GL_FLOAT, other.data());
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 1);
+        glBindTexture(GL_TEXTURE_2D, 0);
+        return t;
+    };
+    const GLuint pyramid = twoLevels(GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, o.depth.data());
+    const GLuint colorPyramid = twoLevels(GL_RGBA32F, GL_RGBA, o.color.data());
+    auto parameter = [](GLuint t, GLenum pname) {
+        GLint v = 0;
+        glBindTexture(GL_TEXTURE_2D, t);
+        glGetTexParameteriv(GL_TEXTURE_2D, pname, &v);
+        glBindTexture(GL_TEXTURE_2D, 0);
+        return v;
+    };
+    auto setParameter = [](GLuint t, GLenum pname, GLint v) {
+        glBindTexture(GL_TEXTURE_2D, t);
+        glTexParameteri(GL_TEXTURE_2D, pname, v);
+        glBindTexture(GL_TEXTURE_2D, 0);
+    };
+    setParameter(depth24.depth.id(), GL_DEPTH_STENCIL_TEXTURE_MODE, GL_STENCIL_INDEX);
+    setParameter(depth24.color.id(), GL_TEXTURE_SWIZZLE_R, GL_ZERO);
+    for (const char* method : {"wboit", "abuffer", "recommended"}) {
+        auto imageOf = [&](GLuint depth, GLuint color) {
+            auto m = createMethod(method, SceneGpu::surfaceShader());
+            FrameDesc f = s.frame();
+            f.opaqueDepth = depth;
+            f.backgroundTexture = color;
+            m->render(f, s.gpu->callback(f.view, f.projection, {}));
+            return gl::readTextureFloats(m->outputTexture(), kW, kH, 4);
+        };
+        auto largest = [](const std::vector<float>& a, const std::vector<float>& b) {
+            float d = 0.0f;
+            for (size_t i = 0; i < a.size(); ++i) d = std::max(d, std::abs(a[i] - b[i]));
+            return d;
+        };
+        const auto want = imageOf(plain.depth.id(), plain.color.id());
+        EXPECT_EQ(largest(imageOf(pyramid, colorPyramid), want), 0.0f) << method << ": base level 1";
+        // A 24-bit depth rounds the opaque surface: compared with the 32-bit image, a few pixels.
+        setParameter(depth24.color.id(), GL_TEXTURE_SWIZZLE_R, GL_RED);
+        setParameter(depth24.depth.id(), GL_DEPTH_STENCIL_TEXTURE_MODE, GL_DEPTH_COMPONENT);
+        const auto want24 = imageOf(depth24.depth.id(), depth24.color.id());
+        setParameter(depth24.depth.id(), GL_DEPTH_STENCIL_TEXTURE_MODE, GL_STENCIL_INDEX);
+        setParameter(depth24.color.id(), GL_TEXTURE_SWIZZLE_R, GL_ZERO);
+        EXPECT_EQ(largest(imageOf(depth24.depth.id(), depth24.color.id()), want24), 0.0f)
+            << method << ": stencil texture mode and a swizzle";
+        EXPECT_EQ(parameter(pyramid, GL_TEXTURE_BASE_LEVEL), 1) << method;
+        EXPECT_EQ(parameter(colorPyramid, GL_TEXTURE_BASE_LEVEL), 1) << method;
+        EXPECT_EQ(parameter(depth24.depth.id(), GL_DEPTH_STENCIL_TEXTURE_MODE), GL_STENCIL_INDEX) << method;
+        EXPECT_EQ(parameter(depth24.color.id(), GL_TEXTURE_SWIZZLE_R), GL_ZERO) << method;
+    }
+    glDeleteTextures(1, &pyramid);
+    glDeleteTextures(1, &colorPyramid);
 }

@@ -32,8 +32,9 @@
 #define STARNT_UNIT_TAIL_MOMENT2 7
 /* Every method: the engine's opaque scene (FrameDesc::backgroundTexture in the composites,
  * FrameDesc::opaqueDepth where the methods copy it into their own depth targets). Bound through a
- * sampler object of the method's (nearest, clamped, no depth compare), so the engine's texture
- * parameters never matter and are never changed. */
+ * sampler object of the method's (nearest, clamped, no depth compare), so the engine's filter and
+ * compare parameters never matter and are never changed; its base level, depth-stencil mode and
+ * swizzle are the defaults during render() and the engine's again when it returns. */
 #define STARNT_UNIT_OPAQUE 8
 
 /* ---- Shader storage buffer bindings ---- */

@@ -339,7 +339,32 @@ TextureDescription describeTexture(GLuint texture, GLuint unit) {
     d.height = height;
     d.internalFormat = GLenum(format);
     d.integer = redType == GL_INT || redType == GL_UNSIGNED_INT;
+    auto parameter = [&](GLenum pname) {
+        GLint v = 0;
+        if (isEs()) glGetTexParameteriv(GL_TEXTURE_2D, pname, &v);
+        else glGetTextureParameteriv(texture, pname, &v);
+        return v;
+    };
+    d.read.baseLevel = parameter(GL_TEXTURE_BASE_LEVEL);
+    d.read.depthStencilMode = parameter(GL_DEPTH_STENCIL_TEXTURE_MODE);
+    const GLenum swizzles[4] = {GL_TEXTURE_SWIZZLE_R, GL_TEXTURE_SWIZZLE_G, GL_TEXTURE_SWIZZLE_B, GL_TEXTURE_SWIZZLE_A};
+    for (int i = 0; i < 4; ++i) d.read.swizzle[i] = parameter(swizzles[i]);
     return d;
+}
+
+void setTextureReadState(GLuint texture, GLuint unit, const TextureReadState& state) {
+    auto set = [&](GLenum pname, GLint value) {
+        if (isEs()) glTexParameteri(GL_TEXTURE_2D, pname, value);
+        else glTextureParameteri(texture, pname, value);
+    };
+    if (isEs()) {
+        glActiveTexture(GL_TEXTURE0 + unit);
+        glBindTexture(GL_TEXTURE_2D, texture);
+    }
+    set(GL_TEXTURE_BASE_LEVEL, state.baseLevel);
+    set(GL_DEPTH_STENCIL_TEXTURE_MODE, state.depthStencilMode);
+    const GLenum swizzles[4] = {GL_TEXTURE_SWIZZLE_R, GL_TEXTURE_SWIZZLE_G, GL_TEXTURE_SWIZZLE_B, GL_TEXTURE_SWIZZLE_A};
+    for (int i = 0; i < 4; ++i) set(swizzles[i], state.swizzle[i]);
 }
 
 GLenum attachTexture(GLuint framebuffer, GLenum attachment, GLuint texture) {

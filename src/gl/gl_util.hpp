@@ -142,14 +142,26 @@ GLenum textureInternalFormat(GLuint texture);
 // direct-state queries, which raise no GL error. ES cannot ask a texture's target: it binds the name
 // to GL_TEXTURE_2D of `unit` and reads the binding back (a texture of another target fails that
 // bind with a GL_INVALID_OPERATION, which this then clears).
+// The texture state that a sampler object does not hold and that texelFetch(..., 0) obeys: which
+// level the fetch's level 0 is, what a depth-stencil texture returns, and the component swizzle.
+// An engine's own texture may have any of it set (a depth pyramid's base level, a stencil view).
+struct TextureReadState {
+    GLint baseLevel = 0;
+    GLint depthStencilMode = GL_DEPTH_COMPONENT;
+    GLint swizzle[4] = {GL_RED, GL_GREEN, GL_BLUE, GL_ALPHA};
+    bool operator==(const TextureReadState&) const = default;
+};
 struct TextureDescription {
     bool is2D = false;
     int width = 0, height = 0;
     GLenum internalFormat = 0;
     bool integer = false;  // an integer colour format (sampled by a float sampler: undefined)
     bool immutable = false;  // glTexStorage: complete whatever its filter (glCopyImageSubData needs that)
+    TextureReadState read;
 };
 TextureDescription describeTexture(GLuint texture, GLuint unit);
+// Sets `texture`'s read state (ES: through `unit`, which it leaves bound to it).
+void setTextureReadState(GLuint texture, GLuint unit, const TextureReadState& state);
 bool isDepthFormat(GLenum internalFormat);
 // A framebuffer name (glCreateFramebuffers; ES: glGenFramebuffers + a first bind, which creates it).
 FramebufferHandle makeFramebufferName();

@@ -13,7 +13,9 @@ using Factory = std::unique_ptr<OitMethod> (*)(const SurfaceShader&, const Metho
 // real" (interval 1, not auto) becomes the recommended interval: for no interpolated frames, ask
 // for starnt-d itself.
 std::unique_ptr<OitMethod> createRecommendedMethod(const SurfaceShader& surface, const MethodOptions& options) {
-    return createNeuralMethod(*neuralConfig("starnt-d"), surface, recommendedOptions(options));
+    NeuralMethodConfig config = *neuralConfig("starnt-d");
+    config.name = "recommended";  // name() and messages say what the engine asked for
+    return createNeuralMethod(config, surface, recommendedOptions(options));
 }
 struct Entry {
     const char* name;

@@ -1,5 +1,6 @@
 #include "methods/common/method_base.hpp"
 
+#include "starnt/bindings.h"
 #include "starnt/error.hpp"
 
 #include <cmath>
@@ -34,6 +35,13 @@ void MethodBase::render(const FrameDesc& frame, const DrawCallback& draw) {
     if (frame.width != width_ || frame.height != height_) gl::checkFrameSize(frame.width, frame.height);
     const FrameDesc canonical = beginDepthConvention(frame);
     opaque_.begin(canonical);
+    // State an engine may leave set that no pass sets for itself (docs/INTEGRATION.md, "State"):
+    // a sampler object on a unit the methods read from overrides their textures' nearest filter
+    // (an integer target with a linear filter is incomplete, and fetches 0), rasterizer discard
+    // drops every clear and draw, a logic op replaces blending.
+    for (GLuint unit = 0; unit < STARNT_UNIT_OPAQUE; ++unit) glBindSampler(unit, 0);
+    glDisable(GL_RASTERIZER_DISCARD);
+    if (!gl::isEs()) glDisable(GL_COLOR_LOGIC_OP);
     // The engine gets the default depth range back: a reversed-Z engine rarely sets it itself.
     auto finish = [this] {
         opaque_.end();
@@ -126,8 +134,13 @@ DepthConvention readDepthConvention(const glm::mat4& projection) {
     // Desktop 4.5 has clip control; ES only with the extension (asked once: the extension walk
     // queries every extension string).
     static const bool esClipControl = gl::isEs() && epoxy_has_gl_extension("GL_EXT_clip_control");
-    if (!gl::isEs() || esClipControl) glGetIntegerv(GL_CLIP_DEPTH_MODE, &mode);
+    GLint origin = GL_LOWER_LEFT;
+    if (!gl::isEs() || esClipControl) {
+        glGetIntegerv(GL_CLIP_DEPTH_MODE, &mode);
+        glGetIntegerv(GL_CLIP_ORIGIN, &origin);
+    }
     c.zeroToOne = mode == GL_ZERO_TO_ONE;
+    c.upperLeft = origin == GL_UPPER_LEFT;
     // A perspective's clip w grows along its view direction (-z for OpenGL's usual matrices): its
     // normalised depth at distances 1 and 10 that way tells whether the near plane gets the smaller
     // depth. An affine projection (orthographic, or none) has no view direction of its own: its
@@ -149,6 +162,7 @@ DepthConvention readDepthConvention(const glm::mat4& projection) {
     const float b = c.zeroToOne ? (c.reversed ? 1.0f : -1.0f) : 0.0f;
     c.toCanonical[2][2] = a;
     c.toCanonical[3][2] = b;
+    if (c.upperLeft) c.toCanonical[1][1] = -1.0f;
     return c;
 }
 

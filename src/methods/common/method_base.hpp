@@ -76,9 +76,14 @@ void resetPassState();
 // at -w, window depth 0 (near) to 1 (far). An engine's reversed Z (near at the larger depth) and
 // clip control GL_ZERO_TO_ONE are met by the depth range the passes run with (1, 0 when reversed)
 // and by the projection the methods compute with, `toCanonical * projection`, so that every depth a
-// pass writes or compares is canonical whatever the engine's vertex shader produces.
+// pass writes or compares is canonical whatever the engine's vertex shader produces. Clip control's
+// GL_UPPER_LEFT origin puts window y the other way up: the canonical projection then has its y
+// negated, so that the methods' own mapping from clip space to pixels (the lower-left one: temporal
+// reprojection) lands where the engine's draws did. The methods draw nothing with that projection
+// themselves (their full-screen passes cover the viewport either way up and read gl_FragCoord).
 struct DepthConvention {
     bool zeroToOne = false;  // the context's GL_CLIP_DEPTH_MODE is GL_ZERO_TO_ONE
+    bool upperLeft = false;  // the context's GL_CLIP_ORIGIN is GL_UPPER_LEFT
     bool reversed = false;   // the projection puts the near plane at the larger depth
     glm::mat4 toCanonical{1.0f};
 };

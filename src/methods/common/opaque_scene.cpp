@@ -31,22 +31,32 @@ gl::TextureDescription checkTexture(const char* field, GLuint name, const FrameD
 }  // namespace
 
 void OpaqueScene::begin(const FrameDesc& frame) {
+    end();  // (a no-op after a render() that ended)
     premultiplied_ = frame.premultipliedOutput;
     color_ = frame.background;
     depth_ = background_ = 0;
     clipWidth_ = clipHeight_ = 0;
     transmittanceInAlpha_ = false;
     depthFormat_ = 0;
+    gl::TextureReadState depthRead, backgroundRead;
     if (frame.opaqueDepth) {
         const gl::TextureDescription d = checkTexture("opaqueDepth", frame.opaqueDepth, frame, true);
         // A copy needs a complete texture whatever its filter: immutable storage (else a full-screen pass).
         depthFormat_ = d.immutable ? d.internalFormat : 0;
+        depthRead = d.read;
     }
     if (frame.backgroundTexture && !frame.premultipliedOutput) {
-        checkTexture("backgroundTexture", frame.backgroundTexture, frame, false);
+        backgroundRead = checkTexture("backgroundTexture", frame.backgroundTexture, frame, false).read;
     }
     depth_ = frame.opaqueDepth;
     background_ = frame.premultipliedOutput ? 0 : frame.backgroundTexture;
+    // Every read is a texelFetch of level 0 as the checks above described it: an engine's base
+    // level, stencil view or swizzle on its texture would change what it returns, and no sampler
+    // object holds those; so they are the defaults for this frame, the engine's own back at end().
+    // Both checks came first: nothing is changed for a frame that throws.
+    if (depth_ && !(depthRead == gl::TextureReadState{})) restoreRead_.push_back({depth_, depthRead});
+    if (background_ && !(backgroundRead == gl::TextureReadState{})) restoreRead_.push_back({background_, backgroundRead});
+    for (const auto& [texture, read] : restoreRead_) gl::setTextureReadState(texture, STARNT_UNIT_OPAQUE, {});
     if (depth_ || background_) prepare();
     if (depth_ && !(clipDepth_.width() == frame.width && clipDepth_.height() == frame.height)) {
         clipDepth_ = gl::Texture2D(GL_DEPTH_COMPONENT32F, frame.width, frame.height);
@@ -75,7 +85,9 @@ void OpaqueScene::bindOpaqueDepth(GLuint unit) const {
     depthUnit_ = unit;
 }
 
-void OpaqueScene::end() const {
+void OpaqueScene::end() {
+    for (const auto& [texture, read] : restoreRead_) gl::setTextureReadState(texture, STARNT_UNIT_OPAQUE, read);
+    restoreRead_.clear();
     if (!sampler_) return;
     glBindSampler(STARNT_UNIT_OPAQUE, 0);
     glBindSampler(depthUnit_, 0);

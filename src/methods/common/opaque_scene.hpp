@@ -54,8 +54,9 @@ public:
     // unless a pass samples the background there too).
     void bindOpaqueDepth(GLuint unit = STARNT_UNIT_OPAQUE) const;
     // Unbinds the method's sampler from STARNT_UNIT_OPAQUE (the engine's own use of that unit
-    // outside render() must see its texture's parameters): the end of every render().
-    void end() const;
+    // outside render() must see its texture's parameters) and gives the engine's textures back the
+    // read state begin() reset: the end of every render().
+    void end();
     // The output alpha the composites write is the transmittance (premultiplied output).
     bool premultiplied() const { return premultiplied_; }
     // What an empty pixel's composite is (background.glsl, transmittance 1), when it is one colour
@@ -78,6 +79,9 @@ private:
     void prepare();
 
     GLuint depth_ = 0, background_ = 0;
+    // The engine's textures whose read state (gl::TextureReadState) begin() set to the defaults,
+    // with what end() puts back.
+    std::vector<std::pair<GLuint, gl::TextureReadState>> restoreRead_;
     GLenum depthFormat_ = 0;
     bool premultiplied_ = false, transmittanceInAlpha_ = false;
     mutable GLuint depthUnit_ = STARNT_UNIT_OPAQUE;  // where bindOpaqueDepth put the sampler last
