@@ -577,6 +577,38 @@ TEST(Hardening, FailedRenderLeavesNoneOfItsOutputs) {
         EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
 }
 
+// Found by trying the tool as a user would: options that were silently ignored or lost a file.
+TEST(Hardening, SilentlyIgnoredOptionsAndCollidingOutputs) {
+    const fs::path dir = makeTempDir("ignored");
+    const std::string out = (dir / "x.png").string();
+    // recommended with every frame real: asked for by name, so an error naming what to use.
+    for (const char* t : {"off", "1"}) {
+        expectOneLineError(run(std::string("render --scene builtin:panes --method recommended --width 16 --height 12 --temporal ") +
+                               t + " --out " + out),
+                           {"--temporal", "starnt-d"}, t);
+    }
+    EXPECT_FALSE(fs::exists(out));
+    // Two outputs naming one file.
+    expectOneLineError(run("render --scene builtin:panes --method starnt --width 16 --height 12 --out " + out + " --tiles-image " +
+                           (dir / "." / "x.png").string()),
+                       {"--out and --tiles-image name the same file"}, "same file");
+    EXPECT_FALSE(fs::exists(out));
+    // The reference A-buffer obeys --abuffer-cap-mib as the rendered one does, and the cap is
+    // printed as given.
+    const CliRun capped = run("render --scene builtin:panes --method wboit --reference-method abuffer --abuffer-cap-mib 0.01 "
+                              "--width 64 --height 48 --out " + out);
+    expectOneLineError(capped, {"memory cap of 0.01 MiB"}, "reference cap");
+    EXPECT_FALSE(fs::exists(out));
+    // A scene the camera does not see: the image is written, with a warning.
+    const fs::path obj = dir / "far.obj";
+    std::ofstream(obj) << "v 1e12 0 0\nv 1e12 1 0\nv 1e12 0 1\nf 1 2 3\n";
+    const CliRun empty = run("render --scene " + obj.string() + " --method wboit --width 16 --height 12 --camera orbit:0 --out " + out);
+    EXPECT_EQ(empty.exitCode, 0) << empty.err;
+    EXPECT_CONTAINS(empty.err, "no fragment");
+    const CliRun seen = run("render --scene builtin:panes --method wboit --width 16 --height 12 --out " + out);
+    EXPECT_EQ(seen.err.find("no fragment"), std::string::npos) << seen.err;
+}
+
 TEST(Hardening, OutputFilesAppearTogetherOrNotAtAll) {
     const fs::path dir = makeTempDir("outfiles");
     {

@@ -70,7 +70,8 @@ struct RenderArgs {
     std::string wboitWeight = "eq10", weights;
     std::string mboitMoments = "6";
     std::string api = "gl";
-    bool alphaGiven = false, temporalModeGiven = false;  // --alpha, --temporal-mode on the command line
+    // --alpha, --temporal-mode, --temporal on the command line
+    bool alphaGiven = false, temporalModeGiven = false, temporalGiven = false;
     std::string alphaText;                               // --alpha as typed
 };
 
@@ -126,6 +127,7 @@ void declareRenderOptions(CLI::App& app, const std::shared_ptr<RenderArgs>& args
         args->alphaGiven = cmd->get_option("--alpha")->count() > 0;
         if (args->alphaGiven) args->alphaText = cmd->get_option("--alpha")->as<std::string>();
         args->temporalModeGiven = cmd->get_option("--temporal-mode")->count() > 0;
+        args->temporalGiven = cmd->get_option("--temporal")->count() > 0;
         runRender(*args);
     });
 }
@@ -152,6 +154,13 @@ void checkRenderArgs(const RenderArgs& a) {
     }
     const MethodOptions options = methodOptions(a);  // the acceleration flags' values
     if (!a.camera.empty() && !a.cameraPath.empty()) throw Error("--camera and --camera-path exclude each other");
+    if (a.temporalGiven && a.method == "recommended" && options.neural.temporalInterval == 1 && !options.neural.temporalAuto) {
+        // recommendedOptions turns "every frame real" into its own interval, which an engine's
+        // default options ask for; on the command line it was asked for by name.
+        throw Error("--temporal " + a.acceleration.temporal +
+                    ": the recommended configuration renders interpolated frames (K = " + std::to_string(kRecommendedTemporalInterval) +
+                    "); for every frame real use --method starnt-d, its K = 1");
+    }
     if (a.temporalModeGiven && !methodHasNearestPass(a.method)) {
         throw Error("--temporal-mode: method " + a.method +
                     " has no interpolated frames to correct, refresh or warp (use starnt, hybrid or dfaoit)");
@@ -174,6 +183,19 @@ void checkRenderArgs(const RenderArgs& a) {
     checkOutputPath(isFramePattern(a.exr) ? framePath(a.exr, 0) : a.exr, ".exr", "--exr");
     checkOutputPath(a.stats, ".json", "--stats");
     parseColor(a.background, "--background");
+    // Two outputs naming one file: one would silently replace the other.
+    const std::pair<const char*, const std::string*> outputs[] = {
+        {"--out", &a.out}, {"--exr", &a.exr}, {"--tiles-image", &a.tilesImage}, {"--frame-stats", &a.frameStats}, {"--stats", &a.stats}};
+    for (size_t i = 0; i < std::size(outputs); ++i) {
+        for (size_t j = i + 1; j < std::size(outputs); ++j) {
+            const std::string &x = *outputs[i].second, &y = *outputs[j].second;
+            if (x.empty() || y.empty()) continue;
+            std::error_code ex, ey;
+            if (x == y || std::filesystem::weakly_canonical(x, ex) == std::filesystem::weakly_canonical(y, ey)) {
+                throw Error(std::string(outputs[i].first) + " and " + outputs[j].first + " name the same file, " + x);
+            }
+        }
+    }
 }
 
 RenderJob makeRenderJob(const RenderArgs& a, const Scene& scene) {
@@ -183,6 +205,13 @@ RenderJob makeRenderJob(const RenderArgs& a, const Scene& scene) {
     job.camera = parseCameraSpec(a.camera, scene.bounds(), aspect);
     if (!a.cameraPath.empty()) job.path = parseCameraPathSpec(a.cameraPath, scene.bounds(), aspect);
     job.referenceMethod = a.referenceMethod;
+    // The reference method takes the per-method options (an A-buffer's memory cap, peel layers,
+    // ...), not the acceleration flags, which are the rendered method's.
+    const MethodOptions options = methodOptions(a);
+    job.referenceOptions.abuffer = options.abuffer;
+    job.referenceOptions.peel = options.peel;
+    job.referenceOptions.wboit = options.wboit;
+    job.referenceOptions.mboit = options.mboit;
     job.readTileOverlay = !a.tilesImage.empty();
     if (a.alphaGiven) job.surface.alphaOverride = float(a.alpha);
     job.surface.forceUnlit = a.unlit;
@@ -257,6 +286,11 @@ void runRender(const RenderArgs& a) {
         std::printf("%s: %s %dx%d, frame %.2f ms (median of %d), max %u fragments/pixel -> %s\n", a.method.c_str(),
                     a.scene.c_str(), a.width, a.height, out.stats["frame_ms"].get<double>(),
                     out.stats["timed_frames"].get<int>(), out.stats["max_fragments"].get<unsigned>(), a.out.c_str());
+    }
+    if (out.stats["max_fragments"].get<unsigned>() == 0) {
+        std::fprintf(stderr, "warning: no fragment of %s reached the last frame: check --camera or --camera-path (a scene far "
+                             "smaller than 1e-6 or farther than about 1e7 from the origin is lost to float precision)\n",
+                     a.scene.c_str());
     }
     if (out.stats.contains("error") && out.stats["error"].contains("interpolated_flash")) {
         const auto& flash = out.stats["error"]["interpolated_flash"];

@@ -81,7 +81,7 @@ public:
         checkImageSize(job.width, job.height);
         if (job.frames < 1) throw Error("--frames must be at least 1");
         method_ = createMethod(job.method, surface_, job.methodOptions);
-        if (!job.referenceMethod.empty()) reference_ = createMethod(job.referenceMethod, surface_, {});
+        if (!job.referenceMethod.empty()) reference_ = createMethod(job.referenceMethod, surface_, job.referenceOptions);
         if (job.referenceImages) {
             if (reference_) throw Error("internal: referenceMethod and referenceImages exclude each other");
             if (job.referenceImages->size() < size_t(job.frames)) throw Error("internal: fewer reference images than frames");

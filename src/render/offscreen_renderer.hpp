@@ -45,6 +45,7 @@ struct RenderJob {
     // When set (e.g. "abuffer"), every frame is also rendered (untimed) with this method at the same
     // camera and compared: per-frame "mse"/"flip", and means split into real and interpolated frames.
     std::string referenceMethod;
+    MethodOptions referenceOptions;  // its options
     // Instead of referenceMethod: reference images already rendered at the same cameras, frame i
     // compared with (*referenceImages)[i]. Lets `starnt bench` render the ground truth once per
     // scene rather than once per method. Needs at least `frames` images of the job's size.

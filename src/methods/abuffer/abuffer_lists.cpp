@@ -18,9 +18,13 @@ void ABufferLists::allocate(int width, int height, uint64_t capacity) {
     const size_t perNode = kABufferNodeBytes * (captureOrder_ ? 2 : 1);
     const size_t total = size_t(width) * size_t(height) * 4 + size_t(capacity) * perNode + 16;
     if (total > options_.abuffer.memoryCapBytes) {
-        throw Error("A-buffer needs " + std::to_string(total >> 20) + " MiB for " + std::to_string(capacity) +
-                    " fragments, over its memory cap of " + std::to_string(options_.abuffer.memoryCapBytes >> 20) +
-                    " MiB (raise MethodOptions::abuffer.memoryCapBytes, the CLI's --abuffer-cap-mib, or lower the resolution)");
+        auto mib = [](size_t bytes) {
+            char text[32];
+            std::snprintf(text, sizeof text, "%.3g", double(bytes) / 1048576.0);
+            return std::string(text);
+        };
+        throw Error("A-buffer needs " + mib(total) + " MiB for " + std::to_string(capacity) +
+                    " fragments, over its memory cap of " + mib(options_.abuffer.memoryCapBytes) + " MiB (raise MethodOptions::abuffer.memoryCapBytes, the CLI's --abuffer-cap-mib, or lower the resolution)");
     }
     if (width != width_ || height != height_) {
         heads_ = gl::Buffer(size_t(width) * size_t(height) * 4);
