@@ -359,14 +359,20 @@ TEST(TemporalCorrected, OrderedClosedFormWeighsByDepth) {
     got = behindOf({{glm::vec3(1.0f, 0.0f, 0.0f), 0.7f, 0.55f}, {glm::vec3(0.0f, 0.0f, 1.0f), 0.7f, 0.9f}}, exact, mean);
     EXPECT_LT(glm::length(got - exact), 0.5f * glm::length(mean - exact))
         << "ordered " << got.r << "," << got.b << " mean " << mean.r << "," << mean.b << " exact " << exact.r << "," << exact.b;
-    // No reference (nothing kept around the pixel): u = 0 everywhere, the order-free mean.
+    // No reference (nothing kept around the pixel: r = 1) or one behind every fragment (the view
+    // moved past it): u mirrored in front of it still orders them, nearer the exact composite than
+    // the order-free mean, where u = 0 in front of the reference gave that mean.
     std::vector<Fragment> all = {nearest, {glm::vec3(1.0f, 0.0f, 0.0f), 0.7f, 0.55f}, {glm::vec3(0.0f, 0.0f, 1.0f), 0.7f, 0.9f}};
     glm::vec4 sums(0.0f);
     float t = 1.0f;
     for (const Fragment& f : all) sums += glm::vec4(f.color * f.alpha, f.alpha), t *= 1.0f - f.alpha;
-    got = orderedClosedFormBehind(layer, nearest.depth, sums, t, behindMomentsOf(all, 1.0f), kBackground);
+    exact = compositeOver({all[1], all[2]}, kBackground);
     mean = closedFormBehind(layer, sums, t, kBackground);
-    for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(got[ch], mean[ch], 1e-5f);
+    for (float reference : {1.0f, 0.95f}) {
+        got = orderedClosedFormBehind(layer, nearest.depth, sums, t, behindMomentsOf(all, reference), kBackground);
+        EXPECT_LT(glm::length(got - exact), 0.5f * glm::length(mean - exact))
+            << "reference " << reference << ": ordered " << got.r << "," << got.b << " mean " << mean.r << "," << mean.b;
+    }
 }
 
 // Pass 3 of an interpolated frame of a tail-moment method sums the moments behind the reference
@@ -1296,29 +1302,60 @@ TEST(PackedLayers, CompositeClearsThePassThreeTargetsItRead) {
     interpolate(clearing.id(), true);
     EXPECT_EQ(readRgba(clearing.id(), w, h), readRgba(plain.id(), w, h)) << "the same image";
 
-    // Every texel of the five at its clear value (NeuralPasses::runPackedNearestAndSums' clears).
+    // The next frame's reference depth, made from this frame's nearest layers: the CPU reference
+    // of their depths (1 where none).
+    const int tilesX = (w + STARNT_ORDERED_REFERENCE_TILE - 1) / STARNT_ORDERED_REFERENCE_TILE;
+    const int tilesY = (h + STARNT_ORDERED_REFERENCE_TILE - 1) / STARNT_ORDERED_REFERENCE_TILE;
+    const std::vector<float> next = gl::readTextureFloats(temporal.behindReference(), tilesX, tilesY, 1);
+    std::vector<float> nearestDepths;
+    for (const glm::uvec4& layers : fresh[0]) {
+        float z = 1.0f;
+        unpackLayer(glm::uvec2(layers), z);
+        nearestDepths.push_back(z);
+    }
+    EXPECT_EQ(next, referenceDepthOnCpu(nearestDepths, w, h)) << "the reference from the packed layers";
+
+    // Every texel of the five at its clear value (NeuralPasses::runPackedNearestAndSums' clears);
+    // beside the third layer, the next reference where pass 3 wrote, the last one elsewhere.
     const auto cleared = readTargets();
     const glm::uvec4 emptyLayers(STARNT_PACKED_LAYER_EMPTY, 0u, STARNT_PACKED_LAYER_EMPTY, 0u);
-    size_t reached = 0, off = 0;
+    size_t reached = 0, off = 0, moved = 0;
     for (size_t i = 0; i < size_t(w * h); ++i) {
-        reached += fresh[0][i] != emptyLayers;
+        const bool wrote = fresh[0][i] != emptyLayers;
+        reached += wrote;
+        const size_t tile = size_t(int(i) / w / STARNT_ORDERED_REFERENCE_TILE) * size_t(tilesX) +
+                            size_t(int(i) % w / STARNT_ORDERED_REFERENCE_TILE);
+        const uint32_t reference = wrote ? glm::floatBitsToUint(next[tile]) : fresh[1][i].z;
+        moved += reference != fresh[1][i].z;
         off += cleared[0][i] != emptyLayers;
-        off += glm::uvec2(cleared[1][i]) != glm::uvec2(emptyLayers) || cleared[1][i].z != fresh[1][i].z;  // the reference stays
+        off += glm::uvec2(cleared[1][i]) != glm::uvec2(emptyLayers) || cleared[1][i].z != reference;
         off += cleared[2][i] != glm::uvec4(0u);                // sum a C, sum a (RGBA32F)
         off += cleared[3][i] != glm::uvec4(0u);                // sum a C u, sum a u (RGBA32F)
         off += glm::uvec2(cleared[4][i]) != glm::uvec2(0u);    // sum a u^2, sum -ln(1 - a) (RG32F)
     }
     EXPECT_GT(reached, size_t(w * h / 10)) << "pass 3 reaches a tenth of the pixels at least (430 of 3072 here)";
+    EXPECT_GT(moved, reached / 2) << "the real frame's reference (random depths here) is not the scene's";
     EXPECT_EQ(off, 0u) << "target values left after the clearing composite";
 
-    // The next pass 3 finds them clear and clears only its depth: what it writes equals the first.
+    // The next pass 3 finds them clear and clears only its depth: what it writes equals what a pass
+    // 3 writes after its own clears of the same state (the plain way, whose clear of the third
+    // layer then reaches the same pixels: clearThirdLayer).
     passes.targetsClearedByComposite();
     passes.runPackedNearestAndSums(t.frame, t.draw, temporal.behindReference());
-    EXPECT_EQ(readTargets(), fresh) << "a pass 3 over the targets the composite cleared";
-    // A real frame's passes write three of them: the pass after it clears them again.
+    const auto overCleared = readTargets();
+    passes.runPackedNearestAndSums(t.frame, t.draw, temporal.behindReference());
+    EXPECT_EQ(overCleared, readTargets()) << "a pass 3 over the targets the composite cleared";
+    EXPECT_NE(overCleared, fresh) << "with the new reference";
+    // A real frame's passes write three of them: the pass after it clears them again, everywhere,
+    // with the reference it is given at every pixel.
     passes.run(t.frame, t.draw, NeuralPasses::kDefaultPeelEpsilon, {w, h}, {w, h});
     passes.runPackedNearestAndSums(t.frame, t.draw, temporal.behindReference());
-    EXPECT_EQ(readTargets(), fresh) << "a pass 3 after a real frame's passes";
+    auto everywhere = overCleared;
+    for (size_t i = 0; i < size_t(w * h); ++i) {
+        everywhere[1][i].z = glm::floatBitsToUint(next[size_t(int(i) / w / STARNT_ORDERED_REFERENCE_TILE) * size_t(tilesX) +
+                                                       size_t(int(i) % w / STARNT_ORDERED_REFERENCE_TILE)]);
+    }
+    EXPECT_EQ(readTargets(), everywhere) << "a pass 3 after a real frame's passes";
 }
 
 // Whole methods: the frames of recommended's configuration with the composite clearing the

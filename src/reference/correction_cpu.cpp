@@ -197,9 +197,9 @@ glm::vec4 unpackLayer(const glm::uvec2& layer, float& z) {
 }
 
 float depthBehindReference(float z, float reference) {
-    if (!(reference < 1.0f)) return 0.0f;
-    return std::log(1.0f + std::max(keyedDepth(z) - reference, 0.0f) /
-                               (float(STARNT_TAIL_MOMENT_DEPTH_SCALE) * (1.0f - reference)));
+    const float scale = float(STARNT_TAIL_MOMENT_DEPTH_SCALE) * std::max(1.0f - reference, float(STARNT_ORDERED_MIN_REFERENCE_GAP));
+    const float d = keyedDepth(z) - reference;
+    return d >= 0.0f ? std::log(1.0f + d / scale) : -std::log(1.0f - d / scale);
 }
 
 std::vector<float> referenceDepthOnCpu(const std::vector<float>& depth, int width, int height) {

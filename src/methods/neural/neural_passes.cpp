@@ -157,7 +157,7 @@ void NeuralPasses::resize(int width, int height) {
     if (width == width_ && height == height_) return;
     width_ = width;
     height_ = height;
-    targetsClear_ = false;  // new textures
+    forgetTargets();  // new textures
     const bool compact = targets_ == NeuralOptions::Targets::Compact;
     const GLenum color = compact ? GL_RGBA16F : GL_RGBA32F, single = compact ? GL_R16F : GL_R32F;
     const GLenum layer = narrowLayers_ ? GL_RGB10_A2 : color;
@@ -208,7 +208,7 @@ void NeuralPasses::widenCountBesideBehind() {
     // (m2 / a - mean^2) needs it.
     countBesideBehind_ = true;
     colorCount_ = gl::Texture2D(GL_RG32F, width_, height_, GL_LINEAR);
-    targetsClear_ = false;  // a new texture
+    forgetTargets();  // a new texture
     makePass3Framebuffer();
     makeSumsFramebuffer();
     packedFb_.reset();
@@ -267,7 +267,7 @@ void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) 
 
 void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float peelEpsilon, Size2 pass2Size,
                        Size2 pass3Size, const std::function<GLuint()>& behindReference) {
-    targetsClear_ = false;  // pass 3 writes three of them, and the output may go into one
+    forgetTargets();  // pass 3 writes three of them (and pass 1 the depth), and the output may go into one
     runNearest(frame, draw);
     const Size2 full{width_, height_};
     pass2Size_ = pass2Size;
@@ -410,7 +410,7 @@ void NeuralPasses::prepareNearestAndSums() {
 }
 
 void NeuralPasses::runNearestAndSums(const FrameDesc& frame, const DrawCallback& draw, GLuint reference) {
-    targetsClear_ = false;  // its pass 3 writes three of them
+    forgetTargets();  // its pass 3 writes three of them, its pass 1 the depth
     runNearest(frame, draw);
     prepareNearestAndSums();
     if (tailMoments_) widenCountBesideBehind();
@@ -480,7 +480,8 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
         else allocatePackedNearest();
         packedFb_.reset();
         thirdLayerClearFb_.reset();
-        targetsClear_ = false;  // new textures
+        thirdLayerClearMarkedFb_.reset();
+        forgetTargets();  // new textures
     }
     if (tailMoments_) widenCountBesideBehind();
     if (!packedFb_.id()) {
@@ -500,8 +501,9 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
     // The last interpolated frame's composite wrote back the clear values wherever this pass wrote
     // (compositeClearsTargets()): only the depth, which marks those pixels, is cleared then.
     const bool clear = !compositeClears_ || !targetsClear_;
-    targetsClear_ = false;
-    if (clear && threeLayers_) clearThirdLayer(reference);
+    const bool marked = coverMarked_;
+    forgetTargets();
+    if (clear && threeLayers_) clearThirdLayer(reference, marked);
     glBindFramebuffer(GL_FRAMEBUFFER, packedFb_.id());
     glViewport(0, 0, width_, height_);
     const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1}, farDepth = 1.0f;
@@ -530,21 +532,38 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
     const gl::Program& pass3 = opaque_.clipInShader(pass3Packed_, width_, height_, width_, height_);
     MethodBase::runGeometryPass("pass3", pass3, frame, draw);
     resetPassState();
+    coverMarked_ = threeLayers_;
 }
 
-void NeuralPasses::clearThirdLayer(GLuint reference) {
+void NeuralPasses::clearThirdLayer(GLuint reference, bool onlyMarked) {
     if (!thirdLayerClear_.id()) {
         thirdLayerClear_ = gl::buildProgram("third_layer_clear", gl::embeddedSource("methods/common/fullscreen.vert.glsl"),
                                             gl::embeddedSource("methods/neural/temporal/third_layer_clear.frag.glsl"));
     }
-    if (!thirdLayerClearFb_.id()) thirdLayerClearFb_ = gl::makeFramebuffer({&thirdLayer_});
-    glBindFramebuffer(GL_FRAMEBUFFER, thirdLayerClearFb_.id());
+    // Where the last interpolated pass 3 marked the pixels it wrote (coverMarked_), only those hold
+    // anything but the clear value: the others keep their reference depth, as the composite that
+    // clears the targets leaves them, so both ways give the same frames bit for bit. The marks are
+    // the depth target's, tested against the far-plane triangle (GREATER: below 1 where written).
+    gl::FramebufferHandle& framebuffer = onlyMarked ? thirdLayerClearMarkedFb_ : thirdLayerClearFb_;
+    if (!framebuffer.id()) framebuffer = gl::makeFramebuffer({&thirdLayer_}, onlyMarked ? &nearestDepth_ : nullptr);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
     glViewport(0, 0, width_, height_);
-    glDisable(GL_DEPTH_TEST);
+    if (onlyMarked) {
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_GREATER);
+        glDepthMask(GL_FALSE);
+    } else {
+        glDisable(GL_DEPTH_TEST);
+    }
     glDisable(GL_BLEND);
     glUseProgram(thirdLayerClear_.id());
     gl::bindTexture(1, reference);  // third_layer_clear.frag.glsl's u_reference
     gl::drawFullscreenTriangle(emptyVao_);
+    if (onlyMarked) {
+        glDepthMask(GL_TRUE);  // (the depth clear that follows obeys the mask)
+        glDepthFunc(GL_LESS);
+        glDisable(GL_DEPTH_TEST);
+    }
 }
 
 void NeuralPasses::bindInputs(const gl::Program& program) const {

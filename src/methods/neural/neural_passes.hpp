@@ -267,11 +267,16 @@ private:
     // targetsClearedByComposite said so since the last runPackedNearestAndSums: it skips their
     // clears then. Every other pass into them and every reallocation of one of them resets it.
     bool targetsClear_ = false;
+    // Three layers: the last pass into the targets was runPackedNearestAndSums, whose depth target
+    // marks the pixels it wrote (below 1). Reset with targetsClear_.
+    bool coverMarked_ = false;
+    void forgetTargets() { targetsClear_ = coverMarked_ = false; }
     gl::Texture2D thirdLayer_;     // the third (threeLayers_) and the reference depth, allocated with packedLayers_
-    // The third layer's clear: no layer and the reference depth of `reference` (packed_nearest.h).
-    void clearThirdLayer(GLuint reference);
+    // The third layer's clear: no layer and the reference depth of `reference` (packed_nearest.h),
+    // everywhere or, `onlyMarked`, where the last pass 3 wrote (coverMarked_).
+    void clearThirdLayer(GLuint reference, bool onlyMarked);
     gl::Program thirdLayerClear_;  // third_layer_clear.frag.glsl, built on first need
-    gl::FramebufferHandle thirdLayerClearFb_;
+    gl::FramebufferHandle thirdLayerClearFb_, thirdLayerClearMarkedFb_;
     // A real frame's moments behind the reference (the first in packedNearest_, free then; the
     // second beside the count).
     SurfaceProgram pass3Behind_;

@@ -31,9 +31,13 @@ CorrectedFrames::CorrectedFrames(bool ordered, int layers)
         referenceTilesPass_ = buildTemporalPass("corrected_reference_tiles", "reference_depth.frag.glsl");
         referenceAroundPass_ = buildTemporalPass("corrected_reference", "reference_depth.frag.glsl", "#define STARNT_REFERENCE_AROUND\n");
     }
+    if (threeLayers_) {
+        referencePackedTilesPass_ = buildTemporalPass("corrected_reference_packed_tiles", "reference_depth.frag.glsl",
+                                                      "#define STARNT_REFERENCE_FROM_PACKED\n");
+    }
 }
 
-void CorrectedFrames::keepReference(GLuint depth, int width, int height) {
+void CorrectedFrames::keepReference(GLuint depth, int width, int height, bool packed) {
     const int tilesX = (width + STARNT_ORDERED_REFERENCE_TILE - 1) / STARNT_ORDERED_REFERENCE_TILE;
     const int tilesY = (height + STARNT_ORDERED_REFERENCE_TILE - 1) / STARNT_ORDERED_REFERENCE_TILE;
     if (reference_.width() != tilesX || reference_.height() != tilesY) {
@@ -44,7 +48,7 @@ void CorrectedFrames::keepReference(GLuint depth, int width, int height) {
         const gl::Program& program;
         GLuint source, target;
         int sourceWidth, sourceHeight;
-    } steps[] = {{referenceTilesPass_, depth, referenceTiles_.id(), width, height},
+    } steps[] = {{packed ? referencePackedTilesPass_ : referenceTilesPass_, depth, referenceTiles_.id(), width, height},
                  {referenceAroundPass_, referenceTiles_.id(), reference_.id(), tilesX, tilesY}};
     for (const auto& step : steps) {
         drawIntoTexture(framebuffer_, step.target, tilesX, tilesY);
@@ -157,6 +161,10 @@ void CorrectedFrames::compositePacked(const glm::mat4& newViewProj, GLuint packe
         throw Error("internal: the composite clears the five targets of three layers' pass 3 only");
     }
     const bool halfOutput = gl::textureInternalFormat(output) == GL_RGBA16F;  // before any binding (ES)
+    // The next interpolated frame's reference depth: this one's nearest layers, one frame behind the
+    // view where the real frame's is up to K - 1 behind (the composite reads this frame's reference
+    // beside the third layer, not from reference_; with clearTargets it writes the new one there).
+    if (threeLayers_) keepReference(packedNearest, width_, height_, true);
     if (!clearTargets.empty() && !compositePackedClears_.id()) {
         compositePackedClears_ = buildTemporalPass("correction_composite_packed_clears", "correction_composite.frag.glsl",
                                                    packedCompositeDefines(ordered_, 3) + "#define STARNT_CLEARS_TARGETS\n");

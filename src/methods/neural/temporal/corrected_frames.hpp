@@ -73,7 +73,10 @@ public:
                          GLuint behindMoment2 = 0, GLuint thirdLayer = 0, std::span<const GLuint> clearTargets = {});
     // Ordered only: the kept frame's reference depth (R32F, one texel per
     // STARNT_ORDERED_REFERENCE_TILE pixels squared; reference_depth.frag.glsl), which an
-    // interpolated frame's pass 3 reads; 0 before the first kept frame or when not ordered.
+    // interpolated frame's pass 3 reads; 0 before the first kept frame or when not ordered. With
+    // three layers every interpolated frame's compositePacked makes it again from its own nearest
+    // layers, for the next one (docs/DESIGN.md, "Corrected frames: the reference depth follows the
+    // interpolated frames").
     GLuint reference() const { return hasFrame_ ? reference_.id() : 0; }
     // Ordered only: the reference depth from this real frame's pass-1 `depth`, now (before its pass 3
     // sums the moments behind it, for infer_full's STARNT_CAPTURE_ORDERED); the capture then keeps
@@ -93,8 +96,9 @@ public:
     }
 
 private:
-    // Ordered only: the reference depth from a real frame's pass-1 `depth`.
-    void keepReference(GLuint depth, int width, int height);
+    // Ordered only: the reference depth from a real frame's pass-1 `depth` or, `packed`, from an
+    // interpolated frame's packed layers (three layers: the next interpolated frame's reference).
+    void keepReference(GLuint depth, int width, int height, bool packed = false);
     void bindComposite(GLuint nearestOrPacked, GLuint depth, GLuint sumAlphaColor,
                        GLuint transmittance, GLuint behindMoment1, GLuint behindMoment2);
     bool ordered_ = false;
@@ -104,6 +108,7 @@ private:
     gl::Program capture_, composite_, compositePacked_;
     gl::Program compositePackedClears_;  // compositePacked with clearTargets (STARNT_CLEARS_TARGETS), built on first need
     gl::Program referenceTilesPass_, referenceAroundPass_;  // ordered only
+    gl::Program referencePackedTilesPass_;                   // three layers only
     gl::Texture2D referenceTiles_, reference_;
     void setCompositeUniforms(const gl::Program& program, const glm::mat4& newViewProj, const OpaqueScene& background,
                               bool halfOutput) const;

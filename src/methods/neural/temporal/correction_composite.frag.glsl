@@ -170,7 +170,8 @@ void main() {
 #ifdef STARNT_CLEARS_TARGETS
     const uvec4 emptyLayers = uvec4(STARNT_PACKED_LAYER_EMPTY, 0u, STARNT_PACKED_LAYER_EMPTY, 0u);
     o_clearPackedLayers = emptyLayers;
-    o_clearThirdLayer = uvec4(emptyLayers.xy, thirdTexel.zw);  // the reference depth stays
+    // Beside the empty layer, the next frame's reference depth (made from this frame's layers).
+    o_clearThirdLayer = uvec4(emptyLayers.xy, floatBitsToUint(texelFetch(u_reference, p / STARNT_ORDERED_REFERENCE_TILE, 0).r), 0u);
     o_clearSumAlphaColor = vec4(0.0);
     o_clearBehindMoment1 = vec4(0.0);
     o_clearBehindMoment2 = vec4(0.0);

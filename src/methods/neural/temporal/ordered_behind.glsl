@@ -23,11 +23,15 @@
 float opticalDepthOf(float alpha) { return -log(max(1.0 - alpha, float(STARNT_ORDERED_MIN_OPENNESS))); }
 float transmittanceOfOpticalDepth(float depth) { return exp(-depth); }
 
-// u of a fragment at window depth z behind the reference r (0 where no reference: r = 1).
+// u of a fragment at window depth z behind the reference r, and mirrored (negative) in front of it:
+// a reference the view has moved past (new surfaces in front of it, or r = 1 where the frame it
+// came from had nothing) still orders every fragment, where u = 0 in front of it collapsed them
+// onto one depth (docs/DESIGN.md, "Corrected frames: the reference depth follows the interpolated
+// frames").
 float depthBehindReference(float z, float reference) {
-    if (!(reference < 1.0)) return 0.0;
-    return log(1.0 + max(keyedDepth(z) - reference, 0.0) /
-                         (float(STARNT_TAIL_MOMENT_DEPTH_SCALE) * (1.0 - reference)));
+    float scale = float(STARNT_TAIL_MOMENT_DEPTH_SCALE) * max(1.0 - reference, float(STARNT_ORDERED_MIN_REFERENCE_GAP));
+    float d = keyedDepth(z) - reference;
+    return d >= 0.0 ? log(1.0 + d / scale) : -log(1.0 - d / scale);
 }
 
 // `nearest` = C1, a1 (a1 < 1 - STARNT_TEMPORAL_MIN_TRANSMITTANCE), `sums` = (sum a C, sum a), `t` =

@@ -31,6 +31,11 @@
 // 2.7 ms a real frame at 720p on llvmpipe for every pixel).
 #define STARNT_ORDERED_REFERENCE_TILE 16
 #define STARNT_ORDERED_REFERENCE_STRIDE 4
+// depthBehindReference's depth scale is STARNT_TAIL_MOMENT_DEPTH_SCALE x (1 - r), at least that
+// many times this: a reference on the far plane (r = 1, nothing there in the frame it came from)
+// still orders the fragments in front of it, by u ~ -ln(1 - z), the log of the view distance
+// (docs/DESIGN.md, "Corrected frames: the reference depth follows the interpolated frames").
+#define STARNT_ORDERED_MIN_REFERENCE_GAP 0.000244140625  // 2^-12
 // The rounding of the nearest layer's alpha that the ordered closed form allows for when it tells
 // a spread of fragments behind from one (ordered_behind.glsl): four steps of the packed layer's
 // 11-bit alpha, above a 16-bit float's rounding of any alpha.
