@@ -155,15 +155,22 @@ namespace {
 
 // The composite both tail models share: the two peeled layers exactly, the tail exactly for N <= 3
 // (the third fragment follows from the sums), `deepTail` for N > 3, then the background.
+// The tail's fragment count is N less the layers held (neural_inputs.glsl's tailCount): N - 2 where
+// depths differ, more where layers are coplanar and pass 2 found none; then, with two or more
+// left, the order-free closed form instead of `deepTail`.
 template <typename DeepTail>
 glm::vec3 compositeThreeLayersExact(const PixelSums& s, glm::vec3 background, DeepTail deepTail) {
     glm::vec3 tail(0.0f);
-    if (s.count < 2.5f) {
+    const float n = s.count - (s.a1 > 0.0f ? 1.0f : 0.0f) - (s.a2 > 0.0f ? 1.0f : 0.0f);
+    if (n < 0.5f) {
         tail = glm::vec3(0.0f);
-    } else if (s.count < 3.5f) {
+    } else if (n < 1.5f) {
         tail = glm::max(tailAlphaColor(s), glm::vec3(0.0f));
-    } else {
+    } else if (s.a2 > 0.0f) {
         tail = deepTail(starntFeatures(s));
+    } else {
+        const std::array<float, kStarntInputs> x = starntFeatures(s);  // t_tail, N, C_tilde
+        tail = (1.0f - x[0]) * glm::vec3(x[2], x[3], x[4]);
     }
     return exactTwoLayers(s) + twoLayerTransmittance(s) * tail + s.transmittance * background;
 }

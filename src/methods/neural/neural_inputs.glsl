@@ -149,10 +149,19 @@ void starntInputs(PixelSums s, out float x[5]) {
 // The composite of the three-pass methods (starnt, hybrid, starnt-residual; CPU reference
 // compositeThreeLayersExact in src/train/features.cpp): the two peeled layers exactly, the tail exactly
 // for N <= 3 (the third fragment follows from the sums), `deepTail` for N > 3, then the background.
+// The tail counts the fragments the two peeled layers do not hold: N - 2 wherever depths differ, but
+// more where layers are coplanar (pass 2 peels behind pass 1's depth, so it finds nothing among
+// fragments at that same depth; pass 3 sums them all). There, with no second layer and two or
+// more fragments left, the deep tail is the order-free closed form: `deepTail` (the network, which
+// never saw a pixel without a second layer and a tail: networkApplies) does not apply
+// (docs/DESIGN.md, "Coplanar layers").
+float tailCount(PixelSums s) { return s.count - (s.a1 > 0.0 ? 1.0 : 0.0) - (s.a2 > 0.0 ? 1.0 : 0.0); }
 vec3 threeLayerComposite(PixelSums s, vec3 deepTail, vec3 background) {
     vec3 tail;
-    if (s.count < 2.5) tail = vec3(0.0);
-    else if (s.count < 3.5) tail = max(tailPremultiplied(s), vec3(0.0));
-    else tail = deepTail;
+    float n = tailCount(s);
+    if (n < 0.5) tail = vec3(0.0);
+    else if (n < 1.5) tail = max(tailPremultiplied(s), vec3(0.0));
+    else if (s.a2 > 0.0) tail = deepTail;
+    else tail = (1.0 - tailTransmittance(s)) * tailMeanColor(s);
     return exactTwo(s) + twoLayerTransmittance(s) * tail + s.transmittance * background;
 }

@@ -10,7 +10,7 @@
 
 #include "methods/common/background.glsl"
 
-bool networkApplies(PixelSums s) { return s.count >= 3.5; }
+bool networkApplies(PixelSums s) { return s.count >= 3.5 && s.a2 > 0.0; }  // threeLayerComposite's deep tail
 
 // C_m of this pixel, computed once: networkInputs and compositePixel both need it (each call reads
 // two moment texels and evaluates the weight's integrals).

@@ -10,7 +10,7 @@
 
 #include "methods/common/background.glsl"
 
-bool networkApplies(PixelSums s) { return s.count >= 3.5; }
+bool networkApplies(PixelSums s) { return s.count >= 3.5 && s.a2 > 0.0; }  // threeLayerComposite's deep tail
 
 void networkInputs(PixelSums s, out float x[STARNT_NN_INPUTS]) { starntInputs(s, x); }
 
