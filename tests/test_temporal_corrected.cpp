@@ -1262,7 +1262,10 @@ TEST(PackedLayers, CompositeClearsThePassThreeTargetsItRead) {
     std::vector<glm::vec4> grey(real.nearest.size(), glm::vec4(0.5f, 0.5f, 0.5f, 1.0f));
     gl::Texture2D rc = uploadRgba(grey, w, h), rd = uploadDepth(real.depth, w, h), rn = uploadRgba(real.nearest, w, h),
                   rs = uploadRgba(real.sums, w, h);
-    TemporalFrames temporal(correctedOptions(), true, 3);
+    // K = 4: the interpolated frame is not its group's last, so it makes the next one's reference.
+    MethodOptions options = correctedOptions();
+    options.neural.temporalInterval = 4;
+    TemporalFrames temporal(options, true, 3);
     const glm::mat4 oldVP = t.frame.projection * t.frame.view;
     ASSERT_TRUE(temporal.beginFrame(w, h));
     temporal.endRealFrame(rc.id(), {rn.id(), rd.id(), rs.id(), 0u}, oldVP, w, h, OpaqueScene(kBackground));

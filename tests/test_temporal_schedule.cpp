@@ -50,6 +50,20 @@ TEST(TemporalSchedule, FixedIntervalPatternIsExact) {
     EXPECT_EQ(eight.groupInterval(), 8);
 }
 
+// lastOfGroup: the frame just scheduled is followed by a real one ("L" where it says so).
+TEST(TemporalSchedule, LastOfGroupPrecedesEveryRealFrame) {
+    for (int k : {1, 2, 3, 8}) {
+        TemporalSchedule s(fixedInterval(k));
+        std::string frames, last;
+        for (int i = 0; i < 2 * k + 1; ++i) {
+            frames += s.nextFrameIsReal() ? 'R' : 'i';
+            last += s.lastOfGroup() ? 'L' : '.';
+        }
+        // Every frame before an R is the last of its group, and no other one is.
+        for (size_t i = 0; i + 1 < frames.size(); ++i) EXPECT_EQ(last[i] == 'L', frames[i + 1] == 'R') << k << ": " << frames << " " << last;
+    }
+}
+
 TEST(TemporalSchedule, FixedIgnoresMeasurements) {
     TemporalSchedule s(fixedInterval(3));
     s.recordRealFrameMs(100.0);  // far below any target: auto would say 1

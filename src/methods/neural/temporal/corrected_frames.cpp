@@ -148,7 +148,7 @@ void CorrectedFrames::composite(const glm::mat4& newViewProj, GLuint nearest, GL
 void CorrectedFrames::compositePacked(const glm::mat4& newViewProj, GLuint packedNearest, GLuint coverDepth,
                                       GLuint sumAlphaColor, GLuint transmittance, const OpaqueScene& background,
                                       GLuint output, GLuint behindMoment1, GLuint behindMoment2, GLuint thirdLayer,
-                                      std::span<const GLuint> clearTargets) {
+                                      std::span<const GLuint> clearTargets, bool keepNextReference) {
     if (!hasFrame_) throw Error("internal: a corrected frame before any real frame was captured");
     if (gl::textureInternalFormat(packedNearest) != (twoLayers_ ? GL_RGBA32UI : GL_RGBA32F)) {
         throw Error(twoLayers_ ? "internal: the packed two layers must be an RGBA32UI texture"
@@ -164,7 +164,7 @@ void CorrectedFrames::compositePacked(const glm::mat4& newViewProj, GLuint packe
     // The next interpolated frame's reference depth: this one's nearest layers, one frame behind the
     // view where the real frame's is up to K - 1 behind (the composite reads this frame's reference
     // beside the third layer, not from reference_; with clearTargets it writes the new one there).
-    if (threeLayers_) keepReference(packedNearest, width_, height_, true);
+    if (threeLayers_ && keepNextReference) keepReference(packedNearest, width_, height_, true);
     if (!clearTargets.empty() && !compositePackedClears_.id()) {
         compositePackedClears_ = buildTemporalPass("correction_composite_packed_clears", "correction_composite.frag.glsl",
                                                    packedCompositeDefines(ordered_, 3) + "#define STARNT_CLEARS_TARGETS\n");

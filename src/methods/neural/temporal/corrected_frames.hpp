@@ -67,10 +67,13 @@ public:
     // `clearTargets` (three layers only; NeuralPasses::compositeClearsTargets): the composite
     // writes the clear values of pass 3 into these (NeuralPasses::packedTargets: the packed layers,
     // the third layer, the sums and the two moment targets, the textures it reads) at every pixel
-    // it shades; empty: it writes nothing but the output.
+    // it shades; empty: it writes nothing but the output. `keepNextReference` (three layers): make
+    // reference() again from this frame's layers, for a next interpolated frame; false when the
+    // next frame is real (what the composite then writes beside the third layer is never read).
     void compositePacked(const glm::mat4& newViewProj, GLuint packedNearest, GLuint coverDepth, GLuint sumAlphaColor,
                          GLuint transmittance, const OpaqueScene& background, GLuint output, GLuint behindMoment1 = 0,
-                         GLuint behindMoment2 = 0, GLuint thirdLayer = 0, std::span<const GLuint> clearTargets = {});
+                         GLuint behindMoment2 = 0, GLuint thirdLayer = 0, std::span<const GLuint> clearTargets = {},
+                         bool keepNextReference = true);
     // Ordered only: the kept frame's reference depth (R32F, one texel per
     // STARNT_ORDERED_REFERENCE_TILE pixels squared; reference_depth.frag.glsl), which an
     // interpolated frame's pass 3 reads; 0 before the first kept frame or when not ordered. With

@@ -66,11 +66,14 @@ void TemporalFrames::interpolate(const glm::mat4& viewProj, const TemporalPassTa
         if (corrects()) {
             // Corrected: the closed form behind the fresh nearest layer plus the kept correction.
             if (passes.packedNearest) {
+                // The next frame's reference depth only where a next interpolated frame reads it: the
+                // frame after a group's last is real, and makes its own (K = 2: never).
                 corrected_->compositePacked(viewProj, passes.packedNearest, passes.nearestDepth, passes.sumAlphaColor,
                                             passes.transmittance, background, outputTexture, passes.behindMoment1,
                                             passes.behindMoment2, passes.thirdLayer,
                                             passes.clearByComposite[0] ? std::span<const GLuint>(passes.clearByComposite)
-                                                                       : std::span<const GLuint>());
+                                                                       : std::span<const GLuint>(),
+                                            !schedule_.lastOfGroup());
             } else {
                 corrected_->composite(viewProj, passes.nearest, passes.nearestDepth, passes.sumAlphaColor, passes.transmittance,
                                       background, outputTexture, passes.behindMoment1, passes.behindMoment2);

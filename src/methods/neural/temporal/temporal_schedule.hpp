@@ -44,6 +44,8 @@ public:
     int interval() const;
     // The interval of the group the current frame belongs to (0 before the first frame).
     int groupInterval() const { return groupInterval_; }
+    // The current frame is its group's last: the next one is real (unless a reset intervenes).
+    bool lastOfGroup() const { return started_ && framesIntoGroup_ + 1 >= groupInterval_; }
     // Mean real- and interpolated-frame times used by auto (0 when nothing was measured yet).
     double averageRealFrameMs() const { return real_.mean(); }
     double averageInterpolatedFrameMs() const { return interpolated_.mean(); }
