@@ -158,6 +158,7 @@ TEST(Misuse, EngineSamplersDiscardAndLogicOpDoNotChangeTheImage) {
     glSamplerParameteri(sampler, GL_TEXTURE_WRAP_S, GL_REPEAT);
     for (auto& [name, options] : everyMethod()) {
         auto method = createMethod(name, SceneGpu::surfaceShader(), options);
+        EXPECT_EQ(method->name(), name);
         std::vector<std::vector<glm::vec4>> undisturbed;
         for (int i = 0; i < 2; ++i) undisturbed.push_back(renderOnce(*method, c));
         method->resetHistory();

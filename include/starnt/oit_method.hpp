@@ -97,7 +97,7 @@ struct FrameDesc {
 class OitMethod {
 public:
     virtual ~OitMethod() = default;
-    virtual std::string name() const = 0;
+    virtual std::string name() const = 0;  // the name createMethod was given ("recommended" included)
     virtual void render(const FrameDesc& frame, const DrawCallback& draw) = 0;
     // Valid until the next render(); the name may change from frame to frame.
     virtual GLname outputTexture() const = 0;
