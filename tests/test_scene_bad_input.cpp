@@ -143,6 +143,9 @@ TEST(SceneBadInput, EmptySceneHasNoRenderableTriangles) {
 TEST(SceneBadInput, AllZeroAreaTriangles) {
     const std::string msg = loadError(oneTriangle({0, 0, 0, 1, 1, 1, 2, 2, 2}), "line.glb");
     EXPECT_CONTAINS(msg, "scene has no renderable triangles");
+    EXPECT_CONTAINS(msg, "its 1 triangle is of zero area at the scene's scale");
+    // Not zero in exact terms, but a sliver 1 unit high and 1e18 long: nothing a float can rasterise.
+    EXPECT_CONTAINS(loadError(oneTriangle({0, 0, 0, 1e18f, 0, 0, 0, 1, 0}), "sliver.glb"), "of zero area at the scene's scale");
     EXPECT_CONTAINS(loadError(oneTriangle({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 0, 1}), "rep.glb"),
                     "scene has no renderable triangles");
 }

@@ -235,7 +235,13 @@ size_t validateScene(Scene& scene, const std::string& source) {
     scene.meshes.erase(std::remove_if(scene.meshes.begin(), scene.meshes.end(),
                                       [](const Mesh& m) { return m.indices.empty(); }),
                        scene.meshes.end());
-    if (scene.meshes.empty()) throw Error(source + ": scene has no renderable triangles");
+    if (scene.meshes.empty()) {
+        // Say why when triangles were there: all of them too thin for the scene's own extent.
+        throw Error(source + ": scene has no renderable triangles" +
+                    (removed > 0 ? " (its " + std::to_string(removed) + " triangle" + (removed == 1 ? " is" : "s are") +
+                                       " of zero area at the scene's scale: twice the area at most 1e-12 x its extent squared)"
+                                 : std::string()));
+    }
     if (removed > 0)
         detail::warn(source + ": removed " + std::to_string(removed) + " zero-area triangle" +
                      (removed == 1 ? "" : "s"));
