@@ -185,6 +185,164 @@ TEST(Misuse, EngineSamplersDiscardAndLogicOpDoNotChangeTheImage) {
     glDeleteSamplers(1, &sampler);
 }
 
+// More state engines leave set, each of which changed an image before the methods guarded it: an
+// unpack skip (Mesa applies it to glClearNamedBufferData's one value: the A-buffer's cleared heads
+// were read past the value, MSE 0.115 or a 45 GB pool), a line offset (llvmpipe offsets filled
+// triangles by it: the neural methods' MSE x13-62), a query buffer (peel's occlusion results went
+// into it: MSE 0.043). The engine's values are there after render().
+TEST(Misuse, EngineUnpackSkipsLineOffsetAndQueryBufferDoNotChangeTheImage) {
+    test::TestScene c(makeBuiltinScene("tubes", 3), 48, 32, 30.0f, 15.0f, kBackground);
+    const bool desktop = epoxy_is_desktop_gl();
+    GLuint queryBuffer = 0;
+    if (desktop) {
+        glCreateBuffers(1, &queryBuffer);
+        glNamedBufferStorage(queryBuffer, 64, nullptr, GL_DYNAMIC_STORAGE_BIT);
+    }
+    for (auto& [name, options] : everyMethod()) {
+        auto method = createMethod(name, SceneGpu::surfaceShader(), options);
+        std::vector<std::vector<glm::vec4>> undisturbed;
+        for (int i = 0; i < 2; ++i) undisturbed.push_back(renderOnce(*method, c));
+        method->resetHistory();
+        for (int i = 0; i < 2; ++i) {
+            glPixelStorei(GL_UNPACK_SKIP_PIXELS, 2);
+            glPixelStorei(GL_UNPACK_SKIP_ROWS, 3);
+            glPixelStorei(GL_PACK_SKIP_PIXELS, 1);
+            if (desktop) {
+                glEnable(GL_POLYGON_OFFSET_LINE);
+                glEnable(GL_POLYGON_OFFSET_POINT);
+                glPolygonOffset(5.0f, 5.0f);
+                glBindBuffer(GL_QUERY_BUFFER, queryBuffer);
+            }
+            const auto disturbed = renderOnce(*method, c);  // (its read-back packs with the skip set too)
+            GLint skipPixels = 0, skipRows = 0, packSkip = 0, boundQueryBuffer = 0;
+            glGetIntegerv(GL_UNPACK_SKIP_PIXELS, &skipPixels);
+            glGetIntegerv(GL_UNPACK_SKIP_ROWS, &skipRows);
+            glGetIntegerv(GL_PACK_SKIP_PIXELS, &packSkip);
+            if (desktop) glGetIntegerv(GL_QUERY_BUFFER_BINDING, &boundQueryBuffer);
+            glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
+            glPixelStorei(GL_UNPACK_SKIP_ROWS, 0);
+            glPixelStorei(GL_PACK_SKIP_PIXELS, 0);
+            if (desktop) {
+                glDisable(GL_POLYGON_OFFSET_LINE);
+                glDisable(GL_POLYGON_OFFSET_POINT);
+                glPolygonOffset(0.0f, 0.0f);
+                glBindBuffer(GL_QUERY_BUFFER, 0);
+            }
+            EXPECT_LE(largestDifference(disturbed, undisturbed[i]), 1e-6f) << name << ", frame " << i;
+            EXPECT_EQ(takeGlError(), GLenum(GL_NO_ERROR)) << name;
+            EXPECT_EQ(skipPixels, 2) << name;
+            EXPECT_EQ(skipRows, 3) << name;
+            EXPECT_EQ(packSkip, 1) << name;
+            if (desktop) EXPECT_EQ(GLuint(boundQueryBuffer), queryBuffer) << name;
+        }
+    }
+    if (desktop) glDeleteBuffers(1, &queryBuffer);
+}
+
+// A draw callback that throws: the timing hook's calls stay nested (endGeometry, then endPass), so
+// a hook that brackets the draws with a query does not begin its next frame inside it.
+TEST(Misuse, AThrowingCallbackClosesTheHooksBrackets) {
+    test::TestScene c(makeBuiltinScene("tubes", 3), 48, 32, 30.0f, 15.0f, kBackground);
+    struct Hook final : PassTimingHook {
+        std::vector<std::string> open;  // "pass" / "geometry", innermost last
+        bool nested = true;
+        void beginPass(const std::string&) override { open.push_back("pass"); }
+        void endPass() override { close("pass"); }
+        void beginGeometry(const std::string&) override { open.push_back("geometry"); }
+        void endGeometry() override { close("geometry"); }
+        void close(const char* what) {
+            nested = nested && !open.empty() && open.back() == what;
+            if (!open.empty()) open.pop_back();
+        }
+    };
+    for (const std::string name : {"wboit", "peel", "starnt-d", "recommended"}) {
+        auto method = createMethod(name, SceneGpu::surfaceShader(), MethodOptions{});
+        for (int call = 1; call <= 3; ++call) {
+            Hook hook;
+            FrameDesc f = c.frame();
+            f.timing = &hook;
+            int calls = 0;
+            std::string error;
+            try {
+                method->render(f, [&](const GeometryPass& pass) {
+                    if (++calls == call) throw std::runtime_error("engine failure");
+                    c.gpu->callback(f.view, f.projection, {})(pass);
+                });
+            } catch (const std::runtime_error& e) {
+                error = e.what();
+            }
+            if (calls < call) continue;  // the method draws fewer times
+            EXPECT_NE(error.find("engine failure"), std::string::npos) << name;
+            EXPECT_TRUE(hook.nested) << name << ", throwing on draw " << call;
+            EXPECT_TRUE(hook.open.empty()) << name << ", throwing on draw " << call << ": " << hook.open.size() << " left open";
+            method->resetHistory();
+        }
+    }
+}
+
+// GL runs one occlusion query at a time: with the engine's active, peel (which counts each layer's
+// samples with one) says so instead of raising a GL error on every layer and ending the engine's.
+TEST(Misuse, PeelRefusesAnEnginesActiveOcclusionQuery) {
+    test::TestScene c(makeBuiltinScene("tubes", 3), 48, 32, 30.0f, 15.0f, kBackground);
+    auto method = createMethod("peel", SceneGpu::surfaceShader(), MethodOptions{});
+    const auto expected = renderOnce(*method, c);
+    GLuint query = 0;
+    glGenQueries(1, &query);
+    glBeginQuery(GL_ANY_SAMPLES_PASSED, query);
+    const FrameDesc f = c.frame();
+    const std::string error = test::errorOf([&] { method->render(f, c.gpu->callback(f.view, f.projection, {})); });
+    EXPECT_NE(error.find("GL_ANY_SAMPLES_PASSED query is active"), std::string::npos) << error;
+    glEndQuery(GL_ANY_SAMPLES_PASSED);  // the engine's query is still its own to end
+    EXPECT_EQ(takeGlError(), GLenum(GL_NO_ERROR));
+    glDeleteQueries(1, &query);
+    EXPECT_LE(largestDifference(renderOnce(*method, c), expected), 1e-6f);
+}
+
+// A method used with another context current (one that shares nothing with the method's): an
+// error before any draw, not GL errors or another context's objects touched by coincident names.
+TEST(Misuse, AnotherContextCurrentIsAnError) {
+    test::TestScene c(makeBuiltinScene("tubes", 3), 48, 32, 30.0f, 15.0f, kBackground);
+    const EGLDisplay display = eglGetCurrentDisplay();
+    const EGLContext context = eglGetCurrentContext();
+    const EGLSurface draw = eglGetCurrentSurface(EGL_DRAW), read = eglGetCurrentSurface(EGL_READ);
+    ASSERT_NE(context, EGL_NO_CONTEXT) << "the test context is EGL";
+    EGLint configId = 0, clientType = 0;
+    eglQueryContext(display, context, EGL_CONFIG_ID, &configId);
+    eglQueryContext(display, context, EGL_CONTEXT_CLIENT_TYPE, &clientType);
+    EGLConfig config = EGL_NO_CONFIG_KHR;
+    EGLint found = 0;
+    const EGLint byId[] = {EGL_CONFIG_ID, configId, EGL_NONE};
+    if (configId == 0 || !eglChooseConfig(display, byId, &config, 1, &found) || found == 0) config = EGL_NO_CONFIG_KHR;
+    const bool es = clientType == EGL_OPENGL_ES_API;
+    ASSERT_TRUE(eglBindAPI(EGLenum(clientType)));
+    const std::vector<EGLint> attribs = es ? std::vector<EGLint>{EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 2, EGL_NONE}
+                                           : std::vector<EGLint>{EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                                                                 EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    const EGLContext other = eglCreateContext(display, config, EGL_NO_CONTEXT, attribs.data());
+    ASSERT_NE(other, EGL_NO_CONTEXT);
+    for (const std::string name : {"wboit", "peel", "recommended"}) {
+        auto method = createMethod(name, SceneGpu::surfaceShader(), MethodOptions{});
+        const auto expected = renderOnce(*method, c);
+        const FrameDesc f = c.frame();
+        const DrawCallback drawScene = c.gpu->callback(f.view, f.projection, {});
+        ASSERT_TRUE(eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, other));
+        // Names in the other context that coincide with the method's.
+        std::vector<GLuint> buffers(64);
+        glGenBuffers(GLsizei(buffers.size()), buffers.data());
+        for (GLuint b : buffers) glBindBuffer(GL_ARRAY_BUFFER, b);
+        glBindBuffer(GL_ARRAY_BUFFER, 0);
+        const std::string error = test::errorOf([&] { method->render(f, drawScene); });
+        EXPECT_NE(error.find("not the one this method was created in"), std::string::npos) << name << ": " << error;
+        EXPECT_EQ(takeGlError(), GLenum(GL_NO_ERROR)) << name << ": in the other context";
+        glDeleteBuffers(GLsizei(buffers.size()), buffers.data());
+        ASSERT_TRUE(eglMakeCurrent(display, draw, read, context));
+        method->resetHistory();  // (the refused frame aborted: the next one is real again)
+        EXPECT_LE(largestDifference(renderOnce(*method, c), expected), 1e-6f) << name << ": back in its own context";
+        EXPECT_EQ(takeGlError(), GLenum(GL_NO_ERROR)) << name;
+    }
+    eglDestroyContext(display, other);
+}
+
 // The suite's GL tests fail on any GL error raised while they run (test_support.cpp, KHR_debug):
 // the watch itself sees an error provoked on purpose.
 TEST(Misuse, TheSuiteSeesGlErrors) {

@@ -1,5 +1,6 @@
 #include "gl/gl_util.hpp"
 
+#include <atomic>
 #include <dlfcn.h>
 
 #include <initializer_list>
@@ -192,12 +193,59 @@ void bindTexture(GLuint unit, GLuint texture) {
     }
 }
 
+ContextToken::ContextToken() : buffer_(4) {
+    static std::atomic<unsigned long long> next{0};
+    label_ = "starnt context token " + std::to_string(next++);
+    glObjectLabel(GL_BUFFER, buffer_.id(), GLsizei(label_.size()), label_.c_str());
+}
+
+bool ContextToken::current() const {
+    if (!glIsBuffer(buffer_.id())) return false;  // no GL error for a name that is not a buffer here
+    char label[64] = {};
+    GLsizei length = 0;
+    glGetObjectLabel(GL_BUFFER, buffer_.id(), GLsizei(sizeof label), &length, label);
+    return std::string(label, size_t(std::max<GLsizei>(length, 0))) == label_;
+}
+
+PixelStoreDefaults::PixelStoreDefaults(Direction direction, GLint alignment) : direction_(direction) {
+    const bool pack = direction == Pack;
+    // Every parameter of the direction, with its default; ES 3.2 lacks the byte-order ones and,
+    // for packing, the image parameters.
+    std::vector<std::pair<GLenum, GLint>> defaults =
+        pack ? std::vector<std::pair<GLenum, GLint>>{{GL_PACK_ROW_LENGTH, 0}, {GL_PACK_SKIP_ROWS, 0}, {GL_PACK_SKIP_PIXELS, 0},
+                                                     {GL_PACK_ALIGNMENT, alignment}}
+             : std::vector<std::pair<GLenum, GLint>>{{GL_UNPACK_ROW_LENGTH, 0}, {GL_UNPACK_IMAGE_HEIGHT, 0}, {GL_UNPACK_SKIP_ROWS, 0},
+                                                     {GL_UNPACK_SKIP_PIXELS, 0}, {GL_UNPACK_SKIP_IMAGES, 0}, {GL_UNPACK_ALIGNMENT, alignment}};
+    if (!isEs()) {
+        if (pack) {
+            defaults.insert(defaults.end(), {{GL_PACK_IMAGE_HEIGHT, 0}, {GL_PACK_SKIP_IMAGES, 0}, {GL_PACK_SWAP_BYTES, GL_FALSE}, {GL_PACK_LSB_FIRST, GL_FALSE}});
+        } else {
+            defaults.insert(defaults.end(), {{GL_UNPACK_SWAP_BYTES, GL_FALSE}, {GL_UNPACK_LSB_FIRST, GL_FALSE}});
+        }
+    }
+    for (const auto& [name, value] : defaults) {
+        GLint current = 0;
+        glGetIntegerv(name, &current);
+        if (current == value) continue;
+        saved_.emplace_back(name, current);
+        glPixelStorei(name, value);
+    }
+    glGetIntegerv(pack ? GL_PIXEL_PACK_BUFFER_BINDING : GL_PIXEL_UNPACK_BUFFER_BINDING, &buffer_);
+    if (buffer_ != 0) glBindBuffer(pack ? GL_PIXEL_PACK_BUFFER : GL_PIXEL_UNPACK_BUFFER, 0);
+}
+
+PixelStoreDefaults::~PixelStoreDefaults() {
+    for (const auto& [name, value] : saved_) glPixelStorei(name, value);
+    if (buffer_ != 0) glBindBuffer(direction_ == Pack ? GL_PIXEL_PACK_BUFFER : GL_PIXEL_UNPACK_BUFFER, GLuint(buffer_));
+}
+
 void fillBufferUint(const Buffer& buffer, uint32_t value) {
     if (isEs()) {
         const std::vector<uint32_t> words(buffer.bytes() / 4, value);
         glBindBuffer(GL_COPY_WRITE_BUFFER, buffer.id());
         glBufferSubData(GL_COPY_WRITE_BUFFER, 0, GLsizeiptr(words.size() * 4), words.data());
     } else {
+        const PixelStoreDefaults unpack(PixelStoreDefaults::Unpack);
         glClearNamedBufferData(buffer.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &value);
     }
 }
@@ -226,7 +274,7 @@ void copyBuffer(GLuint source, GLuint destination, size_t bytes) {
 }
 
 void readTexture(GLuint texture, int width, int height, GLenum format, GLenum type, void* out, size_t bytes) {
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    const PixelStoreDefaults pack(PixelStoreDefaults::Pack);
     if (!isEs()) {
         glGetTextureImage(texture, 0, format, type, GLsizei(bytes), out);
         return;
@@ -259,6 +307,7 @@ std::vector<float> readTextureFloats(GLuint texture, int width, int height, int 
 }
 
 void uploadTexture(GLuint texture, int width, int height, GLenum format, GLenum type, const void* pixels) {
+    const PixelStoreDefaults unpack(PixelStoreDefaults::Unpack);
     if (isEs()) {
         glBindTexture(GL_TEXTURE_2D, texture);
         glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, format, type, pixels);

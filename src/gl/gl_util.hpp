@@ -105,6 +105,20 @@ private:
     size_t bytes_ = 0;
 };
 
+// Which context (share group) made an object set: a 4-byte buffer labelled with a name unique in the
+// process. `current()` is true when the current context sees that buffer under that label, so a
+// method used with another context current is refused instead of touching that context's objects
+// by coincidence of names (docs/INTEGRATION.md, "Misuse").
+class ContextToken {
+public:
+    ContextToken();
+    bool current() const;
+
+private:
+    Buffer buffer_;
+    std::string label_;
+};
+
 // A framebuffer with the given colour attachments (in order) and an optional depth texture.
 FramebufferHandle makeFramebuffer(std::initializer_list<const Texture2D*> colors, const Texture2D* depth = nullptr);
 
@@ -117,6 +131,25 @@ FramebufferHandle makeFramebuffer(std::initializer_list<const Texture2D*> colors
 
 // True when the current context is OpenGL ES.
 bool isEs();
+
+// The pixel-store state of one direction (pack: reads back; unpack: uploads and buffer clears) set
+// to GL's defaults with `alignment`, and the pixel buffer of that direction unbound, for the
+// guard's life; the engine's values come back after it. Mesa applies the unpack skips even to
+// glClearNamedBufferData's one-element source, so an engine's GL_UNPACK_SKIP_PIXELS made it read
+// past the value on the stack (docs/INTEGRATION.md, "State").
+class PixelStoreDefaults {
+public:
+    enum Direction { Pack, Unpack };
+    explicit PixelStoreDefaults(Direction direction, GLint alignment = 4);
+    ~PixelStoreDefaults();
+    PixelStoreDefaults(const PixelStoreDefaults&) = delete;
+    PixelStoreDefaults& operator=(const PixelStoreDefaults&) = delete;
+
+private:
+    Direction direction_;
+    GLint buffer_ = 0;
+    std::vector<std::pair<GLenum, GLint>> saved_;
+};
 // glBindTextureUnit (ES: glActiveTexture + glBindTexture(GL_TEXTURE_2D); every texture the methods
 // bind is 2D).
 void bindTexture(GLuint unit, GLuint texture);

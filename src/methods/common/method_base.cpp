@@ -30,6 +30,9 @@ gl::Program MethodBase::buildFullscreenProgram(const std::string& label, const s
 void MethodBase::render(const FrameDesc& frame, const DrawCallback& draw) {
     // No GL call before these checks (docs/INTEGRATION.md, "Misuse").
     if (!gl::hasCurrentContext()) throw Error("render(): no OpenGL context is current on this thread");
+    if (!context_.current()) {
+        throw Error("render(): the current OpenGL context is not the one this method was created in (nor shares its objects)");
+    }
     // A new size is checked against the context's limits before anything of it is allocated
     // (setFrameSize); the same size was checked when it was new.
     if (frame.width != width_ || frame.height != height_) gl::checkFrameSize(frame.width, frame.height);
@@ -83,7 +86,14 @@ void MethodBase::runGeometryPass(const char* name, const gl::Program& program, c
     glUseProgram(program.id());
     glUniform1f(program.uniform("u_alphaCutoff"), frame.alphaCutoff);
     if (frame.timing) frame.timing->beginGeometry(name);
-    draw(GeometryPass{name, program.id()});
+    try {
+        draw(GeometryPass{name, program.id()});
+    } catch (...) {
+        // The hook's calls stay nested (docs/INTEGRATION.md, "Timing"): a hook that brackets the
+        // geometry with a query must see it end, or its next frame begins inside it.
+        if (frame.timing) frame.timing->endGeometry();
+        throw;
+    }
     if (frame.timing) frame.timing->endGeometry();
 }
 
@@ -117,7 +127,12 @@ void resetPassState() {
     // State an engine commonly leaves set that would change what the passes rasterise or the
     // window depths they compare (docs/INTEGRATION.md, "State"): filled polygons, no depth offset,
     // the full depth range.
-    if (!gl::isEs()) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    if (!gl::isEs()) {
+        glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+        // Mesa's llvmpipe applies an enabled line or point offset to filled triangles too.
+        glDisable(GL_POLYGON_OFFSET_LINE);
+        glDisable(GL_POLYGON_OFFSET_POINT);
+    }
     glDisable(GL_POLYGON_OFFSET_FILL);
     // Canonical window depth (DepthConvention): the near plane at 0 whatever the engine's projection.
     if (currentDepthConvention().reversed) glDepthRangef(1.0f, 0.0f);

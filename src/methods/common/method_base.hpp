@@ -58,6 +58,9 @@ protected:
     gl::VertexArrayHandle fullscreenVao_;
     OpaqueScene opaque_;  // this frame's opaque depth and background
     gl::TargetClears clears_;  // the targets' clears (gl/target_clears.hpp: copies on llvmpipe)
+
+private:
+    gl::ContextToken context_;  // the context (share group) the method was created in
 };
 
 // Starts a pass that accumulates into `framebuffer` (width x height, from the origin): draw buffer 0

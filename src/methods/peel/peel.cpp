@@ -46,6 +46,38 @@ public:
             }
             accumFb_ = gl::makeFramebuffer({&accum_});
         }
+        checkNoOcclusionQueryActive();
+        // An engine's query buffer would receive the query results instead of this method.
+        GLint queryBuffer = 0;
+        if (!gl::isEs()) glGetIntegerv(GL_QUERY_BUFFER_BINDING, &queryBuffer);
+        if (queryBuffer != 0) glBindBuffer(GL_QUERY_BUFFER, 0);
+        try {
+            peelLayers(frame, draw);
+        } catch (...) {
+            if (queryBuffer != 0) glBindBuffer(GL_QUERY_BUFFER, GLuint(queryBuffer));
+            throw;
+        }
+        if (queryBuffer != 0) glBindBuffer(GL_QUERY_BUFFER, GLuint(queryBuffer));
+    }
+
+private:
+    // GL allows one occlusion query at a time: with the engine's running, this method's would fail
+    // (and its end would end the engine's), so it is refused by name.
+    static void checkNoOcclusionQueryActive() {
+        std::vector<std::pair<GLenum, const char*>> targets = {{GL_ANY_SAMPLES_PASSED, "GL_ANY_SAMPLES_PASSED"},
+                                                                {GL_ANY_SAMPLES_PASSED_CONSERVATIVE, "GL_ANY_SAMPLES_PASSED_CONSERVATIVE"}};
+        if (!gl::isEs()) targets.emplace_back(GL_SAMPLES_PASSED, "GL_SAMPLES_PASSED");
+        for (const auto& [target, name] : targets) {
+            GLint current = 0;
+            glGetQueryiv(target, GL_CURRENT_QUERY, &current);
+            if (current != 0) {
+                throw Error(std::string("peel counts each layer's samples with an occlusion query, and the engine's ") + name +
+                            " query is active: end it before render()");
+            }
+        }
+    }
+
+    void peelLayers(const FrameDesc& frame, const DrawCallback& draw) {
         resetPassState();
         glBindFramebuffer(GL_FRAMEBUFFER, accumFb_.id());
         glViewport(0, 0, width_, height_);
@@ -101,7 +133,6 @@ public:
         drawFullscreen();
     }
 
-private:
     int layersWanted_;
     int layersRendered_ = 0;
     SurfaceProgram layer_;  // clips by the opaque depth in its shader (its depth target is its own)

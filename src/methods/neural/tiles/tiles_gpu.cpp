@@ -87,9 +87,8 @@ std::vector<uint8_t> GpuTiles::readShadingRates() const {
     std::vector<uint8_t> out(size_t(tilesX_) * size_t(tilesY_));
     if (!rates_ || out.empty()) return out;
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    const gl::PixelStoreDefaults pack(gl::PixelStoreDefaults::Pack, 1);
     glGetTextureImage(rates_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, GLsizei(out.size()), out.data());
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
     return out;
 }
 
