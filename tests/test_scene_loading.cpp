@@ -308,3 +308,86 @@ TEST(ObjLoader, NoMaterialGetsLightGreyDefault) {
     EXPECT_TRUE(scene.meshes[0].colors.empty());
     EXPECT_TRUE(scene.meshes[0].normals.empty());
 }
+
+namespace {
+// A 1x1 PNG as a data URI, for files that need a texture to carry a texture transform.
+std::string onePixelPng() {
+    const uint8_t pixel[4] = {200, 100, 50, 255};
+    std::vector<uint8_t> png;
+    stbi_write_png_to_func(
+        [](void* ctx, void* data, int size) {
+            auto* out = static_cast<std::vector<uint8_t>*>(ctx);
+            out->insert(out->end(), static_cast<uint8_t*>(data), static_cast<uint8_t*>(data) + size);
+        },
+        &png, 1, 1, 4, pixel, 4);
+    return "data:image/png;base64," + base64(png);
+}
+}  // namespace
+
+// glTF's rest pose includes the morph targets at the mesh's default weights (a node's own weights
+// replace them), and a base colour texture's KHR_texture_transform moves the coordinates it
+// samples: both were ignored, drawing the base mesh and the untransformed texture.
+TEST(GltfLoader, MorphTargetsAtTheirWeightsAndTheTextureTransform) {
+    const std::filesystem::path dir = makeTempDir("gltf_morph");
+    GltfBuilder g = oneTriangle();
+    const int delta = g.data(std::vector<float>{3, 0, 0, 3, 0, 0, 3, 1, 0}, kF32, 3, "VEC3");
+    const int uv = g.data(std::vector<float>{0, 0, 1, 0, 0, 1}, kF32, 3, "VEC2");
+    g.json["meshes"][0]["primitives"][0]["targets"] = json::array({{{"POSITION", delta}}});
+    g.json["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = uv;
+    g.json["meshes"][0]["primitives"][0]["material"] = 0;
+    g.json["meshes"][0]["weights"] = {0.5};
+    g.json["images"] = json::array({{{"uri", onePixelPng()}}});
+    g.json["textures"] = json::array({{{"source", 0}}});
+    const double quarter = std::acos(0.0);  // 90 degrees
+    g.json["materials"] = json::array(
+        {{{"pbrMetallicRoughness",
+           {{"baseColorTexture",
+             {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"offset", {0.5, 0.25}}, {"rotation", quarter}, {"scale", {2.0, 3.0}}}}}}}}}},
+          {"emissiveFactor", {0.5, 0.25, 0.0}},
+          {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4.0}}}}}}});
+    g.json["extensionsUsed"] = {"KHR_texture_transform", "KHR_materials_emissive_strength"};
+    g.json["extensionsRequired"] = {"KHR_texture_transform"};
+    g.writeGltf(dir / "mesh.gltf");
+    Scene scene = loadGltf((dir / "mesh.gltf").string());
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    const Mesh& m = scene.meshes[0];
+    EXPECT_EQ(m.positions[0], glm::vec3(1.5f, 0.0f, 0.0f));
+    EXPECT_EQ(m.positions[2], glm::vec3(1.5f, 1.5f, 0.0f));
+    // uv' = offset + R(90 degrees, counter-clockwise as the image is seen) (scale * uv):
+    // (1, 0) -> scaled (2, 0) -> rotated (0, -2) -> (0.5, -1.75); (0, 1) -> (0, 3) -> (3, 0) -> (3.5, 0.25).
+    EXPECT_NEAR(m.uvs[0].x, 0.5f, 1e-6f);
+    EXPECT_NEAR(m.uvs[0].y, 0.25f, 1e-6f);
+    EXPECT_NEAR(m.uvs[1].x, 0.5f, 1e-6f);
+    EXPECT_NEAR(m.uvs[1].y, -1.75f, 1e-6f);
+    EXPECT_NEAR(m.uvs[2].x, 3.5f, 1e-6f);
+    EXPECT_NEAR(m.uvs[2].y, 0.25f, 1e-6f);
+    EXPECT_EQ(scene.materials[0].emissive, glm::vec3(2.0f, 1.0f, 0.0f));
+    // A node's weights replace the mesh's.
+    g.json["nodes"][0]["weights"] = {1.0};
+    g.writeGltf(dir / "node.gltf");
+    EXPECT_EQ(loadGltf((dir / "node.gltf").string()).meshes[0].positions[1], glm::vec3(4.0f, 0.0f, 0.0f));
+}
+
+// An extension the file requires and the loader lacks is an error naming it; a scene index past
+// the file's scenes is an error; a skin without inverseBindMatrices (optional in glTF) loads.
+TEST(GltfLoader, RequiredExtensionsMissingScenesAndSkinsWithoutBindMatrices) {
+    const std::filesystem::path dir = makeTempDir("gltf_required");
+    GltfBuilder g = oneTriangle();
+    g.json["extensionsUsed"] = {"EXT_made_up"};
+    g.json["extensionsRequired"] = {"EXT_made_up"};
+    g.writeGltf(dir / "required.gltf");
+    EXPECT_NE(errorOf([&] { loadGltf((dir / "required.gltf").string()); }).find("requires the glTF extension EXT_made_up"), std::string::npos);
+    g.json["extensionsRequired"] = json::array();
+    g.writeGltf(dir / "used.gltf");
+    EXPECT_EQ(loadGltf((dir / "used.gltf").string()).triangleCount(), 1u);  // used, not required: a warning
+    GltfBuilder s = oneTriangle();
+    s.json["scene"] = 3;
+    s.writeGltf(dir / "scene.gltf");
+    EXPECT_NE(errorOf([&] { loadGltf((dir / "scene.gltf").string()); }).find("\"scene\" is 3 but the file has 1 scenes"), std::string::npos);
+    GltfBuilder k = oneTriangle();
+    k.json["nodes"] = json::array({{{"mesh", 0}, {"skin", 0}}, json::object()});
+    k.json["scenes"] = json::array({{{"nodes", {0, 1}}}});
+    k.json["skins"] = json::array({{{"joints", {1}}}});
+    k.writeGltf(dir / "skin.gltf");
+    EXPECT_EQ(loadGltf((dir / "skin.gltf").string()).triangleCount(), 1u);
+}

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -33,6 +34,7 @@ struct GltfContext {
     Scene& scene;
     size_t dataBytes = 0;               // the file and its buffers: bounds accessors without a buffer view
     std::map<int, int> textureOfImage;  // glTF image index -> Scene::textures index
+    std::map<int, glm::mat3> uvTransformOfMaterial;  // KHR_texture_transform of a material's base colour texture
     int defaultMaterial = -1;           // Scene::materials index of the default material, lazily added
 };
 
@@ -251,6 +253,34 @@ int sceneTexture(GltfContext& ctx, int textureIndex, const std::string& at) {
     return result;
 }
 
+// KHR_texture_transform as the 3x3 matrix glTF defines, uv' = T(offset) R(rotation) S(scale) uv:
+// scale first, then a rotation counter-clockwise as the image is seen (v pointing down), then the offset.
+glm::mat3 textureTransform(const tinygltf::Value& t, const std::string& at) {
+    auto number = [&](const tinygltf::Value& v, const char* what) {
+        if (!v.IsNumber() || !std::isfinite(v.GetNumberAsDouble())) throw Error(at + ": " + what + " must be a finite number");
+        return float(v.GetNumberAsDouble());
+    };
+    auto pair = [&](const char* key, glm::vec2 fallback) {
+        if (!t.Has(key)) return fallback;
+        const tinygltf::Value& v = t.Get(key);
+        if (!v.IsArray() || v.ArrayLen() != 2) throw Error(at + ": " + key + " must have 2 numbers");
+        return glm::vec2(number(v.Get(0), key), number(v.Get(1), key));
+    };
+    const glm::vec2 offset = pair("offset", glm::vec2(0.0f)), scale = pair("scale", glm::vec2(1.0f));
+    const float rotation = t.Has("rotation") ? number(t.Get("rotation"), "rotation") : 0.0f;
+    if (t.Has("texCoord") && number(t.Get("texCoord"), "texCoord") != 0.0f)
+        detail::warn(at + ": texCoord " + std::to_string(int(number(t.Get("texCoord"), "texCoord"))) + "; only TEXCOORD_0 is loaded");
+    const float c = std::cos(rotation), s = std::sin(rotation);
+    glm::mat3 m(1.0f);  // column-major: m[column][row]
+    m[0][0] = c * scale.x;
+    m[0][1] = -s * scale.x;
+    m[1][0] = s * scale.y;
+    m[1][1] = c * scale.y;
+    m[2][0] = offset.x;
+    m[2][1] = offset.y;
+    return m;
+}
+
 void convertMaterials(GltfContext& ctx) {
     for (size_t i = 0; i < ctx.model.materials.size(); ++i) {
         const tinygltf::Material& gm = ctx.model.materials[i];
@@ -268,7 +298,25 @@ void convertMaterials(GltfContext& ctx) {
                 detail::warn(at + ": baseColorTexture uses TEXCOORD_" + std::to_string(ti.texCoord) +
                              "; only TEXCOORD_0 is loaded");
             m.baseColorTexture = sceneTexture(ctx, ti.index, at);
+            if (auto t = ti.extensions.find("KHR_texture_transform"); t != ti.extensions.end()) {
+                ctx.uvTransformOfMaterial[int(i)] = textureTransform(t->second, at + ": baseColorTexture KHR_texture_transform");
+            }
         }
+        if (gm.emissiveFactor.size() == 3) {
+            double strength = 1.0;
+            if (auto e = gm.extensions.find("KHR_materials_emissive_strength"); e != gm.extensions.end()) {
+                const tinygltf::Value& v = e->second.Get("emissiveStrength");
+                if (v.IsNumber()) strength = v.GetNumberAsDouble();
+                if (!(strength >= 0.0) || !std::isfinite(strength))
+                    throw Error(at + ": KHR_materials_emissive_strength emissiveStrength must be a finite number >= 0");
+            }
+            m.emissive = glm::vec3(float(gm.emissiveFactor[0] * strength), float(gm.emissiveFactor[1] * strength),
+                                   float(gm.emissiveFactor[2] * strength));
+            if (!std::isfinite(m.emissive.r + m.emissive.g + m.emissive.b) || glm::any(glm::lessThan(m.emissive, glm::vec3(0.0f))))
+                throw Error(at + ": emissiveFactor must be finite and >= 0");
+        }
+        if (gm.emissiveTexture.index >= 0 && glm::any(glm::greaterThan(m.emissive, glm::vec3(0.0f))))
+            detail::warn(at + ": emissiveTexture is not loaded; the emissive factor is used alone");
         m.unlit = gm.extensions.count("KHR_materials_unlit") != 0;
         m.doubleSided = gm.doubleSided;
         if (gm.alphaMode == "OPAQUE" || gm.alphaMode.empty()) {
@@ -324,7 +372,7 @@ std::vector<uint32_t> toTriangleList(const std::vector<uint32_t>& v, int mode, b
     return out;
 }
 
-void addPrimitive(GltfContext& ctx, int meshIndex, size_t primIndex, const glm::mat4& world) {
+void addPrimitive(GltfContext& ctx, int meshIndex, size_t primIndex, const glm::mat4& world, const std::vector<double>& weights) {
     const tinygltf::Primitive& prim = ctx.model.meshes[size_t(meshIndex)].primitives[primIndex];
     const std::string label = primitiveLabel(ctx, meshIndex, primIndex);
     const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
@@ -371,6 +419,36 @@ void addPrimitive(GltfContext& ctx, int meshIndex, size_t primIndex, const glm::
             mesh.colors = readAttribute<4>(ctx, a, label, "COLOR_0", true);
         }
         checkCount(mesh.colors.size(), "COLOR_0");
+    }
+
+    // Morph targets at the node's (or the mesh's) default weights: glTF's rest pose.
+    for (size_t t = 0; t < prim.targets.size() && t < weights.size(); ++t) {
+        const double w = weights[t];
+        if (!std::isfinite(w)) throw Error(label + ": morph target weight " + std::to_string(t) + " is not finite");
+        if (w == 0.0) continue;
+        const auto& target = prim.targets[t];
+        const std::string what = "morph target " + std::to_string(t);
+        if (auto it = target.find("POSITION"); it != target.end()) {
+            const auto d = readAttribute<3>(ctx, it->second, label, what + " POSITION", false);
+            checkCount(d.size(), (what + " POSITION").c_str());
+            for (size_t i = 0; i < n; ++i) mesh.positions[i] += float(w) * d[i];
+        }
+        if (auto it = target.find("NORMAL"); it != target.end() && !mesh.normals.empty()) {
+            const auto d = readAttribute<3>(ctx, it->second, label, what + " NORMAL", false);
+            checkCount(d.size(), (what + " NORMAL").c_str());
+            for (size_t i = 0; i < n; ++i) mesh.normals[i] += float(w) * d[i];
+        }
+    }
+    if (!prim.targets.empty()) {
+        for (size_t i = 0; i < n; ++i) {
+            const glm::vec3& p = mesh.positions[i];
+            if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+                throw Error(label + ": vertex " + std::to_string(i) + " has a NaN or infinite POSITION after its morph targets");
+        }
+    }
+    if (prim.material >= 0) {
+        if (auto it = ctx.uvTransformOfMaterial.find(prim.material); it != ctx.uvTransformOfMaterial.end())
+            for (glm::vec2& uv : mesh.uvs) uv = glm::vec2(it->second * glm::vec3(uv, 1.0f));
     }
 
     std::vector<uint32_t> raw;
@@ -424,7 +502,8 @@ void addNode(GltfContext& ctx, int nodeIndex, const glm::mat4& parent, std::vect
                         std::to_string(node.mesh) + " but the file has " + std::to_string(ctx.model.meshes.size()) +
                         " meshes");
         const tinygltf::Mesh& m = ctx.model.meshes[size_t(node.mesh)];
-        for (size_t p = 0; p < m.primitives.size(); ++p) addPrimitive(ctx, node.mesh, p, world);
+        const std::vector<double>& weights = node.weights.empty() ? m.weights : node.weights;
+        for (size_t p = 0; p < m.primitives.size(); ++p) addPrimitive(ctx, node.mesh, p, world, weights);
     }
     path.push_back(nodeIndex);
     for (int child : node.children) addNode(ctx, child, world, path);
@@ -503,6 +582,15 @@ Scene loadGltf(const std::string& path) {
             if (c == '\n') c = ';';
         throw Error(path + ": cannot parse glTF: " + (msg.empty() ? "unknown tinygltf error" : msg));
     }
+    {
+        // tinygltf calls a skin without inverseBindMatrices an error; glTF allows it (identity
+        // matrices), and skins are not applied here (the bind pose is drawn).
+        std::string kept, line;
+        std::istringstream lines(err);
+        while (std::getline(lines, line))
+            if (line.find("'inverseBindMatrices' property is missing") == std::string::npos) kept += line + "\n";
+        err = kept;
+    }
     if (!err.empty()) {
         // tinygltf reports some invalid values (e.g. a baseColorFactor of 3 numbers) in `err` and
         // carries on with defaults: an error here too.
@@ -512,6 +600,23 @@ Scene loadGltf(const std::string& path) {
             if (c == '\n') c = ';';
         throw Error(path + ": invalid glTF: " + msg);
     }
+
+    // Extensions: one the file requires and this loader lacks would be drawn wrong, so it is an
+    // error; one it merely uses is ignored with a warning.
+    static const std::set<std::string> kSupportedExtensions = {"KHR_materials_unlit", "KHR_texture_transform",
+                                                               "KHR_mesh_quantization", "KHR_materials_emissive_strength"};
+    std::string supported;
+    for (const std::string& e : kSupportedExtensions) supported += (supported.empty() ? "" : ", ") + e;
+    for (const std::string& e : model.extensionsRequired)
+        if (!kSupportedExtensions.count(e))
+            throw Error(path + ": requires the glTF extension " + e.substr(0, 100) + ", which this loader does not support (supported: " + supported + ")");
+    for (const std::string& e : model.extensionsUsed)
+        if (!kSupportedExtensions.count(e) &&
+            std::find(model.extensionsRequired.begin(), model.extensionsRequired.end(), e) == model.extensionsRequired.end())
+            detail::warn(path + ": uses the glTF extension " + e.substr(0, 100) + ", which is not supported: what it adds is ignored");
+    if (model.defaultScene >= 0 && size_t(model.defaultScene) >= model.scenes.size())
+        throw Error(path + ": \"scene\" is " + std::to_string(model.defaultScene) + " but the file has " + std::to_string(model.scenes.size()) +
+                    " scenes");
 
     Scene scene;
     scene.name = std::filesystem::path(path).stem().string();

@@ -1,6 +1,7 @@
 // Scene basics: bounds and counts, format dispatch (loadScene) and validation (validateScene).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -245,6 +246,20 @@ size_t validateScene(Scene& scene, const std::string& source) {
     if (removed > 0)
         detail::warn(source + ": removed " + std::to_string(removed) + " zero-area triangle" +
                      (removed == 1 ? "" : "s"));
+    // Far from the origin for its size: float positions (and the view transform, which subtracts
+    // the camera's position in float) step by about |x| 2^-23, which snaps the geometry visibly
+    // once that is a percent of the scene's extent (six unit quads 1e7 away collapse into one).
+    const double farthest = std::max({std::fabs(double(b.min.x)), std::fabs(double(b.min.y)), std::fabs(double(b.min.z)),
+                                      std::fabs(double(b.max.x)), std::fabs(double(b.max.y)), std::fabs(double(b.max.z))});
+    const double step = farthest * std::ldexp(1.0, -23);
+    if (extent > 0.0 && step > 0.01 * extent) {
+        char text[256];
+        std::snprintf(text, sizeof text,
+                      ": the scene is %.3g across and %.3g from the origin: float precision (steps of about %.2g) moves its "
+                      "vertices by up to %.2g%% of its size; move it nearer the origin",
+                      extent, farthest, step, 100.0 * step / extent);
+        detail::warn(source + text);
+    }
     return removed;
 }
 

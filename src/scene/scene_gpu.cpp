@@ -153,7 +153,16 @@ void SceneGpu::drawMeshes(GLuint p, const glm::mat4& view, const glm::mat4& proj
     glUniformMatrix4fv(loc("u_projection"), 1, GL_FALSE, glm::value_ptr(projection));
     glUniform1f(loc("u_alphaOverride"), options.alphaOverride ? *options.alphaOverride : -1.0f);
     const GLint baseColor = loc("u_baseColorFactor"), hasTexture = loc("u_hasTexture"), unlit = loc("u_unlit"),
-                hasNormals = loc("u_hasNormals"), drawIndex = loc("u_drawIndex"), maskCutoff = loc("u_maskCutoff");
+                hasNormals = loc("u_hasNormals"), drawIndex = loc("u_drawIndex"), maskCutoff = loc("u_maskCutoff"),
+                emissive = loc("u_emissive");
+    // Single-sided materials (glTF doubleSided false) show their front faces only where the file
+    // made them opaque or transparent itself; a material the --alpha override makes transparent
+    // shows both (docs/DESIGN.md, "Scenes"). The loader keeps every front face counter-clockwise;
+    // a clip origin at the upper left turns that clockwise in window space.
+    GLint origin = GL_LOWER_LEFT;
+    if (!gl::isEs()) glGetIntegerv(GL_CLIP_ORIGIN, &origin);
+    glFrontFace(origin == GL_UPPER_LEFT ? GL_CW : GL_CCW);
+    glCullFace(GL_BACK);
     // Absent attributes read these constants.
     glVertexAttrib3f(STARNT_ATTRIB_NORMAL, 0.0f, 0.0f, 0.0f);
     glVertexAttrib2f(STARNT_ATTRIB_UV, 0.0f, 0.0f);
@@ -164,6 +173,10 @@ void SceneGpu::drawMeshes(GLuint p, const glm::mat4& view, const glm::mat4& proj
         const Material& mat = materials_[size_t(m.material)];
         if (opaque) glUniform1f(maskCutoff, mat.alphaMode == AlphaMode::Mask ? mat.alphaCutoff : -1.0f);
         glUniform4fv(baseColor, 1, glm::value_ptr(mat.baseColorFactor));
+        glUniform3fv(emissive, 1, glm::value_ptr(mat.emissive));
+        const bool frontOnly = !mat.doubleSided && (opaque || mat.alphaMode == AlphaMode::Blend);
+        if (frontOnly) glEnable(GL_CULL_FACE);
+        else glDisable(GL_CULL_FACE);
         glUniform1i(unlit, (mat.unlit || options.forceUnlit) ? 1 : 0);
         glUniform1i(hasNormals, m.hasNormals ? 1 : 0);
         glUniform1i(hasTexture, mat.baseColorTexture >= 0 ? 1 : 0);
@@ -175,6 +188,8 @@ void SceneGpu::drawMeshes(GLuint p, const glm::mat4& view, const glm::mat4& proj
         glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
     }
     glBindVertexArray(0);
+    glDisable(GL_CULL_FACE);
+    glFrontFace(GL_CCW);
 }
 
 DrawCallback SceneGpu::callback(const glm::mat4& view, const glm::mat4& projection,

@@ -25,7 +25,8 @@ struct Material {
     glm::vec4 baseColorFactor{1.0f};  // linear RGB + alpha
     int baseColorTexture = -1;        // index into Scene::textures, -1 when none
     bool unlit = false;               // KHR_materials_unlit
-    bool doubleSided = true;
+    glm::vec3 emissive{0.0f};         // linear RGB added to the shaded colour (emissiveFactor x KHR_materials_emissive_strength)
+    bool doubleSided = true;          // false: back faces culled where the file made the material transparent (docs/DESIGN.md, "Scenes")
     AlphaMode alphaMode = AlphaMode::Blend;
     float alphaCutoff = 0.5f;  // for AlphaMode::Mask
 };
