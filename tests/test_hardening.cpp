@@ -609,6 +609,107 @@ TEST(Hardening, SilentlyIgnoredOptionsAndCollidingOutputs) {
     EXPECT_EQ(seen.err.find("no fragment"), std::string::npos) << seen.err;
 }
 
+// A flag the rendered method would ignore is an error naming it, as the acceleration flags were
+// silently dropped by the methods without neural passes; two outputs that are one file however
+// spelled, or one frame of a numbered sequence; compare's map over its own input; non-finite
+// pixels in a compared image.
+TEST(Hardening, IgnoredFlagsOutputsThatCollideAndNonFiniteImages) {
+    const fs::path dir = makeTempDir("ignored-flags");
+    const std::string out = (dir / "x.png").string();
+    const std::string small = " --scene builtin:panes --width 16 --height 12 --out " + out;
+    expectOneLineError(run("render --method wboit --temporal 2" + small), {"--temporal", "wboit", "no neural passes"}, "wboit temporal");
+    expectOneLineError(run("render --method abuffer --scales 50,50" + small), {"--scales", "abuffer"}, "abuffer scales");
+    expectOneLineError(run("render --method mboit --spatial on" + small), {"--spatial", "mboit"}, "mboit spatial");
+    expectOneLineError(run("render --method starnt --peel-layers 2" + small), {"--peel-layers", "peel"}, "peel layers");
+    expectOneLineError(run("render --method starnt --mboit-moments 4" + small), {"--mboit-moments", "mboit"}, "mboit moments");
+    expectOneLineError(run("render --method starnt-d --temporal-mode refresh" + small), {"--temporal-mode", "every frame real"}, "mode at K 1");
+    expectOneLineError(run("render --method starnt --target-fps 30" + small), {"--target-fps", "--temporal auto"}, "fps without auto");
+    expectOneLineError(run("render --method starnt-d --scale-rule step" + small), {"--scale-rule", "no adaptive tiles"}, "rule without tiles");
+    EXPECT_FALSE(fs::exists(out));
+    // What the methods do honour still runs.
+    for (const std::string ok : {"render --method wboit --reference-method abuffer --abuffer-cap-mib 64",
+                                 "render --method recommended --temporal-mode correct", "render --method starnt --scale-rule step",
+                                 "render --method starnt --temporal auto --target-fps 30", "render --method peel --peel-layers 2"}) {
+        const CliRun r = run(ok + small);
+        EXPECT_EQ(r.exitCode, 0) << ok << ": " << r.err;
+    }
+    fs::remove(out);
+    // Outputs: one file spelled two ways; a file that is one frame of the numbered output.
+    const fs::path sub = dir / "sub";
+    fs::create_directories(sub);
+    const CliRun spelled = run("render --scene builtin:panes --method starnt --width 16 --height 12 --out " + (sub / "a.png").string() +
+                               " --tiles-image " + (sub / ".." / "sub" / "a.png").string());
+    expectOneLineError(spelled, {"--out and --tiles-image name the same file"}, "spelled two ways");
+    const CliRun frame = run("render --scene builtin:panes --method starnt --width 16 --height 12 --frames 3 --out " +
+                             (sub / "f_%04d.png").string() + " --tiles-image " + (sub / "f_0002.png").string());
+    expectOneLineError(frame, {"--out and --tiles-image name the same file", "f_0002.png"}, "a frame of the sequence");
+    EXPECT_TRUE(fs::is_empty(sub));
+    // compare: the FLIP map over an input, and NaN in an EXR.
+    const std::string ref = smallPng(dir, "ref.png");
+    Image withNan(16, 12, 0.5f);
+    withNan.rgba[4 * 17 + 1] = std::numeric_limits<float>::quiet_NaN();
+    withNan.rgba[4 * 30] = std::numeric_limits<float>::infinity();
+    const std::string nanExr = (dir / "nan.exr").string();
+    saveExr(withNan, nanExr);
+    const auto before = fs::file_size(ref);
+    expectOneLineError(run("compare --reference " + ref + " --test " + ref + " --flip-map " + (dir / "." / "ref.png").string()),
+                       {"--flip-map", "names an input image"}, "map over an input");
+    EXPECT_EQ(fs::file_size(ref), before);
+    expectOneLineError(run("compare --reference " + ref + " --test " + nanExr), {"nan.exr", "2 colour values are NaN or infinite", "pixel 1,1"},
+                       "NaN in the test image");
+    fs::remove_all(dir);
+}
+
+// glTF doubleSided false: a single-sided material the file made transparent shows its front faces
+// only (its back faces were drawn as a second layer); one the file made opaque shows both when
+// --alpha makes it transparent (its author left the back faces to the depth test). Two parallel
+// quads of opposite winding: whichever way the camera looks, one faces it.
+TEST(Hardening, SingleSidedMaterialsCullTheirBackFaces) {
+    const fs::path dir = makeTempDir("single-sided");
+    GltfBuilder g;
+    const int pos = g.data(std::vector<float>{0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, -0.1f, 1, 0, -0.1f, 1, 1, -0.1f, 0, 1, -0.1f},
+                           kF32, 8, "VEC3");
+    const int idx = g.data(std::vector<uint16_t>{0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6}, kU16, 12, "SCALAR");
+    g.json["meshes"] = json::array({{{"primitives", json::array({{{"attributes", {{"POSITION", pos}}}, {"indices", idx}, {"material", 0}}})}}});
+    g.json["nodes"] = json::array({{{"mesh", 0}}});
+    g.json["scenes"] = json::array({{{"nodes", {0}}}});
+    auto maxFragments = [&](const std::string& alphaMode, bool doubleSided, const std::string& extra) {
+        g.json["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.4, 0.2, 0.5}}}},
+                                            {"alphaMode", alphaMode}, {"doubleSided", doubleSided}}});
+        const fs::path file = dir / "quads.gltf";
+        g.writeGltf(file);
+        const CliRun r = run("render --scene " + file.string() + " --method abuffer --width 32 --height 24 --out " +
+                             (dir / "q.png").string() + extra);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        const size_t at = r.out.find("max ");
+        return at == std::string::npos ? -1 : std::atoi(r.out.c_str() + at + 4);
+    };
+    EXPECT_EQ(maxFragments("BLEND", false, ""), 1);
+    EXPECT_EQ(maxFragments("BLEND", true, ""), 2);
+    EXPECT_EQ(maxFragments("OPAQUE", false, " --alpha 0.5"), 2);
+    EXPECT_EQ(maxFragments("BLEND", false, " --alpha 0.5"), 1);
+    fs::remove_all(dir);
+}
+
+// A scene far from the origin for its size: float positions step by |x| 2^-23, which snapped six
+// unit quads 1e7 away into one block with no word said; now a warning names the distance.
+TEST(Hardening, AFarSceneForItsSizeIsWarnedAbout) {
+    const fs::path dir = makeTempDir("far-origin");
+    auto quadAt = [&](const char* name, double offset) {
+        std::ofstream f(dir / name);
+        f.precision(17);
+        f << "v " << offset << " 0 0\nv " << offset + 1 << " 0 0\nv " << offset + 1 << " 1 0\nv " << offset << " 1 0\nf 1 2 3 4\n";
+        return (dir / name).string();
+    };
+    const CliRun far = run("render --scene " + quadAt("far.obj", 1e7) + " --method wboit --width 16 --height 12 --out " + (dir / "a.png").string());
+    EXPECT_EQ(far.exitCode, 0) << far.err;
+    EXPECT_CONTAINS(far.err, "from the origin");
+    const CliRun near = run("render --scene " + quadAt("near.obj", 1e3) + " --method wboit --width 16 --height 12 --out " + (dir / "b.png").string());
+    EXPECT_EQ(near.exitCode, 0) << near.err;
+    EXPECT_EQ(near.err.find("from the origin"), std::string::npos) << near.err;
+    fs::remove_all(dir);
+}
+
 // Coplanar layers (overlapping sheets in one plane): pass 2 peels behind pass 1's depth, so it finds
 // nothing among them, while pass 3 sums them all. The tail is then more than N - 2 fragments, with
 // no second layer: the composites took N for the layers held and dropped or mis-weighed it (MSE

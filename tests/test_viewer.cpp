@@ -283,6 +283,22 @@ TEST(Viewer, SplitScreenAndFlipErrorView) {
     fs::remove_all(dir);
 }
 
+// A screenshot that cannot be written: the window shows the error and goes on, and the command
+// exits non-zero when it closes, so that a scripted run does not lose an output silently.
+TEST(Viewer, AScreenshotThatCannotBeWrittenFailsTheCommand) {
+    REQUIRE_VIEWER_AND_XVFB();
+    const fs::path dir = starnt::test::makeTempDir("viewer");
+    const std::string good = (dir / "good.png").string();
+    const ProcessResult r = runViewer("--scene builtin:panes --method wboit",
+                                      "frames 2; screenshot " + (dir / "missing" / "a.png").string() + "; frames 1; screenshot " +
+                                          good + "; quit",
+                                      dir);
+    EXPECT_NE(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("starnt: error: screenshot " + (dir / "missing" / "a.png").string() + " failed"), std::string::npos) << r.err;
+    EXPECT_TRUE(fs::exists(good)) << "the script went on after the failed screenshot";
+    fs::remove_all(dir);
+}
+
 TEST(Viewer, DroppingAnUnreadableFileShowsTheErrorAndKeepsTheScene) {
     REQUIRE_VIEWER_AND_XVFB();
     const fs::path dir = starnt::test::makeTempDir("viewer");

@@ -58,6 +58,15 @@ void addAccelerationOptions(CLI::App* command, AccelerationFlags& flags) {
         ->capture_default_str();
 }
 
+std::vector<std::string> givenAccelerationFlags(const CLI::App* command) {
+    std::vector<std::string> given;
+    for (const WordFlag& flag : kWordFlags)
+        if (command->get_option(flag.name)->count() > 0) given.emplace_back(flag.name);
+    for (const char* name : {"--target-fps", "--corrected-passes"})
+        if (command->get_option(name)->count() > 0) given.emplace_back(name);
+    return given;
+}
+
 void applyAccelerationFlags(const AccelerationFlags& flags, MethodOptions& options) {
     for (const WordFlag& flag : kWordFlags) flag.parse(flags.*flag.value, options);
     parseTargetFpsOption(flags.targetFps, options);

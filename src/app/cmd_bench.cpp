@@ -67,9 +67,11 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--preset", a->request.preset, "quick (3 scenes, 640x360, 8 frames) | paper (all suite scenes, 1920x1080, 16 frames) | gpu (the six headline scenes, 1920x1080, 8 warm-up + 64 timed frames, 13 variants, errors on 6 frames; for a GPU)")
         ->capture_default_str();
     cmd->add_option("--scenes", a->request.scenes, "suite names, builtin:NAME or scene files (default: the preset's)")->delimiter(',');
+    std::string variants, defaults;
+    for (const bench::Variant& v : bench::allVariants()) variants += (variants.empty() ? "" : ", ") + v.name;
+    for (const std::string& v : bench::defaultVariantNames()) defaults += (defaults.empty() ? "" : ", ") + v;
     cmd->add_option("--methods", a->request.methods,
-                    "unsorted, wboit, mboit, mboit-t3, dfaoit, starnt-full, starnt, starnt-total, starnt-corners, abuffer, peel "
-                    "(default: the first nine)")
+                    "variants to run, of: " + variants + " (default: the preset's; quick and paper: " + defaults + ")")
         ->delimiter(',');
     cmd->add_option("--out", a->out, "output folder (created; files in it are replaced)")->required();
     cmd->add_option("--suite-dir", a->request.suiteDir, "scene suite folder; built-in scenes when absent")->capture_default_str();

@@ -1,4 +1,6 @@
+#include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -29,8 +31,27 @@ void addCompareCommand(CLI::App& app) {
                           kFlipMinPixelsPerDegree, kFlipMaxPixelsPerDegree);
             throw Error(buf);
         }
+        if (!args->flipMap.empty()) {
+            for (const std::string* input : {&args->reference, &args->test}) {
+                if (sameFile(args->flipMap, *input)) {
+                    throw Error("--flip-map " + args->flipMap + " names an input image (" + *input + "); it would be overwritten");
+                }
+            }
+        }
         Image ref = loadImage(args->reference);
         Image test = loadImage(args->test);
+        // A NaN or infinite pixel has no error to measure; reading it as 0 or 1 would hide it.
+        for (const auto& [image, path] : {std::pair{&ref, &args->reference}, std::pair{&test, &args->test}}) {
+            size_t bad = 0, first = 0;
+            for (size_t i = 0; i < image->rgba.size(); ++i) {
+                if (std::isfinite(image->rgba[i])) continue;
+                if (bad++ == 0) first = i / 4;
+            }
+            if (bad > 0) {
+                throw Error(*path + ": " + std::to_string(bad) + " colour values are NaN or infinite (the first at pixel " +
+                            std::to_string(first % size_t(image->width)) + "," + std::to_string(first / size_t(image->width)) + ")");
+            }
+        }
         if (ref.width != test.width || ref.height != test.height) {
             throw Error("images differ in size: " + args->reference + " is " + std::to_string(ref.width) + "x" +
                         std::to_string(ref.height) + ", " + args->test + " is " + std::to_string(test.width) + "x" +

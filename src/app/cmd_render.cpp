@@ -72,6 +72,8 @@ struct RenderArgs {
     std::string api = "gl";
     // --alpha, --temporal-mode, --temporal on the command line
     bool alphaGiven = false, temporalModeGiven = false, temporalGiven = false;
+    std::vector<std::string> accelerationGiven;          // the acceleration flags on the command line
+    std::vector<std::string> perMethodGiven;             // --peel-layers, --wboit-weight, ... on the command line
     std::string alphaText;                               // --alpha as typed
 };
 
@@ -107,7 +109,7 @@ void declareRenderOptions(CLI::App& app, const std::shared_ptr<RenderArgs>& args
                     "interpolated frames, on to the end of a group, so the first timed frame is real); with it, "
                     "the first frame is timed too")
         ->capture_default_str();
-    cmd->add_option("--peel-layers", a.peelLayers, "peel: layers (0 = until empty, exact)")->capture_default_str();
+    cmd->add_option("--peel-layers", a.peelLayers, "peel: layers (0 = until a layer comes back empty: exact, but coplanar surfaces peel together)")->capture_default_str();
     cmd->add_option("--wboit-weight", a.wboitWeight, "wboit: eq7|eq8|eq9|eq10")->capture_default_str();
     cmd->add_option("--mboit-moments", a.mboitMoments, "mboit: 4|6 power moments, t2|t3 trigonometric moments")
         ->capture_default_str();
@@ -128,8 +130,45 @@ void declareRenderOptions(CLI::App& app, const std::shared_ptr<RenderArgs>& args
         if (args->alphaGiven) args->alphaText = cmd->get_option("--alpha")->as<std::string>();
         args->temporalModeGiven = cmd->get_option("--temporal-mode")->count() > 0;
         args->temporalGiven = cmd->get_option("--temporal")->count() > 0;
+        args->accelerationGiven = givenAccelerationFlags(cmd);
+        args->perMethodGiven.clear();
+        for (const char* name : {"--peel-layers", "--wboit-weight", "--mboit-moments", "--abuffer-cap-mib"})
+            if (cmd->get_option(name)->count() > 0) args->perMethodGiven.emplace_back(name);
         runRender(*args);
     });
+}
+
+// A flag the rendered method (or the reference method) would ignore is an error naming it: silently
+// ignored, it would label an image with a setting it did not have.
+void checkFlagsApply(const RenderArgs& a) {
+    const auto names = methodNames();
+    if (std::find(names.begin(), names.end(), a.method) == names.end()) return;  // createMethod names the valid ones
+    if (!a.accelerationGiven.empty() && !neuralConfig(a.method)) {
+        std::string neural;
+        for (const std::string& name : methodNames())
+            if (neuralConfig(name)) neural += (neural.empty() ? "" : ", ") + name;
+        throw Error(a.accelerationGiven.front() + ": method " + a.method +
+                    " has no neural passes to accelerate (the acceleration flags apply to " + neural + ")");
+    }
+    const MethodOptions options = methodOptions(a);
+    const bool interpolates = options.neural.temporalInterval > 1 || options.neural.temporalAuto || a.method == "recommended";
+    const bool tiles = methodUsesTiles(a.method, options);
+    for (const std::string& flag : a.accelerationGiven) {
+        const bool temporalOnly = flag == "--temporal-mode" || flag == "--corrected-passes" || flag == "--corrected-layers";
+        if (temporalOnly && !interpolates) {
+            throw Error(flag + ": method " + a.method + " renders every frame real here; it applies to interpolated frames (--temporal 2..8 or auto)");
+        }
+        if (flag == "--target-fps" && !options.neural.temporalAuto) throw Error("--target-fps: applies to --temporal auto only");
+        if ((flag == "--scale-rule" || flag == "--tile-signal" || flag == "--scale-guard") && !tiles) {
+            throw Error(flag + ": method " + a.method + " runs no adaptive tiles with these options (use starnt, or --spatial on)");
+        }
+    }
+    for (const std::string& flag : a.perMethodGiven) {
+        const std::string owner = flag == "--peel-layers" ? "peel" : flag == "--wboit-weight" ? "wboit" : flag == "--mboit-moments" ? "mboit" : "abuffer";
+        if (a.method != owner && a.referenceMethod != owner) {
+            throw Error(flag + ": applies to method " + owner + " (rendered or as --reference-method), not to " + a.method);
+        }
+    }
 }
 
 // Every value checked before any work: a bad one fails with one error naming it.
@@ -165,6 +204,7 @@ void checkRenderArgs(const RenderArgs& a) {
         throw Error("--temporal-mode: method " + a.method +
                     " has no interpolated frames to correct, refresh or warp (use starnt, hybrid or dfaoit)");
     }
+    checkFlagsApply(a);
     if (isFramePattern(a.out)) checkFramePattern(a.out, "--out");
     if (isFramePattern(a.exr)) checkFramePattern(a.exr, "--exr");
     checkOutputPath(isFramePattern(a.out) ? framePath(a.out, 0) : a.out, ".png", "--out");
@@ -183,17 +223,21 @@ void checkRenderArgs(const RenderArgs& a) {
     checkOutputPath(isFramePattern(a.exr) ? framePath(a.exr, 0) : a.exr, ".exr", "--exr");
     checkOutputPath(a.stats, ".json", "--stats");
     parseColor(a.background, "--background");
-    // Two outputs naming one file: one would silently replace the other.
+    // Two outputs naming one file (also spelled differently, or one frame of a numbered sequence):
+    // one would silently replace the other.
     const std::pair<const char*, const std::string*> outputs[] = {
         {"--out", &a.out}, {"--exr", &a.exr}, {"--tiles-image", &a.tilesImage}, {"--frame-stats", &a.frameStats}, {"--stats", &a.stats}};
     for (size_t i = 0; i < std::size(outputs); ++i) {
         for (size_t j = i + 1; j < std::size(outputs); ++j) {
             const std::string &x = *outputs[i].second, &y = *outputs[j].second;
             if (x.empty() || y.empty()) continue;
-            std::error_code ex, ey;
-            if (x == y || std::filesystem::weakly_canonical(x, ex) == std::filesystem::weakly_canonical(y, ey)) {
-                throw Error(std::string(outputs[i].first) + " and " + outputs[j].first + " name the same file, " + x);
+            const bool xFrames = outputs[i].second != &a.tilesImage && isFramePattern(x) && (i < 2);
+            const bool yFrames = outputs[j].second != &a.tilesImage && isFramePattern(y) && (j < 2);
+            bool same = sameFile(x, y);
+            for (int f = 0; !same && (xFrames || yFrames) && f < a.frames; ++f) {
+                same = sameFile(xFrames ? framePath(x, f) : x, yFrames ? framePath(y, f) : y);
             }
+            if (same) throw Error(std::string(outputs[i].first) + " and " + outputs[j].first + " name the same file, " + y);
         }
     }
 }
@@ -225,6 +269,7 @@ void runRender(const RenderArgs& a) {
     HeadlessGlContext context(parseGlApi(a.api));
     SceneGpu sceneGpu(scene);
     RenderJob job = makeRenderJob(a, scene);
+    const bool opaqueDrawn = sceneGpu.hasOpaque(job.surface);  // (for the warning when no transparent fragment is seen)
     const bool numbered = isFramePattern(a.out);
     std::string frameLines;
     const bool numberedExr = isFramePattern(a.exr);
@@ -288,9 +333,15 @@ void runRender(const RenderArgs& a) {
                     out.stats["timed_frames"].get<int>(), out.stats["max_fragments"].get<unsigned>(), a.out.c_str());
     }
     if (out.stats["max_fragments"].get<unsigned>() == 0) {
-        std::fprintf(stderr, "warning: no fragment of %s reached the last frame: check --camera or --camera-path (a scene far "
-                             "smaller than 1e-6 or farther than about 1e7 from the origin is lost to float precision)\n",
-                     a.scene.c_str());
+        if (opaqueDrawn) {
+            std::fprintf(stderr, "starnt: warning: no transparent fragment of %s reached the last frame: its opaque surfaces "
+                                 "are drawn as the background (--alpha A renders every surface transparent)\n",
+                         a.scene.c_str());
+        } else {
+            std::fprintf(stderr, "starnt: warning: no fragment of %s reached the last frame: check --camera or --camera-path (a "
+                                 "scene far smaller than 1e-6 or farther than about 1e7 from the origin is lost to float precision)\n",
+                         a.scene.c_str());
+        }
     }
     if (out.stats.contains("error") && out.stats["error"].contains("interpolated_flash")) {
         const auto& flash = out.stats["error"]["interpolated_flash"];

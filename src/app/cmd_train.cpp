@@ -91,6 +91,7 @@ struct TrainArgs {
     std::vector<std::string> scenes;
     int captureWidth = 96, captureHeight = 72;
     float learningRate = 0.0f;  // 0: the network's recipe
+    bool samplesGiven = false, learningRateGiven = false;  // on the command line (an explicit 0 is no recipe)
 };
 
 // What the arguments resolve to, checked before minutes of capture and training.
@@ -107,8 +108,8 @@ TrainPlan checkTrainArgs(const TrainArgs& a) {
     plan.kind = nn::parseKind(a.network);
     checkJsonOutput("--out", "a weights file", a.out);
     if (!a.report.empty()) checkJsonOutput("--report", "the report", a.report);
-    if (a.samples != 0 && (a.samples < 1000 || a.samples > 10'000'000'000ull)) throw Error("--samples must be in 1000..1e10");
-    if (a.learningRate != 0.0f && !(a.learningRate > 0.0f && a.learningRate <= 1.0f)) {
+    if ((a.samples != 0 || a.samplesGiven) && (a.samples < 1000 || a.samples > 10'000'000'000ull)) throw Error("--samples must be in 1000..1e10");
+    if ((a.learningRate != 0.0f || a.learningRateGiven) && !(a.learningRate > 0.0f && a.learningRate <= 1.0f)) {
         throw Error("--learning-rate must be in (0, 1]");
     }
     if (a.captureWidth < 8 || a.captureHeight < 8 || a.captureWidth > 1024 || a.captureHeight > 1024) {
@@ -290,7 +291,11 @@ void addTrainCommand(CLI::App& app) {
                     "the image-space error)")
         ->capture_default_str();
     cmd->add_option("--report", a.report, "write the per-family validation errors to this JSON file");
-    cmd->callback([args] { runTrain(*args); });
+    cmd->callback([args, cmd] {
+        args->samplesGiven = cmd->get_option("--samples")->count() > 0;
+        args->learningRateGiven = cmd->get_option("--learning-rate")->count() > 0;
+        runTrain(*args);
+    });
 }
 
 }  // namespace starnt::app

@@ -36,8 +36,13 @@ struct AccelerationFlags {
 // it cannot go stale).
 std::string methodNameList();
 void addAccelerationOptions(CLI::App* command, AccelerationFlags& flags);
+// The acceleration flags given on this command's line (CLI11 counts), in the order of --help.
+std::vector<std::string> givenAccelerationFlags(const CLI::App* command);
 // Checks the flags (throws starnt::Error) and sets them on `options`.
 void applyAccelerationFlags(const AccelerationFlags& flags, MethodOptions& options);
+
+// Whether two paths name one file, however spelled ("./a.png", "a.png", "../dir/a.png"), existing or not.
+bool sameFile(const std::string& a, const std::string& b);
 
 // Parses "R,G,B" with each component finite and in [0, 1]; throws starnt::Error otherwise.
 glm::vec3 parseColor(const std::string& text, const char* flag);

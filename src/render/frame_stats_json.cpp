@@ -27,8 +27,10 @@ nlohmann::json frameStatsJson(const FrameStats& stats) {
         out["interpolated"] = n.interpolated;
         out["temporal_interval"] = n.temporalInterval;
         out["temporal_mode"] = temporalModeText(n.temporalMode);
-        out["real_frame_ms_average"] = n.realFrameMsAverage;
-        out["interpolated_frame_ms_average"] = n.interpolatedFrameMsAverage;
+        // Kept by --temporal auto only (the window it chooses K from): null where nothing measured them.
+        out["real_frame_ms_average"] = n.realFrameMsAverage > 0 ? nlohmann::json(n.realFrameMsAverage) : nlohmann::json(nullptr);
+        out["interpolated_frame_ms_average"] =
+            n.interpolatedFrameMsAverage > 0 ? nlohmann::json(n.interpolatedFrameMsAverage) : nlohmann::json(nullptr);
         out["scale_pass2"] = n.scalePass2;
         out["scale_pass3"] = n.scalePass3;
         out["pass2_size"] = {n.pass2Size.width, n.pass2Size.height};

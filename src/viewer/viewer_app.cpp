@@ -76,6 +76,10 @@ public:
         }
     }
 
+    // The first screenshot that could not be written (empty if none): the command then fails when
+    // the window closes, so that a scripted run cannot lose an output silently.
+    const std::string& lostOutput() const { return lostOutput_; }
+
 private:
     void frame(float seconds) {
         const glm::ivec2 size = window_.framebufferSize();
@@ -323,6 +327,7 @@ private:
             std::fflush(stdout);
         } catch (const std::exception& e) {
             reportError(std::string("screenshot failed: ") + e.what());
+            if (lostOutput_.empty()) lostOutput_ = std::string("screenshot ") + path + " failed: " + e.what();
         }
     }
 
@@ -439,6 +444,7 @@ private:
     std::string renderer_, glVersion_, error_, message_;
 
     std::vector<ScriptCommand> script_;
+    std::string lostOutput_;
     size_t scriptPos_ = 0;
     int waitFrames_ = 0;
     std::optional<std::string> screenshotPath_;
@@ -464,6 +470,7 @@ void runViewer(const ViewerConfig& config) {
     GlfwWindow window(config.width, config.height, "starnt view", config.api);
     ViewerApp app(config, window, scene, std::move(script));
     app.run();
+    if (!app.lostOutput().empty()) throw Error(app.lostOutput());
 }
 
 }  // namespace starnt::viewer
