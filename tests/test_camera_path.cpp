@@ -120,3 +120,18 @@ TEST(CameraPath, BadSpecsAndFilesGiveClearErrors) {
     expectError(writeFile("upzero.json", std::string(kTwoKeys).replace(1, 0, R"("up": [0, 0, 0], )")), "'up'");
     EXPECT_THROW(CameraPath::keyframes({}, kBounds), Error);
 }
+
+// Coordinates beyond 1e18 overflow float in the lengths the checks take: a camera at 1e20 read as a
+// zero view direction and was reported as 'up' parallel to it. Now the coordinate is named.
+TEST(CameraPath, CoordinatesBeyondTheSceneRangeAreNamed) {
+    expectError(writeFile("far_key.json", R"({"keys": [
+  {"position": [1e20, 0, 0], "target": [0, 0, 0]},
+  {"position": [5, 1, 0], "target": [1, 0, 0]}]})"),
+                "'position' is beyond the supported range");
+    try {
+        parseCameraSpec(writeFile("far_camera.json", R"({"position": [0, 0, 1e20], "target": [0, 0, 0]})"), kBounds, 1.5f);
+        ADD_FAILURE() << "accepted a camera at 1e20";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("'position' is beyond the supported range"), std::string::npos) << e.what();
+    }
+}

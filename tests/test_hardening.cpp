@@ -624,7 +624,11 @@ TEST(Hardening, IgnoredFlagsOutputsThatCollideAndNonFiniteImages) {
     expectOneLineError(run("render --method starnt --mboit-moments 4" + small), {"--mboit-moments", "mboit"}, "mboit moments");
     expectOneLineError(run("render --method starnt-d --temporal-mode refresh" + small), {"--temporal-mode", "every frame real"}, "mode at K 1");
     expectOneLineError(run("render --method starnt --target-fps 30" + small), {"--target-fps", "--temporal auto"}, "fps without auto");
-    expectOneLineError(run("render --method starnt-d --scale-rule step" + small), {"--scale-rule", "no adaptive tiles"}, "rule without tiles");
+    expectOneLineError(run("render --method starnt-d --scale-rule step" + small), {"--scale-rule", "no adaptive scales"}, "rule without tiles");
+    expectOneLineError(run("render --method starnt --scales 50,50 --scale-guard off" + small), {"--scale-guard", "no adaptive scales"},
+                       "guard with fixed scales");
+    expectOneLineError(run("render --method starnt-d --tile-signal composite" + small), {"--tile-signal", "no adaptive tiles"},
+                       "signal without tiles");
     EXPECT_FALSE(fs::exists(out));
     // What the methods do honour still runs.
     for (const std::string ok : {"render --method wboit --reference-method abuffer --abuffer-cap-mib 64",

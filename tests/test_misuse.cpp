@@ -318,9 +318,14 @@ TEST(Misuse, AnotherContextCurrentIsAnError) {
     const std::vector<EGLint> attribs = es ? std::vector<EGLint>{EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 2, EGL_NONE}
                                            : std::vector<EGLint>{EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
                                                                  EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
-    const EGLContext other = eglCreateContext(display, config, EGL_NO_CONTEXT, attribs.data());
-    ASSERT_NE(other, EGL_NO_CONTEXT);
-    for (const std::string name : {"wboit", "peel", "recommended"}) {
+    // One context of its own, and one sharing the method's objects: buffers and textures are
+    // shared, its framebuffers and vertex arrays are not, so the method cannot run there either.
+    const EGLContext separate = eglCreateContext(display, config, EGL_NO_CONTEXT, attribs.data());
+    const EGLContext sharing = eglCreateContext(display, config, context, attribs.data());
+    ASSERT_NE(separate, EGL_NO_CONTEXT);
+    ASSERT_NE(sharing, EGL_NO_CONTEXT);
+    for (const auto& [name, other] : {std::pair{"wboit", separate}, std::pair{"peel", separate}, std::pair{"recommended", separate},
+                                      std::pair{"wboit", sharing}, std::pair{"recommended", sharing}}) {
         auto method = createMethod(name, SceneGpu::surfaceShader(), MethodOptions{});
         const auto expected = renderOnce(*method, c);
         const FrameDesc f = c.frame();
@@ -340,7 +345,8 @@ TEST(Misuse, AnotherContextCurrentIsAnError) {
         EXPECT_LE(largestDifference(renderOnce(*method, c), expected), 1e-6f) << name << ": back in its own context";
         EXPECT_EQ(takeGlError(), GLenum(GL_NO_ERROR)) << name;
     }
-    eglDestroyContext(display, other);
+    eglDestroyContext(display, separate);
+    eglDestroyContext(display, sharing);
 }
 
 // The suite's GL tests fail on any GL error raised while they run (test_support.cpp, KHR_debug):

@@ -577,7 +577,13 @@ TEST(DepthConventions, ReversedZAndZeroToOneGiveTheDefaultConventionsImage) {
 // interpolated frame of the temporal methods reprojects; every image equals the lower-left
 // origin's upside down.
 TEST(DepthConventions, UpperLeftOriginGivesTheSameImageUpsideDown) {
-    test::TestScene s(makeBuiltinScene("tubes", 3), kW, kH, 30.0f, 20.0f, kBackground);
+  // Also with single-sided materials: GL negates the facing area under the upper-left origin, so
+  // the scene's back-face culling keeps the same faces (a front face set to clockwise there showed
+  // the back faces instead).
+  for (const bool singleSided : {false, true}) {
+    Scene scene = makeBuiltinScene("tubes", 3);
+    for (Material& material : scene.materials) material.doubleSided = !singleSided;
+    test::TestScene s(std::move(scene), kW, kH, 30.0f, 20.0f, kBackground);
     if (gl::isEs() && !epoxy_has_gl_extension("GL_EXT_clip_control")) GTEST_SKIP() << "no clip control on this ES context";
     auto setOrigin = [](bool upperLeft) {
         const GLenum origin = upperLeft ? GL_UPPER_LEFT : GL_LOWER_LEFT;
@@ -619,9 +625,10 @@ TEST(DepthConventions, UpperLeftOriginGivesTheSameImageUpsideDown) {
                 }
             }
             // The same samples, mirrored: only a tie in the fill rule could move a pixel.
-            EXPECT_LE(off, 6u) << method << ", frame " << i << ": worst " << worst;
+            EXPECT_LE(off, 6u) << method << ", frame " << i << ": worst " << worst << (singleSided ? ", single-sided" : "");
         }
     }
+  }
 }
 
 // An engine's opaque textures with read state a sampler object does not hold: a depth pyramid's

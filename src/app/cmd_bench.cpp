@@ -80,7 +80,7 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--frames", a->request.frames, "override the preset's frame count (timings skip frame 1)")
         ->check(CLI::Range(1, 10000));
     cmd->add_option("--camera-path", a->request.cameraPath, "override the preset's path: orbit:START,END[,ELEV] or keyframe .json");
-    cmd->add_option("--abuffer-cap-mib", a->request.abufferCapMib, "A-buffer memory cap in MiB (default 2048)")
+    cmd->add_option("--abuffer-cap-mib", a->request.abufferCapMib, "A-buffer memory cap in MiB (0 or absent: the default, 2048)")
         ->check(CLI::Range(0.0, kMaxAbufferCapMib));  // 0: the default
     cmd->add_option("--api", a->request.api, "gl (OpenGL 4.5 core) or gles (OpenGL ES 3.2)")->capture_default_str();
     cmd->add_option("--timing-rounds", a->request.timingRounds,

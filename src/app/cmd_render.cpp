@@ -153,14 +153,21 @@ void checkFlagsApply(const RenderArgs& a) {
     const MethodOptions options = methodOptions(a);
     const bool interpolates = options.neural.temporalInterval > 1 || options.neural.temporalAuto || a.method == "recommended";
     const bool tiles = methodUsesTiles(a.method, options);
+    // The scale rule and the guard choose the adaptive scales: spatial on, no fixed --scales.
+    const NeuralMethodConfig* config = neuralConfig(a.method);
+    const bool adaptiveScales = config && options.neural.spatial.value_or(config->spatialByDefault) && options.neural.fixedScale2 == 0.0f;
     for (const std::string& flag : a.accelerationGiven) {
         const bool temporalOnly = flag == "--temporal-mode" || flag == "--corrected-passes" || flag == "--corrected-layers";
         if (temporalOnly && !interpolates) {
             throw Error(flag + ": method " + a.method + " renders every frame real here; it applies to interpolated frames (--temporal 2..8 or auto)");
         }
         if (flag == "--target-fps" && !options.neural.temporalAuto) throw Error("--target-fps: applies to --temporal auto only");
-        if ((flag == "--scale-rule" || flag == "--tile-signal" || flag == "--scale-guard") && !tiles) {
+        if (flag == "--tile-signal" && !tiles) {
             throw Error(flag + ": method " + a.method + " runs no adaptive tiles with these options (use starnt, or --spatial on)");
+        }
+        if ((flag == "--scale-rule" || flag == "--scale-guard") && !adaptiveScales) {
+            throw Error(flag + ": method " + a.method +
+                        " chooses no adaptive scales with these options (it needs the tiles, --spatial on, and no fixed --scales)");
         }
     }
     for (const std::string& flag : a.perMethodGiven) {
@@ -230,7 +237,7 @@ void checkRenderArgs(const RenderArgs& a) {
     for (size_t i = 0; i < std::size(outputs); ++i) {
         for (size_t j = i + 1; j < std::size(outputs); ++j) {
             const std::string &x = *outputs[i].second, &y = *outputs[j].second;
-            if (x.empty() || y.empty()) continue;
+            if (x.empty() || y.empty() || lowerExtension(x) != lowerExtension(y)) continue;  // (each flag has its own)
             const bool xFrames = outputs[i].second != &a.tilesImage && isFramePattern(x) && (i < 2);
             const bool yFrames = outputs[j].second != &a.tilesImage && isFramePattern(y) && (j < 2);
             bool same = sameFile(x, y);
@@ -269,7 +276,8 @@ void runRender(const RenderArgs& a) {
     HeadlessGlContext context(parseGlApi(a.api));
     SceneGpu sceneGpu(scene);
     RenderJob job = makeRenderJob(a, scene);
-    const bool opaqueDrawn = sceneGpu.hasOpaque(job.surface);  // (for the warning when no transparent fragment is seen)
+    // (for the warning when no transparent fragment is seen: a scene with none to draw)
+    const bool opaqueOnly = sceneGpu.hasOpaque(job.surface) && !sceneGpu.hasTransparent(job.surface);
     const bool numbered = isFramePattern(a.out);
     std::string frameLines;
     const bool numberedExr = isFramePattern(a.exr);
@@ -333,13 +341,14 @@ void runRender(const RenderArgs& a) {
                     out.stats["timed_frames"].get<int>(), out.stats["max_fragments"].get<unsigned>(), a.out.c_str());
     }
     if (out.stats["max_fragments"].get<unsigned>() == 0) {
-        if (opaqueDrawn) {
+        if (opaqueOnly) {
             std::fprintf(stderr, "starnt: warning: no transparent fragment of %s reached the last frame: its opaque surfaces "
                                  "are drawn as the background (--alpha A renders every surface transparent)\n",
                          a.scene.c_str());
         } else {
-            std::fprintf(stderr, "starnt: warning: no fragment of %s reached the last frame: check --camera or --camera-path (a "
-                                 "scene far smaller than 1e-6 or farther than about 1e7 from the origin is lost to float precision)\n",
+            std::fprintf(stderr, "starnt: warning: no fragment of %s reached the last frame: check --camera or --camera-path, and "
+                                 "--alpha-cutoff (fragments below it are discarded; a scene far smaller than 1e-6 or farther than "
+                                 "about 1e7 from the origin is lost to float precision)\n",
                          a.scene.c_str());
         }
     }

@@ -193,18 +193,28 @@ void bindTexture(GLuint unit, GLuint texture) {
     }
 }
 
-ContextToken::ContextToken() : buffer_(4) {
+ContextToken::ContextToken() : vertexArray_(makeEmptyVertexArray()) {
     static std::atomic<unsigned long long> next{0};
     label_ = "starnt context token " + std::to_string(next++);
-    glObjectLabel(GL_BUFFER, buffer_.id(), GLsizei(label_.size()), label_.c_str());
+    glObjectLabel(GL_VERTEX_ARRAY, vertexArray_.id(), GLsizei(label_.size()), label_.c_str());
 }
 
 bool ContextToken::current() const {
-    if (!glIsBuffer(buffer_.id())) return false;  // no GL error for a name that is not a buffer here
+    if (!glIsVertexArray(vertexArray_.id())) return false;  // no GL error for a name that is not one here
     char label[64] = {};
     GLsizei length = 0;
-    glGetObjectLabel(GL_BUFFER, buffer_.id(), GLsizei(sizeof label), &length, label);
+    glGetObjectLabel(GL_VERTEX_ARRAY, vertexArray_.id(), GLsizei(sizeof label), &length, label);
     return std::string(label, size_t(std::max<GLsizei>(length, 0))) == label_;
+}
+
+QueryBufferUnbound::QueryBufferUnbound() {
+    if (isEs()) return;
+    glGetIntegerv(GL_QUERY_BUFFER_BINDING, &buffer_);
+    if (buffer_ != 0) glBindBuffer(GL_QUERY_BUFFER, 0);
+}
+
+QueryBufferUnbound::~QueryBufferUnbound() {
+    if (buffer_ != 0) glBindBuffer(GL_QUERY_BUFFER, GLuint(buffer_));
 }
 
 PixelStoreDefaults::PixelStoreDefaults(Direction direction, GLint alignment) : direction_(direction) {

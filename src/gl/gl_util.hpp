@@ -105,18 +105,32 @@ private:
     size_t bytes_ = 0;
 };
 
-// Which context (share group) made an object set: a 4-byte buffer labelled with a name unique in the
-// process. `current()` is true when the current context sees that buffer under that label, so a
-// method used with another context current is refused instead of touching that context's objects
-// by coincidence of names (docs/INTEGRATION.md, "Misuse").
+// Which context made an object set: an empty vertex array labelled with a name unique in the
+// process. Vertex arrays (like framebuffers) are not shared between contexts, so `current()` is
+// true only in the context that made it: a method used with another context current is refused
+// instead of touching that context's objects by coincidence of names (docs/INTEGRATION.md, "Misuse").
 class ContextToken {
 public:
     ContextToken();
     bool current() const;
 
 private:
-    Buffer buffer_;
+    VertexArrayHandle vertexArray_;
     std::string label_;
+};
+
+// The engine's GL_QUERY_BUFFER unbound for the guard's life (desktop GL 4.4+; nothing on ES): with
+// one bound, glGetQueryObject* writes into it at the pointer's value as an offset instead of into
+// client memory.
+class QueryBufferUnbound {
+public:
+    QueryBufferUnbound();
+    ~QueryBufferUnbound();
+    QueryBufferUnbound(const QueryBufferUnbound&) = delete;
+    QueryBufferUnbound& operator=(const QueryBufferUnbound&) = delete;
+
+private:
+    GLint buffer_ = 0;
 };
 
 // A framebuffer with the given colour attachments (in order) and an optional depth texture.

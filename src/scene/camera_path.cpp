@@ -24,6 +24,10 @@ glm::vec3 readVec3(const nlohmann::json& j, const char* key, const std::string& 
     }
     glm::vec3 out(v[0].get<float>(), v[1].get<float>(), v[2].get<float>());
     if (!finite3(out)) throw Error(where + ": '" + key + "' is not finite");
+    // Beyond this, lengths and products of coordinates overflow float (a position at 1e20 read as a
+    // view direction of length 0, reported as 'up' parallel to it).
+    if (std::max({std::fabs(out.x), std::fabs(out.y), std::fabs(out.z)}) > float(kMaxSceneCoordinate))
+        throw Error(where + ": '" + key + "' is beyond the supported range (|coordinate| <= 1e18)");
     return out;
 }
 

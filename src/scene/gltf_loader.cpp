@@ -36,6 +36,7 @@ struct GltfContext {
     std::map<int, int> textureOfImage;  // glTF image index -> Scene::textures index
     std::map<int, glm::mat3> uvTransformOfMaterial;  // KHR_texture_transform of a material's base colour texture
     int defaultMaterial = -1;           // Scene::materials index of the default material, lazily added
+    bool meshQuantization = false;      // the file uses KHR_mesh_quantization
 };
 
 std::string primitiveLabel(const GltfContext& ctx, int meshIndex, size_t primIndex) {
@@ -315,8 +316,12 @@ void convertMaterials(GltfContext& ctx) {
             if (!std::isfinite(m.emissive.r + m.emissive.g + m.emissive.b) || glm::any(glm::lessThan(m.emissive, glm::vec3(0.0f))))
                 throw Error(at + ": emissiveFactor must be finite and >= 0");
         }
-        if (gm.emissiveTexture.index >= 0 && glm::any(glm::greaterThan(m.emissive, glm::vec3(0.0f))))
-            detail::warn(at + ": emissiveTexture is not loaded; the emissive factor is used alone");
+        if (gm.emissiveTexture.index >= 0 && glm::any(glm::greaterThan(m.emissive, glm::vec3(0.0f)))) {
+            // The factor scales the texture (exporters write [1, 1, 1] beside one): alone it would
+            // wash the whole surface out.
+            detail::warn(at + ": emissiveTexture is not loaded; its emission is left out");
+            m.emissive = glm::vec3(0.0f);
+        }
         m.unlit = gm.extensions.count("KHR_materials_unlit") != 0;
         m.doubleSided = gm.doubleSided;
         if (gm.alphaMode == "OPAQUE" || gm.alphaMode.empty()) {
@@ -408,7 +413,9 @@ void addPrimitive(GltfContext& ctx, int meshIndex, size_t primIndex, const glm::
         checkCount(mesh.normals.size(), "NORMAL");
     }
     if (int a = attr("TEXCOORD_0"); a >= 0) {
-        mesh.uvs = readAttribute<2>(ctx, a, label, "TEXCOORD_0", true);
+        // Integer coordinates are normalised in core glTF (forced for files that forget the flag);
+        // KHR_mesh_quantization allows them unnormalised (scaled by a texture transform).
+        mesh.uvs = readAttribute<2>(ctx, a, label, "TEXCOORD_0", !ctx.meshQuantization);
         checkCount(mesh.uvs.size(), "TEXCOORD_0");
     }
     if (int a = attr("COLOR_0"); a >= 0) {
@@ -621,6 +628,8 @@ Scene loadGltf(const std::string& path) {
     Scene scene;
     scene.name = std::filesystem::path(path).stem().string();
     GltfContext ctx{path, model, scene};
+    ctx.meshQuantization = std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(), "KHR_mesh_quantization") !=
+                           model.extensionsUsed.end();
     ctx.dataBytes = size_t(std::filesystem::file_size(path, ec));
     for (const tinygltf::Buffer& b : model.buffers) ctx.dataBytes += b.data.size();
     convertMaterials(ctx);

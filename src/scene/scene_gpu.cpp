@@ -102,6 +102,13 @@ bool SceneGpu::isOpaque(const MeshGpu& m, const SurfaceOptions& options) const {
     return !options.alphaOverride && materials_[size_t(m.material)].alphaMode != AlphaMode::Blend;
 }
 
+bool SceneGpu::hasTransparent(const SurfaceOptions& options) const {
+    for (const MeshGpu& m : meshes_) {
+        if (!isOpaque(m, options)) return true;
+    }
+    return false;
+}
+
 bool SceneGpu::hasOpaque(const SurfaceOptions& options) const {
     for (const MeshGpu& m : meshes_) {
         if (isOpaque(m, options)) return true;
@@ -157,11 +164,9 @@ void SceneGpu::drawMeshes(GLuint p, const glm::mat4& view, const glm::mat4& proj
                 emissive = loc("u_emissive");
     // Single-sided materials (glTF doubleSided false) show their front faces only where the file
     // made them opaque or transparent itself; a material the --alpha override makes transparent
-    // shows both (docs/DESIGN.md, "Scenes"). The loader keeps every front face counter-clockwise;
-    // a clip origin at the upper left turns that clockwise in window space.
-    GLint origin = GL_LOWER_LEFT;
-    if (!gl::isEs()) glGetIntegerv(GL_CLIP_ORIGIN, &origin);
-    glFrontFace(origin == GL_UPPER_LEFT ? GL_CW : GL_CCW);
+    // shows both (docs/DESIGN.md, "Scenes"). The loader keeps every front face counter-clockwise
+    // (GL negates the facing area under an upper-left clip origin, so that needs nothing here).
+    glFrontFace(GL_CCW);
     glCullFace(GL_BACK);
     // Absent attributes read these constants.
     glVertexAttrib3f(STARNT_ATTRIB_NORMAL, 0.0f, 0.0f, 0.0f);

@@ -34,6 +34,8 @@ public:
     // Whether the scene has an opaque part under these options: a mesh whose material is OPAQUE or
     // MASK, and no alpha override.
     bool hasOpaque(const SurfaceOptions& options) const;
+    // Whether any mesh is drawn transparent (by the method) with these options.
+    bool hasTransparent(const SurfaceOptions& options) const;
     // What an engine does before the transparent methods run: draws the opaque part at the frame's
     // camera into this renderer's opaque colour (RGBA16F, cleared to frame.background) and depth
     // (DEPTH_COMPONENT32F, cleared to the far plane) textures, and points frame.opaqueDepth and

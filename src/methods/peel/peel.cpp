@@ -47,17 +47,8 @@ public:
             accumFb_ = gl::makeFramebuffer({&accum_});
         }
         checkNoOcclusionQueryActive();
-        // An engine's query buffer would receive the query results instead of this method.
-        GLint queryBuffer = 0;
-        if (!gl::isEs()) glGetIntegerv(GL_QUERY_BUFFER_BINDING, &queryBuffer);
-        if (queryBuffer != 0) glBindBuffer(GL_QUERY_BUFFER, 0);
-        try {
-            peelLayers(frame, draw);
-        } catch (...) {
-            if (queryBuffer != 0) glBindBuffer(GL_QUERY_BUFFER, GLuint(queryBuffer));
-            throw;
-        }
-        if (queryBuffer != 0) glBindBuffer(GL_QUERY_BUFFER, GLuint(queryBuffer));
+        const gl::QueryBufferUnbound queryBuffer;  // (an engine's would receive the results)
+        peelLayers(frame, draw);
     }
 
 private:

@@ -54,6 +54,7 @@ void FrameClock::stop() {
 
 void FrameClock::poll() {
     if (inFlight_) {
+        const gl::QueryBufferUnbound queryBuffer;  // (an engine's would receive the results)
         GLint available = 0;
         glGetQueryObjectiv(end_.id(), GL_QUERY_RESULT_AVAILABLE, &available);
         if (available) {
