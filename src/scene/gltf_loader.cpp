@@ -4,6 +4,7 @@
 // starnt::Error, never in an out-of-bounds read.
 #include <cmath>
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <type_traits>
 #include <limits>
@@ -290,6 +291,11 @@ void convertMaterials(GltfContext& ctx) {
         const auto& f = gm.pbrMetallicRoughness.baseColorFactor;
         if (f.size() == 4) {
             m.baseColorFactor = glm::vec4(float(f[0]), float(f[1]), float(f[2]), float(f[3]));
+            if (glm::any(glm::lessThan(m.baseColorFactor, glm::vec4(0.0f))) || glm::any(glm::greaterThan(m.baseColorFactor, glm::vec4(1.0f)))) {
+                char text[160];
+                std::snprintf(text, sizeof text, ": baseColorFactor (%g, %g, %g, %g) is outside glTF's range [0, 1]", f[0], f[1], f[2], f[3]);
+                detail::warn(at + text);
+            }
         } else if (!f.empty()) {
             throw Error(at + ": baseColorFactor must have 4 numbers");
         }
@@ -335,6 +341,8 @@ void convertMaterials(GltfContext& ctx) {
             m.alphaMode = AlphaMode::Opaque;
         }
         m.alphaCutoff = float(gm.alphaCutoff);
+        if (m.alphaMode == AlphaMode::Mask && !(m.alphaCutoff >= 0.0f))
+            detail::warn(at + ": alphaCutoff " + std::to_string(gm.alphaCutoff) + " is negative (glTF: at least 0); no fragment is cut");
         ctx.scene.materials.push_back(m);
     }
 }
