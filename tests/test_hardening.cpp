@@ -647,6 +647,9 @@ TEST(Hardening, IgnoredFlagsOutputsThatCollideAndNonFiniteImages) {
     const CliRun frame = run("render --scene builtin:panes --method starnt --width 16 --height 12 --frames 3 --out " +
                              (sub / "f_%04d.png").string() + " --tiles-image " + (sub / "f_0002.png").string());
     expectOneLineError(frame, {"--out and --tiles-image name the same file", "f_0002.png"}, "a frame of the sequence");
+    expectOneLineError(run("render --scene builtin:panes --method starnt --width 16 --height 12 --frames 2 --out " + (sub / "a.png").string() +
+                           " --stats " + (sub / "s_%04d.json").string()),
+                       {"--stats", "one file for the whole run"}, "a pattern for the stats");
     EXPECT_TRUE(fs::is_empty(sub));
     // compare: the FLIP map over an input, and NaN in an EXR.
     const std::string ref = smallPng(dir, "ref.png");

@@ -215,6 +215,14 @@ void checkRenderArgs(const RenderArgs& a) {
     if (isFramePattern(a.out)) checkFramePattern(a.out, "--out");
     if (isFramePattern(a.exr)) checkFramePattern(a.exr, "--exr");
     checkOutputPath(isFramePattern(a.out) ? framePath(a.out, 0) : a.out, ".png", "--out");
+    // One file a run each: a frame pattern there would be written literally, as "t_%04d.png".
+    for (const auto& [flag, path] : {std::pair{"--tiles-image", &a.tilesImage}, std::pair{"--frame-stats", &a.frameStats},
+                                     std::pair{"--stats", &a.stats}}) {
+        if (isFramePattern(*path)) {
+            throw Error(std::string(flag) + " " + *path + ": one file for the whole run (its last frame, or one line a frame); "
+                        "frame patterns are for --out and --exr");
+        }
+    }
     checkOutputPath(a.tilesImage, ".png", "--tiles-image");
     if (!a.tilesImage.empty() && !methodUsesTiles(a.method, options)) {
         throw Error("--tiles-image: method " + a.method +
