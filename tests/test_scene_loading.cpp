@@ -15,6 +15,20 @@ using namespace starnt::test;
 using nlohmann::json;
 
 namespace {
+// An RGBA8 image encoded as PNG in memory (rows top first).
+std::vector<uint8_t> pngBytes(int width, int height, const uint8_t* rgba) {
+    std::vector<uint8_t> png;
+    stbi_write_png_to_func(
+        [](void* ctx, void* data, int size) {
+            auto* out = static_cast<std::vector<uint8_t>*>(ctx);
+            out->insert(out->end(), static_cast<uint8_t*>(data), static_cast<uint8_t*>(data) + size);
+        },
+        &png, width, height, 4, rgba, width * 4);
+    return png;
+}
+}  // namespace
+
+namespace {
 
 struct SuiteScene {
     const char* file;
@@ -126,13 +140,7 @@ TEST(GltfLoader, HandWrittenFileWithHierarchyColoursAndTexture) {
     const int idx = g.data(std::vector<uint8_t>{0, 1, 2}, kU8, 3, "SCALAR");
     // 2x1 RGBA PNG: opaque red, half-transparent blue.
     const uint8_t pixels[8] = {255, 0, 0, 255, 0, 0, 255, 128};
-    std::vector<uint8_t> png;
-    stbi_write_png_to_func(
-        [](void* ctx, void* data, int size) {
-            auto* out = static_cast<std::vector<uint8_t>*>(ctx);
-            out->insert(out->end(), static_cast<uint8_t*>(data), static_cast<uint8_t*>(data) + size);
-        },
-        &png, 2, 1, 4, pixels, 8);
+    const std::vector<uint8_t> png = pngBytes(2, 1, pixels);
     ASSERT_FALSE(png.empty());
     g.json["images"] = json::array({{{"uri", "data:image/png;base64," + base64(png)}}});
     g.json["textures"] = json::array({{{"source", 0}}});
@@ -313,14 +321,7 @@ namespace {
 // A 1x1 PNG as a data URI, for files that need a texture to carry a texture transform.
 std::string onePixelPng() {
     const uint8_t pixel[4] = {200, 100, 50, 255};
-    std::vector<uint8_t> png;
-    stbi_write_png_to_func(
-        [](void* ctx, void* data, int size) {
-            auto* out = static_cast<std::vector<uint8_t>*>(ctx);
-            out->insert(out->end(), static_cast<uint8_t*>(data), static_cast<uint8_t*>(data) + size);
-        },
-        &png, 1, 1, 4, pixel, 4);
-    return "data:image/png;base64," + base64(png);
+    return "data:image/png;base64," + base64(pngBytes(1, 1, pixel));
 }
 }  // namespace
 
