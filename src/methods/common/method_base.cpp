@@ -31,7 +31,7 @@ void MethodBase::render(const FrameDesc& frame, const DrawCallback& draw) {
     // No GL call before these checks (docs/INTEGRATION.md, "Misuse").
     if (!gl::hasCurrentContext()) throw Error("render(): no OpenGL context is current on this thread");
     if (!context_.current()) {
-        throw Error("render(): the current OpenGL context is not the one this method was created in (nor shares its objects)");
+        throw Error("render(): the current OpenGL context is not the one this method was created in (its framebuffers and vertex arrays are in no other)");
     }
     // A new size is checked against the context's limits before anything of it is allocated
     // (setFrameSize); the same size was checked when it was new.
