@@ -58,15 +58,23 @@ std::vector<std::pair<std::string, MethodOptions>> everyMethod() {
     return out;
 }
 
+// The test's EGL context as it is current now, to make current again after a test changed it.
+struct CurrentEgl {
+    EGLDisplay display = eglGetCurrentDisplay();
+    EGLContext context = eglGetCurrentContext();
+    EGLSurface draw = eglGetCurrentSurface(EGL_DRAW), read = eglGetCurrentSurface(EGL_READ);
+    bool restore() const { return eglMakeCurrent(display, draw, read, context); }
+};
+
 }  // namespace
 
 // Without a current context: render() throws before any GL call, and destroying a method releases
 // nothing (its objects die with their context) instead of aborting in the GL loader.
 TEST(Misuse, NoCurrentContextIsAnErrorAndDestroyingIsSafe) {
     test::TestScene c(makeBuiltinScene("tubes", 3), 48, 32, 30.0f, 15.0f, kBackground);
-    const EGLDisplay display = eglGetCurrentDisplay();
-    const EGLContext context = eglGetCurrentContext();
-    const EGLSurface draw = eglGetCurrentSurface(EGL_DRAW), read = eglGetCurrentSurface(EGL_READ);
+    const CurrentEgl egl;
+    const EGLDisplay display = egl.display;
+    const EGLContext context = egl.context;
     ASSERT_NE(context, EGL_NO_CONTEXT) << "the test context is EGL";
     for (auto& [name, options] : everyMethod()) {
         auto method = createMethod(name, SceneGpu::surfaceShader(), options);
@@ -77,7 +85,7 @@ TEST(Misuse, NoCurrentContextIsAnErrorAndDestroyingIsSafe) {
         const std::string error = test::errorOf([&] { method->render(f, drawScene); });
         EXPECT_NE(error.find("no OpenGL context"), std::string::npos) << name << ": " << error;
         method.reset();  // must not abort
-        ASSERT_TRUE(eglMakeCurrent(display, draw, read, context));
+        ASSERT_TRUE(egl.restore());
         EXPECT_EQ(takeGlError(), GLenum(GL_NO_ERROR)) << name;
     }
 }
@@ -298,13 +306,13 @@ TEST(Misuse, PeelRefusesAnEnginesActiveOcclusionQuery) {
     EXPECT_LE(largestDifference(renderOnce(*method, c), expected), 1e-6f);
 }
 
-// A method used with another context current (one that shares nothing with the method's): an
-// error before any draw, not GL errors or another context's objects touched by coincident names.
+// A method used with another context current (one of its own, or one sharing the method's objects):
+// an error before any draw, not GL errors or another context's objects touched by coincident names.
 TEST(Misuse, AnotherContextCurrentIsAnError) {
     test::TestScene c(makeBuiltinScene("tubes", 3), 48, 32, 30.0f, 15.0f, kBackground);
-    const EGLDisplay display = eglGetCurrentDisplay();
-    const EGLContext context = eglGetCurrentContext();
-    const EGLSurface draw = eglGetCurrentSurface(EGL_DRAW), read = eglGetCurrentSurface(EGL_READ);
+    const CurrentEgl egl;
+    const EGLDisplay display = egl.display;
+    const EGLContext context = egl.context;
     ASSERT_NE(context, EGL_NO_CONTEXT) << "the test context is EGL";
     EGLint configId = 0, clientType = 0;
     eglQueryContext(display, context, EGL_CONFIG_ID, &configId);
@@ -340,7 +348,7 @@ TEST(Misuse, AnotherContextCurrentIsAnError) {
         EXPECT_NE(error.find("not the one this method was created in"), std::string::npos) << name << ": " << error;
         EXPECT_EQ(takeGlError(), GLenum(GL_NO_ERROR)) << name << ": in the other context";
         glDeleteBuffers(GLsizei(buffers.size()), buffers.data());
-        ASSERT_TRUE(eglMakeCurrent(display, draw, read, context));
+        ASSERT_TRUE(egl.restore());
         method->resetHistory();  // (the refused frame aborted: the next one is real again)
         EXPECT_LE(largestDifference(renderOnce(*method, c), expected), 1e-6f) << name << ": back in its own context";
         EXPECT_EQ(takeGlError(), GLenum(GL_NO_ERROR)) << name;
