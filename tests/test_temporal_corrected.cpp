@@ -1364,19 +1364,83 @@ TEST(PackedLayers, CompositeClearsThePassThreeTargetsItRead) {
 // Whole methods: the frames of recommended's configuration with the composite clearing the
 // targets equal those with the clears, bit for bit, through groups of interpolated frames and the
 // real frames between them, as the camera turns.
+// The real frames' inference writes 0 back into the three targets both kinds of frame sum into
+// (NeuralPasses::sharedSumTargets), and their pass 3 skips the clears of those after a clearing
+// composite: K = 2 and 3 run that hand-over at every group.
 TEST(PackedLayers, FramesWithTheCompositeClearingTheTargetsEqualThoseWithTheClears) {
     test::TestScene c(makeBuiltinScene("tubes", 3), 80, 56, 30.0f, 15.0f, kBackground);
     if (const char* missing = threeLayersMissing()) GTEST_SKIP() << missing;
     const std::vector<float> yaws = {0.0f, 2.0f, 4.0f, 6.0f, 8.0f, 10.0f, 12.0f, 14.0f, 16.0f, 18.0f};
-    MethodOptions clearing = correctedOptions();
-    clearing.neural.temporalInterval = 4;
-    clearing.neural.correctedLayers = NeuralOptions::CorrectedLayers::Three;
-    MethodOptions clears = clearing;
-    clears.neural.compositeClearsTargets = false;
-    const auto a = renderSequence(c, clearing, yaws, "starnt-d");
-    const auto b = renderSequence(c, clears, yaws, "starnt-d");
-    for (size_t f = 0; f < yaws.size(); ++f) EXPECT_EQ(a[f], b[f]) << "frame " << f;
-    EXPECT_NE(a[1], a[2]) << "the camera turns";
+    for (int interval : {2, 3, 4}) {
+        MethodOptions clearing = correctedOptions();
+        clearing.neural.temporalInterval = interval;
+        clearing.neural.correctedLayers = NeuralOptions::CorrectedLayers::Three;
+        MethodOptions clears = clearing;
+        clears.neural.compositeClearsTargets = false;
+        const auto a = renderSequence(c, clearing, yaws, "starnt-d");
+        const auto b = renderSequence(c, clears, yaws, "starnt-d");
+        for (size_t f = 0; f < yaws.size(); ++f) EXPECT_EQ(a[f], b[f]) << "K = " << interval << ", frame " << f;
+        EXPECT_NE(a[1], a[2]) << "the camera turns";
+    }
+}
+
+// A surface exactly on the far plane (window depth 1, which passes 1 and 2 drop by their depth
+// test LESS against the cleared 1): the real frames' pass 3 drops it too, so the pixels where it
+// is the only surface, which the real frame's inference does not shade, keep no sums for the
+// interpolated frame after it, whose pass 3 does not clear them (sharedSumsClearedByInference).
+// Without that, the interpolated frames differ from those with the clears there.
+TEST(PackedLayers, ASurfaceOnTheFarPlaneLeavesNoSumsForTheInterpolatedFrames) {
+    test::glContext();
+    if (const char* missing = threeLayersMissing()) GTEST_SKIP() << missing;
+    // An orthographic view from the origin down -z, near 0 and far 1: window depth = -z exactly.
+    Scene scene;
+    auto quad = [&](float z, glm::vec2 lo, glm::vec2 hi, glm::vec4 colour) {
+        Material m;
+        m.unlit = true;
+        m.baseColorFactor = colour;
+        scene.materials.push_back(m);
+        Mesh mesh;
+        mesh.positions = {{lo.x, lo.y, z}, {hi.x, lo.y, z}, {hi.x, hi.y, z}, {lo.x, hi.y, z}};
+        mesh.indices = {0, 1, 2, 0, 2, 3};
+        mesh.material = int(scene.materials.size()) - 1;
+        scene.meshes.push_back(mesh);
+    };
+    quad(-1.0f, glm::vec2(-2.0f), glm::vec2(2.0f), glm::vec4(0.9f, 0.2f, 0.1f, 0.6f));  // the far plane, everywhere
+    // Four sheets in a stack, panned over pixels where the far one was alone in the real frame: an
+    // interpolated frame sums five fragments there, the last two behind its three layers.
+    quad(-0.3f, glm::vec2(-0.5f), glm::vec2(0.5f), glm::vec4(0.9f, 0.9f, 0.2f, 0.3f));
+    quad(-0.4f, glm::vec2(-0.5f), glm::vec2(0.5f), glm::vec4(0.1f, 0.5f, 0.9f, 0.3f));
+    quad(-0.5f, glm::vec2(-0.5f), glm::vec2(0.5f), glm::vec4(0.2f, 0.9f, 0.3f, 0.3f));
+    quad(-0.6f, glm::vec2(-0.5f), glm::vec2(0.5f), glm::vec4(0.8f, 0.8f, 0.8f, 0.3f));
+    SceneGpu gpu(scene);
+    const int w = 48, h = 32;
+    auto render = [&](bool compositeClears) {
+        MethodOptions o = correctedOptions();
+        o.neural.correctedLayers = NeuralOptions::CorrectedLayers::Three;
+        o.neural.compositeClearsTargets = compositeClears;
+        auto method = createMethod("starnt-d", SceneGpu::surfaceShader(), o);
+        std::vector<std::vector<glm::vec4>> out;
+        for (int f = 0; f < 6; ++f) {
+            FrameDesc frame;
+            frame.width = w;
+            frame.height = h;
+            frame.background = kBackground;
+            frame.view = glm::translate(glm::mat4(1.0f), glm::vec3(0.1f * float(f), 0.05f * float(f), 0.0f));  // a pan: depths stay
+            frame.projection = glm::ortho(-1.0f, 1.0f, -1.0f, 1.0f, 0.0f, 1.0f);
+            method->render(frame, gpu.callback(frame.view, frame.projection, {}));
+            glFinish();
+            out.push_back(readRgba(method->outputTexture(), w, h));
+        }
+        return out;
+    };
+    const auto clearing = render(true), clears = render(false);
+    for (size_t f = 0; f < clearing.size(); ++f) EXPECT_EQ(clearing[f], clears[f]) << "frame " << f;
+    // The far quad is the only surface in a corner: the real frames leave it out (pass 1 keeps no
+    // fragment there), the interpolated frames show it (their pass 3 keeps it as a layer).
+    // (The output is RGBA16F: the background to half precision.)
+    const float realOff = glm::length(glm::vec3(clears[0][0]) - kBackground), interpolatedOff = glm::length(glm::vec3(clears[1][0]) - kBackground);
+    EXPECT_LT(realOff, 1e-3f) << "real frame";
+    EXPECT_GT(interpolatedOff, 0.1f) << "interpolated frame";
 }
 
 // End to end (tubes, turning 2 degrees a frame, K = 2): with three layers the real frames render as

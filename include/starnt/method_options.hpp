@@ -125,7 +125,9 @@ struct NeuralOptions {
     bool fusedCorrectionCapture = true;
     // Corrected frames with three layers, on desktop GL with a software rasteriser (llvmpipe): the
     // interpolated frame's composite writes the clear values back into the targets of its pass 3
-    // at every pixel it shades, so that the next interpolated frame clears only its depth
+    // at every pixel it shades, so that the next frame's pass 3 skips their clears, a real frame's
+    // too for the three targets both kinds of frame sum into; a real frame's inference writes 0
+    // back into those three, so that the interpolated frame after it skips them as well
     // (docs/DESIGN.md, "Corrected frames: the composite clears pass 3's targets"). The same images;
     // false: the clears, for comparison. On a GPU (clears are free there) and on OpenGL ES it has no
     // effect.

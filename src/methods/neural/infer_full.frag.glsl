@@ -25,7 +25,23 @@ layout(binding = 1, r32f) uniform readonly highp image2D u_captureReference;  //
 #endif
 #endif
 
+#ifdef STARNT_CLEARS_SHARED_SUMS
+// Corrected frames with three layers (NeuralPasses::sharedSumTargets): 0 written back into the
+// three pass-3 targets that the interpolated frames' pass 3 sums into as well, at the pixel this
+// invocation read them (full-resolution inputs: its own texel, the one read-and-write GL 4.5
+// allows), so that pass skips their clears.
+#if defined(STARNT_CAPTURE_CORRECTION) || !defined(STARNT_INPUTS_FULL_RESOLUTION)
+#error "the shared sums are written back by a composite without the fused capture, at full resolution"
+#endif
+layout(location = 1) out vec4 outClearedSums;
+layout(location = 2) out vec4 outClearedCount;
+layout(location = 3) out vec4 outClearedMoment;
+#endif
+
 void main() {
+#ifdef STARNT_CLEARS_SHARED_SUMS
+    outClearedSums = outClearedCount = outClearedMoment = vec4(0.0);
+#endif
     PixelSums s = readPixelSums(ivec2(gl_FragCoord.xy));
     vec3 network = vec3(0.0);
     if (networkApplies(s)) network = evaluateNetwork(s);

@@ -48,7 +48,10 @@ public:
         shadingRates_ = shadingRatesApply();
         if (shadingRates_) tiles_->enableShadingRates();
         if (temporal_.interpolates() && temporal_.corrects()) {
-            if (layers_ == 3) passes_.findThreeLayers(options_.neural.compositeClearsTargets);
+            if (layers_ == 3) {
+                passes_.findThreeLayers(options_.neural.compositeClearsTargets);
+                if (passes_.compositeClearsTargets() && skipEmpty() && !tiles_) inference("infer_full_clears", true);
+            }
             else if (layers_ == 2) passes_.findTwoLayers();
             if (options_.neural.correctedOnePass) passes_.preparePackedNearestAndSums();
             else passes_.prepareNearestAndSums();
@@ -398,15 +401,18 @@ private:
         // (the tail-moment methods).
         const bool ordered = stage == "infer_full_capture_ordered";
         const bool capture = ordered || stage == "infer_full_capture";
-        if (capture) stage = "infer_full";
+        const bool clearsSums = stage == "infer_full_clears";
+        if (capture || clearsSums) stage = "infer_full";
         const std::string defines = std::string(fullResolutionInputs ? "#define STARNT_INPUTS_FULL_RESOLUTION\n" : "") +
                                     (capture ? "#define STARNT_CAPTURE_CORRECTION\n" : "") +
                                     (ordered ? "#define STARNT_CAPTURE_ORDERED\n" : "") +
                                     (ordered && layers_ == 2 ? "#define STARNT_CAPTURE_TWO_LAYERS\n" : "") +
+                                    (clearsSums ? "#define STARNT_CLEARS_SHARED_SUMS\n" : "") +
                                     (joint() ? "#define STARNT_UPSAMPLE_JOINT\n" : "") + passes_.countLayoutDefine() + passes_.targetsDefine() +
                                     passes_.layerDefine() +
                                     neuralEpsilonDefines() + nn::generateInferenceGlsl(network_);
         return buildFullscreenProgram(config_.name + "_" + stage + (capture ? "_capture" : "") + (ordered ? "_ordered" : "") +
+                                          (clearsSums ? "_clears" : "") +
                                           (fullResolutionInputs ? "" : "_upsampled"),
                                       {config_.compositeShader, "methods/neural/" + stage + ".frag.glsl"}, defines);
     }
@@ -470,6 +476,16 @@ private:
         return temporal_.interpolates() && temporal_.corrects() && keepsCorrection() && skipEmpty() &&
                options_.neural.fusedCorrectionCapture;
     }
+    // Whether this real frame's inference writes 0 back into the pass-3 targets the interpolated
+    // frames sum into as well (NeuralPasses::sharedSumTargets): with three layers, where the
+    // composite of the interpolated frames clears them (NeuralPasses::compositeClearsTargets), when
+    // it reads them at its own pixel only (every pass at full resolution), shades every pixel pass
+    // 1 covered (the empty-pixel skip), writes its output apart (corrected frames do) and nothing
+    // reads pass 3's sums after it (no tiles; three layers keep no correction to capture).
+    bool clearsSharedSums(bool fullResolution) const {
+        return passes_.compositeClearsTargets() && fullResolution && skipEmpty() && !tiles_ && !keepsCorrection() &&
+               out_.texture == output_.id();
+    }
     // Whether the real frames keep the network's correction for the interpolated frames: not with
     // three layers, whose closed form alone measured nearer the A-buffer than the real frames
     // (docs/DESIGN.md, "Corrected frames: three layers and no correction"); those real frames then
@@ -518,6 +534,20 @@ private:
             return;
         }
         if (!cornersUsed_) {
+            if (clearsSharedSums(fullResolution)) {
+                // Corrected frames with three layers on a software rasteriser: the inference writes
+                // 0 back into the pass-3 targets the interpolated frame's pass 3 sums into, at the
+                // pixels it shades, so that pass need not clear them (NeuralPasses::sharedSumTargets).
+                const auto shared = passes_.sharedSumTargets();
+                emptyPixels_.bindCovered(out_.texture, passes_.nearestDepth().id(), width_, height_, 0, shared);
+                emptyPixels_.clearToBackground(opaque_, compactOutput());  // its own output, not read here
+                glTextureBarrier();  // pass 3's writes, read by the invocations that write the same texels
+                setCommonUniforms(inference("infer_full_clears", true), frame);
+                drawFullscreen();
+                finishOutput();
+                passes_.sharedSumsClearedByInference();
+                return;
+            }
             bindOutput();
             setCommonUniforms(inference("infer_full", fullResolution), frame);
             drawFullscreen();

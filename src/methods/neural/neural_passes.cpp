@@ -267,7 +267,10 @@ void NeuralPasses::runNearest(const FrameDesc& frame, const DrawCallback& draw) 
 
 void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float peelEpsilon, Size2 pass2Size,
                        Size2 pass3Size, const std::function<GLuint()>& behindReference) {
-    forgetTargets();  // pass 3 writes three of them (and pass 1 the depth), and the output may go into one
+    // Pass 1 rewrites the depth that marked the last interpolated pass 3's pixels, and this frame
+    // makes a new reference depth (referenceStale_); pass 3 writes sharedSumTargets() (runSums).
+    coverMarked_ = false;
+    referenceStale_ = true;
     runNearest(frame, draw);
     const Size2 full{width_, height_};
     pass2Size_ = pass2Size;
@@ -333,6 +336,9 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
     behindReference_ = behindSummed_ ? behindReference : 0;
     GLuint framebuffer = pass3Fb_.id();
     SurfaceProgram* program = &pass3_;
+    // Targets 0, 1 and 3 are sharedSumTargets(): zero everywhere after a clearing composite.
+    const bool sumsClear = sumsClear_ && compositeClears_ && pass3Size == full;
+    sumsClear_ = false;  // (and the output may go into one)
     if (behindSummed_) {
         prepareRealBehindMoments();
         allocatePackedNearest();
@@ -354,8 +360,10 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
     }
     const gl::Program* drawn = &program->plain();  // the variant that clips in its shader where it does
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-    clears_.color(0, zero);
-    clears_.color(1, zero);
+    if (!sumsClear) {
+        clears_.color(0, zero);
+        clears_.color(1, zero);
+    }
     clears_.color(2, one);
     if (pass3HoldsTails_) {
         glEnable(GL_DEPTH_TEST);
@@ -371,7 +379,7 @@ void NeuralPasses::runSums(const FrameDesc& frame, const DrawCallback& draw, Siz
     glBlendFunci(1, GL_ONE, GL_ONE);
     glBlendFunci(2, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
     if (tailMoments_) {
-        clears_.color(3, zero);
+        if (!sumsClear) clears_.color(3, zero);
         clears_.color(4, zero);
         glBlendFunci(3, GL_ONE, GL_ONE);
         glBlendFunci(4, GL_ONE, GL_ONE);
@@ -440,7 +448,12 @@ std::array<GLuint, 5> NeuralPasses::packedTargets() const {
 
 void NeuralPasses::targetsClearedByComposite() {
     if (!compositeClears_) throw Error("internal: the composite cleared the targets of a pass that clears them itself");
-    targetsClear_ = true;
+    sumsClear_ = layersClear_ = true;
+}
+
+void NeuralPasses::sharedSumsClearedByInference() {
+    if (!compositeClears_) throw Error("internal: the inference cleared the targets of a pass that clears them itself");
+    sumsClear_ = true;
 }
 
 void NeuralPasses::preparePackedNearestAndSums() {
@@ -452,6 +465,14 @@ void NeuralPasses::preparePackedNearestAndSums() {
                                                (twoLayers_ ? "#extension GL_EXT_shader_framebuffer_fetch : require\n"
                                                              "#define STARNT_PACKED_TWO_LAYERS\n"
                                                            : ""));
+    }
+    // The count's target two channels wide from the first frame (its .r, the count, is the same
+    // either way): a real frame's composite that writes it back (sharedSumTargets) would otherwise
+    // meet a new format at the first real frame after an interpolated one, and the rasteriser
+    // compile a new variant of it in that frame (260 ms on llvmpipe).
+    if (tailMoments_) {
+        if (width_ > 0) widenCountBesideBehind();
+        else countBesideBehind_ = true;
     }
 }
 
@@ -499,16 +520,19 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
     resetPassState();
     gl::ScopedPass timing(frame.timing, "pass3");
     // The last interpolated frame's composite wrote back the clear values wherever this pass wrote
-    // (compositeClearsTargets()): only the depth, which marks those pixels, is cleared then.
-    const bool clear = !compositeClears_ || !targetsClear_;
+    // (compositeClearsTargets()), and a real frame since wrote none of the layers' and, where its
+    // inference wrote 0 back, none of the sums' (sharedSumsClearedByInference()). A real frame's
+    // new reference depth goes beside the third layer at every pixel.
+    const bool clearSums = !compositeClears_ || !sumsClear_;
+    const bool clearLayers = !compositeClears_ || !layersClear_;
     const bool marked = coverMarked_;
-    forgetTargets();
-    if (clear && threeLayers_) clearThirdLayer(reference, marked);
+    if (threeLayers_ && (clearLayers || referenceStale_)) clearThirdLayer(reference, clearLayers && marked);
+    sumsClear_ = layersClear_ = referenceStale_ = false;
     glBindFramebuffer(GL_FRAMEBUFFER, packedFb_.id());
     glViewport(0, 0, width_, height_);
     const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1}, farDepth = 1.0f;
-    if (clear) clears_.color(0, zero);
-    if (clear && !tailMoments_) clears_.color(1, one);  // the tail-moment methods' target 1 is cleared below
+    if (clearSums) clears_.color(0, zero);
+    if (clearSums && !tailMoments_) clears_.color(1, one);  // the tail-moment methods' target 1 is cleared below
     glClearBufferfv(GL_DEPTH, 0, &farDepth);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_ALWAYS);
@@ -518,7 +542,7 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
     if (twoLayers_) {
         // Read and rewritten by every fragment (framebuffer fetch); an integer target blends nothing.
         const GLuint empty[4] = {STARNT_PACKED_LAYER_EMPTY, 0u, STARNT_PACKED_LAYER_EMPTY, 0u};
-        if (clear) clears_.colorUint(2, empty);  // (the third layer's: clearThirdLayer)
+        if (clearLayers) clears_.colorUint(2, empty);  // (the third layer's: clearThirdLayer)
     } else {
         const float emptyPixel = std::bit_cast<float>(STARNT_PACKED_EMPTY_BITS);
         const float empty[4] = {emptyPixel, emptyPixel, emptyPixel, emptyPixel};
@@ -526,8 +550,8 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
         glBlendEquationi(2, GL_MIN);  // blend factors do not apply to MIN
     }
     if (tailMoments_) {
-        beginSecondMomentAndOpticalDepth(1, clear);
-        beginBehindMoment(3, reference, clear);
+        beginSecondMomentAndOpticalDepth(1, clearSums);
+        beginBehindMoment(3, reference, clearSums);
     }
     const gl::Program& pass3 = opaque_.clipInShader(pass3Packed_, width_, height_, width_, height_);
     MethodBase::runGeometryPass("pass3", pass3, frame, draw);

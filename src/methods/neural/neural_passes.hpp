@@ -177,6 +177,17 @@ public:
     // runPackedNearestAndSums reached (its cover depth below 1). Any other pass into those targets
     // (a real frame's, a reallocation) undoes it.
     void targetsClearedByComposite();
+    // The three of those targets that a real frame's pass 3 writes too (alphaColor(),
+    // colorCount(), tailMoment1: their clear value is 0 in both kinds of frame). With
+    // compositeClearsTargets(), a real frame's pass 3 skips their clears after a clearing
+    // composite, and its inference may write 0 back into them at every pixel it shades
+    // (sharedSumsClearedByInference()), so that the interpolated frame after it skips them too
+    // (docs/DESIGN.md, "Corrected frames: the composite clears pass 3's targets").
+    std::array<GLuint, 3> sharedSumTargets() const { return {alphaColor_.id(), colorCount_.id(), tailMoment1_.id()}; }
+    // Says that the inference after the last run() wrote 0 into sharedSumTargets() at every pixel
+    // pass 1 covered; pass 3 sums no fragment elsewhere (it drops those on the far plane, which
+    // pass 1's depth test drops).
+    void sharedSumsClearedByInference();
     // The moments an interpolated frame of a tail-moment method summed behind its reference (targets
     // its real frames' inference has read by then): (sum a C u, sum a u) in the first tail-moment
     // target, and in the count's (RG32F) sum a u^2 in .r and the optical depth sum -ln(1 - a) in .g
@@ -264,13 +275,18 @@ private:
     gl::Texture2D packedLayers_;   // the nearest two fragments (twoLayers_), allocated on first need
     bool threeLayers_ = false;     // findThreeLayers
     bool compositeClears_ = false;  // compositeClearsTargets()
-    // targetsClearedByComposite said so since the last runPackedNearestAndSums: it skips their
-    // clears then. Every other pass into them and every reallocation of one of them resets it.
-    bool targetsClear_ = false;
+    // What holds its clear value at every texel, so that the next pass into it skips its clear
+    // (compositeClears_ only): sharedSumTargets() (sumsClear_: after a clearing composite or
+    // after the real frame's inference wrote 0 back); the packed layers and the third layer's
+    // layers (layersClear_: after a clearing composite; a real frame writes neither). The third
+    // layer's reference depth is the last interpolated frame's: a real frame makes a new one
+    // (referenceStale_), which a full-screen pass writes there before the next pass 3.
+    bool sumsClear_ = false, layersClear_ = false, referenceStale_ = false;
     // Three layers: the last pass into the targets was runPackedNearestAndSums, whose depth target
-    // marks the pixels it wrote (below 1). Reset with targetsClear_.
+    // marks the pixels it wrote (below 1). Reset by any other pass into them.
     bool coverMarked_ = false;
-    void forgetTargets() { targetsClear_ = coverMarked_ = false; }
+    // New textures: nothing is known of them.
+    void forgetTargets() { sumsClear_ = layersClear_ = coverMarked_ = false; }
     gl::Texture2D thirdLayer_;     // the third (threeLayers_) and the reference depth, allocated with packedLayers_
     // The third layer's clear: no layer and the reference depth of `reference` (packed_nearest.h),
     // everywhere or, `onlyMarked`, where the last pass 3 wrote (coverMarked_).

@@ -72,6 +72,13 @@ layout(binding = 0) uniform highp sampler2D u_secondDepth;  // pass 2's depth, 1
 #endif
 
 void main() {
+#if defined(STARNT_TAIL_MOMENTS)
+    // A fragment on the far plane is one that passes 1 and 2 drop (depth test LESS against the far
+    // plane's 1): summed here it would stand where pass 1 left the pixel empty, where the inference
+    // never reads it, nor writes 0 back for the interpolated frames' pass 3
+    // (NeuralPasses::sharedSumsClearedByInference).
+    if (gl_FragCoord.z >= 1.0) discard;
+#endif
     vec4 s = fetchSurfaceOrDiscard();
     outAlphaColor = vec4(s.rgb * s.a, s.a);
 #if defined(STARNT_SUMS_ONLY)
