@@ -1371,6 +1371,11 @@ TEST(PackedLayers, FramesWithTheCompositeClearingTheTargetsEqualThoseWithTheClea
     test::TestScene c(makeBuiltinScene("tubes", 3), 80, 56, 30.0f, 15.0f, kBackground);
     if (const char* missing = threeLayersMissing()) GTEST_SKIP() << missing;
     const std::vector<float> yaws = {0.0f, 2.0f, 4.0f, 6.0f, 8.0f, 10.0f, 12.0f, 14.0f, 16.0f, 18.0f};
+    // And over a background texture (the empty pixels drawn, not cleared: EmptyPixelSkip::fillEmpty).
+    std::vector<glm::vec4> gradient;
+    for (int y = 0; y < c.height; ++y)
+        for (int x = 0; x < c.width; ++x) gradient.emplace_back(float(x) / float(c.width), float(y) / float(c.height), 0.5f, 1.0f);
+    const gl::Texture2D background = uploadRgba(gradient, c.width, c.height);
     for (int interval : {2, 3, 4}) {
         MethodOptions clearing = correctedOptions();
         clearing.neural.temporalInterval = interval;
@@ -1381,6 +1386,11 @@ TEST(PackedLayers, FramesWithTheCompositeClearingTheTargetsEqualThoseWithTheClea
         const auto b = renderSequence(c, clears, yaws, "starnt-d");
         for (size_t f = 0; f < yaws.size(); ++f) EXPECT_EQ(a[f], b[f]) << "K = " << interval << ", frame " << f;
         EXPECT_NE(a[1], a[2]) << "the camera turns";
+        if (interval != 2) continue;
+        const auto over = renderSequence(c, clearing, yaws, "starnt-d", background.id());
+        const auto overClears = renderSequence(c, clears, yaws, "starnt-d", background.id());
+        for (size_t f = 0; f < yaws.size(); ++f) EXPECT_EQ(over[f], overClears[f]) << "over a texture, frame " << f;
+        EXPECT_NE(over[1], a[1]) << "the texture shows";
     }
 }
 
