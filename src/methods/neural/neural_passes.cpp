@@ -580,14 +580,14 @@ void NeuralPasses::clearThirdLayer(GLuint reference, bool onlyMarked) {
         glDisable(GL_DEPTH_TEST);
     }
     glDisable(GL_BLEND);
+    // The triangle at window depth 1 whatever the depth convention: the passes of a reversed
+    // projection run with the depth range (1, 0) (resetPassState), which would put it at 0, where
+    // GREATER fails at every pixel (as EmptyPixelSkip::bindCovered).
+    glDepthRangef(1.0f, 1.0f);
     glUseProgram(thirdLayerClear_.id());
     gl::bindTexture(1, reference);  // third_layer_clear.frag.glsl's u_reference
     gl::drawFullscreenTriangle(emptyVao_);
-    if (onlyMarked) {
-        glDepthMask(GL_TRUE);  // (the depth clear that follows obeys the mask)
-        glDepthFunc(GL_LESS);
-        glDisable(GL_DEPTH_TEST);
-    }
+    resetPassState();  // the convention's depth range back; the depth mask on for the depth clear that follows
 }
 
 void NeuralPasses::bindInputs(const gl::Program& program) const {

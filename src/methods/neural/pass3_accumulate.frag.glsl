@@ -72,13 +72,12 @@ layout(binding = 0) uniform highp sampler2D u_secondDepth;  // pass 2's depth, 1
 #endif
 
 void main() {
-#if defined(STARNT_TAIL_MOMENTS)
-    // A fragment on the far plane is one that passes 1 and 2 drop (depth test LESS against the far
-    // plane's 1): summed here it would stand where pass 1 left the pixel empty, where the inference
-    // never reads it, nor writes 0 back for the interpolated frames' pass 3
-    // (NeuralPasses::sharedSumsClearedByInference).
+    // A fragment on the far plane (window depth 1: beyond it too, under an engine's depth clamp) is
+    // one that passes 1 and 2 drop by their depth test (LESS against the cleared 1); every pass 3
+    // drops it too, real and interpolated, so that no frame shows what the others do not, and no
+    // sums stand where pass 1 left the pixel empty: the inference neither reads those nor writes 0
+    // back there for the interpolated frames' pass 3 (NeuralPasses::sharedSumsClearedByInference).
     if (gl_FragCoord.z >= 1.0) discard;
-#endif
     vec4 s = fetchSurfaceOrDiscard();
     outAlphaColor = vec4(s.rgb * s.a, s.a);
 #if defined(STARNT_SUMS_ONLY)

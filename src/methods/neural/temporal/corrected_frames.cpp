@@ -171,6 +171,8 @@ void CorrectedFrames::compositePacked(const glm::mat4& newViewProj, GLuint packe
     }
     emptyPixels_.bindCovered(output, coverDepth, width_, height_, 0, clearTargets);
     emptyPixels_.clearToBackground(background, halfOutput);  // the output is not read here
+    // Pass 3's writes, read by the invocations that write the same texels back (GL 4.5 9.3.1).
+    if (!clearTargets.empty()) glTextureBarrier();
     setCompositeUniforms(clearTargets.empty() ? compositePacked_ : compositePackedClears_, newViewProj, background, halfOutput);
     bindComposite(packedNearest, thirdLayer, sumAlphaColor, transmittance, behindMoment1, behindMoment2);
     gl::drawFullscreenTriangle(emptyVao_);
