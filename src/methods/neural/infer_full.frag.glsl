@@ -36,19 +36,11 @@ layout(binding = 1, r32f) uniform readonly highp image2D u_captureReference;  //
 layout(location = 1) out vec4 outClearedSums;
 layout(location = 2) out vec4 outClearedCount;
 layout(location = 3) out vec4 outClearedMoment;
-// And the third layer's clear value (third_layer_clear.frag.glsl): no layer, beside it the float
-// bits of the reference depth the interpolated frames will read (one texel a tile).
-#include "methods/neural/temporal/packed_nearest.h"
-#include "methods/neural/temporal/reprojection_constants.h"
-layout(location = 4) out highp uvec4 outClearedThirdLayer;
-layout(binding = 0, r32f) uniform readonly highp image2D u_clearReference;
 #endif
 
 void main() {
 #ifdef STARNT_CLEARS_SHARED_SUMS
     outClearedSums = outClearedCount = outClearedMoment = vec4(0.0);
-    float clearReference = imageLoad(u_clearReference, ivec2(gl_FragCoord.xy) / STARNT_ORDERED_REFERENCE_TILE).r;
-    outClearedThirdLayer = uvec4(STARNT_PACKED_LAYER_EMPTY, 0u, floatBitsToUint(clearReference), 0u);
 #endif
     PixelSums s = readPixelSums(ivec2(gl_FragCoord.xy));
     vec3 network = vec3(0.0);

@@ -249,13 +249,6 @@ private:
         // lower the levels and the scales further with every frame.
         const bool tilesUpdate = tiles_ && (!guarded() || probe_);
         chooseOutput(!tilesUpdate && !temporal_.interpolates());
-        clearReference_ = 0;
-        if (clearsSharedSums(passes_.pass2Size() == full && passes_.pass3Size() == full && !passes_.pass3HoldsTails())) {
-            // The interpolated frames' reference depth now, from pass 1's, rather than in the capture
-            // after the inference: the inference writes it beside the third layer's clear value.
-            gl::ScopedPass timing(frame.timing, "reference_depth");
-            clearReference_ = temporal_.prepareReference(passes_.nearestDepth().id(), frame.width, frame.height);
-        }
         infer(frame);
         if (tilesUpdate) {
             gl::ScopedPass timing(frame.timing, "tiles");
@@ -541,16 +534,12 @@ private:
             return;
         }
         if (!cornersUsed_) {
-            if (clearReference_ && clearsSharedSums(fullResolution)) {
+            if (clearsSharedSums(fullResolution)) {
                 // Corrected frames with three layers on a software rasteriser: the inference writes
-                // 0 back into the pass-3 targets the interpolated frame's pass 3 sums into, and the
-                // third layer's clear value beside the new reference depth, at the pixels it
-                // shades, so that pass need not clear them (NeuralPasses::inferenceClearTargets).
-                const auto cleared = passes_.inferenceClearTargets();
-                emptyPixels_.bindCovered(out_.texture, passes_.nearestDepth().id(), width_, height_, 0, cleared);
-                // infer_full.frag.glsl's u_clearReference (image units: only the tiles and the
-                // A-buffer use them, neither here)
-                glBindImageTexture(0, clearReference_, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
+                // 0 back into the pass-3 targets the interpolated frame's pass 3 sums into, at the
+                // pixels it shades, so that pass need not clear them (NeuralPasses::sharedSumTargets).
+                const auto shared = passes_.sharedSumTargets();
+                emptyPixels_.bindCovered(out_.texture, passes_.nearestDepth().id(), width_, height_, 0, shared);
                 emptyPixels_.clearToBackground(opaque_, compactOutput());  // its own output, not read here
                 glTextureBarrier();  // pass 3's writes, read by the invocations that write the same texels
                 setCommonUniforms(inference("infer_full_clears", true), frame);
@@ -599,7 +588,6 @@ private:
     GLuint pass3Rates_ = 0;      // this real frame's rate image (0: one invocation per pixel)
     bool cornersUsed_ = false;
     bool fusedCaptured_ = false;  // this real frame's composite captured the corrected frames' correction
-    GLuint clearReference_ = 0;   // this real frame's reference depth, made before its inference (clearsSharedSums)
     NeuralPasses::OutputSlot out_;  // this frame's output
     bool probe_ = false;            // this real frame is a guard probe (passes 2/3 at full resolution)
     int realFramesSinceProbe_ = 0;

@@ -269,7 +269,7 @@ void NeuralPasses::run(const FrameDesc& frame, const DrawCallback& draw, float p
                        Size2 pass3Size, const std::function<GLuint()>& behindReference) {
     // Pass 1 rewrites the depth that marked the last interpolated pass 3's pixels, and this frame
     // makes a new reference depth (referenceStale_); pass 3 writes sharedSumTargets() (runSums).
-    coverMarked_ = referenceWhereCovered_ = false;
+    coverMarked_ = false;
     referenceStale_ = true;
     runNearest(frame, draw);
     const Size2 full{width_, height_};
@@ -454,27 +454,6 @@ void NeuralPasses::targetsClearedByComposite() {
 void NeuralPasses::sharedSumsClearedByInference() {
     if (!compositeClears_) throw Error("internal: the inference cleared the targets of a pass that clears them itself");
     sumsClear_ = true;
-    referenceWhereCovered_ = true;
-}
-
-std::array<GLuint, 4> NeuralPasses::inferenceClearTargets() {
-    if (!compositeClears_) throw Error("internal: the inference clears the targets of a pass that clears them itself");
-    allocatePackedLayers();
-    return {alphaColor_.id(), colorCount_.id(), tailMoment1_.id(), thirdLayer_.id()};
-}
-
-void NeuralPasses::allocatePackedLayers() {
-    gl::Texture2D& packed = twoLayers_ ? packedLayers_ : packedNearest_;
-    if (packed.width() == width_ && packed.height() == height_) return;
-    // The two layers: an integer target of their own (the real frames keep their moments behind
-    // the reference in packedNearest_, a float one).
-    if (twoLayers_) packedLayers_ = gl::Texture2D(GL_RGBA32UI, width_, height_);
-    if (threeLayers_) thirdLayer_ = gl::Texture2D(GL_RGBA32UI, width_, height_);
-    else allocatePackedNearest();
-    packedFb_.reset();
-    thirdLayerClearFb_.reset();
-    thirdLayerClearMarkedFb_.reset();
-    forgetTargets();  // new textures
 }
 
 void NeuralPasses::preparePackedNearestAndSums() {
@@ -513,8 +492,18 @@ void NeuralPasses::beginSecondMomentAndOpticalDepth(GLuint target, bool clear) {
 void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCallback& draw, GLuint reference) {
     resize(frame.width, frame.height);
     preparePackedNearestAndSums();
-    allocatePackedLayers();
     gl::Texture2D& packed = twoLayers_ ? packedLayers_ : packedNearest_;
+    if (packed.width() != width_ || packed.height() != height_) {
+        // The two layers: an integer target of their own (the real frames keep their moments behind
+        // the reference in packedNearest_, a float one).
+        if (twoLayers_) packedLayers_ = gl::Texture2D(GL_RGBA32UI, width_, height_);
+        if (threeLayers_) thirdLayer_ = gl::Texture2D(GL_RGBA32UI, width_, height_);
+        else allocatePackedNearest();
+        packedFb_.reset();
+        thirdLayerClearFb_.reset();
+        thirdLayerClearMarkedFb_.reset();
+        forgetTargets();  // new textures
+    }
     if (tailMoments_) widenCountBesideBehind();
     if (!packedFb_.id()) {
         // Pass 1's depth target, free in an interpolated frame, records which pixels any fragment
@@ -536,11 +525,9 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
     // new reference depth goes beside the third layer at every pixel.
     const bool clearSums = !compositeClears_ || !sumsClear_;
     const bool clearLayers = !compositeClears_ || !layersClear_;
-    if (threeLayers_ && (clearLayers || referenceStale_)) {
-        using P = ThirdLayerPixels;
-        clearThirdLayer(reference, clearLayers ? (coverMarked_ ? P::Marked : P::Every) : referenceWhereCovered_ ? P::Empty : P::Every);
-    }
-    sumsClear_ = layersClear_ = referenceStale_ = referenceWhereCovered_ = false;
+    const bool marked = coverMarked_;
+    if (threeLayers_ && (clearLayers || referenceStale_)) clearThirdLayer(reference, clearLayers && marked);
+    sumsClear_ = layersClear_ = referenceStale_ = false;
     glBindFramebuffer(GL_FRAMEBUFFER, packedFb_.id());
     glViewport(0, 0, width_, height_);
     const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1}, farDepth = 1.0f;
@@ -572,8 +559,7 @@ void NeuralPasses::runPackedNearestAndSums(const FrameDesc& frame, const DrawCal
     coverMarked_ = threeLayers_;
 }
 
-void NeuralPasses::clearThirdLayer(GLuint reference, ThirdLayerPixels where) {
-    const bool onlyMarked = where != ThirdLayerPixels::Every;
+void NeuralPasses::clearThirdLayer(GLuint reference, bool onlyMarked) {
     if (!thirdLayerClear_.id()) {
         thirdLayerClear_ = gl::buildProgram("third_layer_clear", gl::embeddedSource("methods/common/fullscreen.vert.glsl"),
                                             gl::embeddedSource("methods/neural/temporal/third_layer_clear.frag.glsl"));
@@ -582,15 +568,13 @@ void NeuralPasses::clearThirdLayer(GLuint reference, ThirdLayerPixels where) {
     // anything but the clear value: the others keep their reference depth, as the composite that
     // clears the targets leaves them, so both ways give the same frames bit for bit. The marks are
     // the depth target's, tested against the far-plane triangle (GREATER: below 1 where written).
-    // After a real frame whose inference wrote the clear value where its pass 1 covered the pixel,
-    // the same depth target holds pass 1's depth: LEQUAL finds the pixels it left empty (1).
     gl::FramebufferHandle& framebuffer = onlyMarked ? thirdLayerClearMarkedFb_ : thirdLayerClearFb_;
     if (!framebuffer.id()) framebuffer = gl::makeFramebuffer({&thirdLayer_}, onlyMarked ? &nearestDepth_ : nullptr);
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
     glViewport(0, 0, width_, height_);
     if (onlyMarked) {
         glEnable(GL_DEPTH_TEST);
-        glDepthFunc(where == ThirdLayerPixels::Empty ? GL_LEQUAL : GL_GREATER);
+        glDepthFunc(GL_GREATER);
         glDepthMask(GL_FALSE);
     } else {
         glDisable(GL_DEPTH_TEST);

@@ -184,15 +184,9 @@ public:
     // (sharedSumsClearedByInference()), so that the interpolated frame after it skips them too
     // (docs/DESIGN.md, "Corrected frames: the composite clears pass 3's targets").
     std::array<GLuint, 3> sharedSumTargets() const { return {alphaColor_.id(), colorCount_.id(), tailMoment1_.id()}; }
-    // The targets the real frame's inference writes clear values into (three layers, with
-    // compositeClearsTargets()): sharedSumTargets() and the third layer, allocated here if it is not
-    // yet (its clear value: no layer, beside it the reference depth of the interpolated frames to come).
-    std::array<GLuint, 4> inferenceClearTargets();
-    // Says that the inference after the last run() wrote 0 into sharedSumTargets() and the third
-    // layer's clear value with the new reference into the third layer, at every pixel pass 1
-    // covered; pass 3 sums no fragment elsewhere (it drops those on the far plane, which pass 1's
-    // depth test drops). The next runPackedNearestAndSums then writes the reference only where
-    // pass 1 left the pixel empty.
+    // Says that the inference after the last run() wrote 0 into sharedSumTargets() at every pixel
+    // pass 1 covered; pass 3 sums no fragment elsewhere (it drops those on the far plane, which
+    // pass 1's depth test drops).
     void sharedSumsClearedByInference();
     // The moments an interpolated frame of a tail-moment method summed behind its reference (targets
     // its real frames' inference has read by then): (sum a C u, sum a u) in the first tail-moment
@@ -288,21 +282,15 @@ private:
     // layer's reference depth is the last interpolated frame's: a real frame makes a new one
     // (referenceStale_), which a full-screen pass writes there before the next pass 3.
     bool sumsClear_ = false, layersClear_ = false, referenceStale_ = false;
-    // The real frame's inference wrote the new reference beside the third layer at the pixels pass
-    // 1 covered (sharedSumsClearedByInference): the rest of the reference pass is the empty pixels'.
-    bool referenceWhereCovered_ = false;
     // Three layers: the last pass into the targets was runPackedNearestAndSums, whose depth target
     // marks the pixels it wrote (below 1). Reset by any other pass into them.
     bool coverMarked_ = false;
     // New textures: nothing is known of them.
     void forgetTargets() { sumsClear_ = layersClear_ = coverMarked_ = false; }
     gl::Texture2D thirdLayer_;     // the third (threeLayers_) and the reference depth, allocated with packedLayers_
-    // The third layer's clear: no layer and the reference depth of `reference` (packed_nearest.h).
-    // `where`: every pixel, the pixels the last interpolated pass 3 marked (coverMarked_), or the
-    // pixels the last real frame's pass 1 left empty (referenceWhereCovered_).
-    enum class ThirdLayerPixels { Every, Marked, Empty };
-    void clearThirdLayer(GLuint reference, ThirdLayerPixels where);
-    void allocatePackedLayers();
+    // The third layer's clear: no layer and the reference depth of `reference` (packed_nearest.h),
+    // everywhere or, `onlyMarked`, where the last pass 3 wrote (coverMarked_).
+    void clearThirdLayer(GLuint reference, bool onlyMarked);
     gl::Program thirdLayerClear_;  // third_layer_clear.frag.glsl, built on first need
     gl::FramebufferHandle thirdLayerClearFb_, thirdLayerClearMarkedFb_;
     // A real frame's moments behind the reference (the first in packedNearest_, free then; the
