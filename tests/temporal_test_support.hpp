@@ -45,10 +45,12 @@ inline glm::mat4 turnedViewProj(int w, int h, float yawDeg) {
 }
 
 // Renders `yaws` with the starnt method and `options`, the camera turned about its target by +yaw
-// around y (over FrameDesc::backgroundTexture `background` where given); returns each output in GL order.
+// around y (over FrameDesc::backgroundTexture `background` where given; the projection
+// `clipTransform` x the camera's, e.g. a z flip for a reversed projection); returns each output in
+// GL order.
 inline std::vector<std::vector<glm::vec4>> renderSequence(TestScene& c, const MethodOptions& options,
                                                           const std::vector<float>& yaws, const std::string& name = "starnt",
-                                                          GLuint background = 0) {
+                                                          GLuint background = 0, const glm::mat4& clipTransform = glm::mat4(1.0f)) {
     auto method = createMethod(name, SceneGpu::surfaceShader(), options);
     std::vector<std::vector<glm::vec4>> out;
     for (float yaw : yaws) {
@@ -57,7 +59,7 @@ inline std::vector<std::vector<glm::vec4>> renderSequence(TestScene& c, const Me
         cam.position = cam.target + glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(yaw), glm::vec3(0, 1, 0)) * glm::vec4(offset, 0.0f));
         FrameDesc f = c.frame();
         f.view = cam.view();
-        f.projection = cam.projection(c.aspect());
+        f.projection = clipTransform * cam.projection(c.aspect());
         f.backgroundTexture = background;
         method->render(f, c.gpu->callback(f.view, f.projection, {}));
         glFinish();

@@ -1396,23 +1396,9 @@ TEST(PackedLayers, FramesWithTheCompositeClearingTheTargetsEqualThoseWithTheClea
             // A reversed projection: the passes run with the depth range (1, 0), and the clears'
             // pass limited to the pixels the last pass 3 marked must still find them (it found
             // none: its triangle sat at window depth 0).
-            auto reversed = [&](const MethodOptions& o) {
-                auto method = createMethod("starnt-d", SceneGpu::surfaceShader(), o);
-                std::vector<std::vector<glm::vec4>> out;
-                for (float yaw : yaws) {
-                    Camera cam = c.camera;
-                    const glm::vec3 offset = cam.position - cam.target;
-                    cam.position = cam.target + glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(yaw), glm::vec3(0, 1, 0)) * glm::vec4(offset, 0.0f));
-                    FrameDesc f = c.frame();
-                    f.view = cam.view();
-                    f.projection = glm::scale(glm::mat4(1.0f), glm::vec3(1.0f, 1.0f, -1.0f)) * cam.projection(c.aspect());
-                    method->render(f, c.gpu->callback(f.view, f.projection, {}));
-                    glFinish();
-                    out.push_back(readRgba(method->outputTexture(), c.width, c.height));
-                }
-                return out;
-            };
-            const auto ra = reversed(clearing), rb = reversed(clears);
+            const glm::mat4 reverse = glm::scale(glm::mat4(1.0f), glm::vec3(1.0f, 1.0f, -1.0f));
+            const auto ra = renderSequence(c, clearing, yaws, "starnt-d", 0, reverse);
+            const auto rb = renderSequence(c, clears, yaws, "starnt-d", 0, reverse);
             for (size_t f = 0; f < yaws.size(); ++f) EXPECT_EQ(ra[f], rb[f]) << "reversed Z, frame " << f;
         }
     }

@@ -279,18 +279,24 @@ private:
     // joint upsampling, whose shaders sample pass 1's depth.
     bool skipEmpty() const { return options_.neural.skipEmptyPixels && !joint(); }
 
-    void bindOutput() {
+    // `moreTargets` (0 for none; the empty-pixel skip only): pass targets the composite writes
+    // back into after reading them (clearsSharedSums).
+    void bindOutput(const std::array<GLuint, 3>& moreTargets = {}) {
+        const bool more = moreTargets[0] != 0;
         if (skipEmpty()) {
-            emptyPixels_.bindCovered(out_.texture, passes_.nearestDepth().id(), width_, height_);
+            emptyPixels_.bindCovered(out_.texture, passes_.nearestDepth().id(), width_, height_, 0,
+                                     more ? std::span<const GLuint>(moreTargets) : std::span<const GLuint>());
             // Not in place over a pass target, which the composite reads.
             if (out_.texture == output_.id()) emptyPixels_.clearToBackground(opaque_, compactOutput());
         } else {
+            if (more) throw Error("internal: the composite writes pass targets back only with the empty-pixel skip");
             glBindFramebuffer(GL_FRAMEBUFFER, out_.framebuffer);
             glViewport(0, 0, width_, height_);
         }
-        // In place: each fragment reads its own texel of the target it writes, once; the barrier
-        // makes the earlier passes' writes visible to those reads (GL 4.5 texture barrier rules).
-        if (out_.texture != output_.id()) glTextureBarrier();
+        // In place, or writing pass targets back: each fragment reads its own texel of a target it
+        // writes, once; the barrier makes the earlier passes' writes visible to those reads (GL 4.5
+        // texture barrier rules).
+        if (out_.texture != output_.id() || more) glTextureBarrier();
     }
 
     // After the composite: the background into the pixels it skipped.
@@ -534,24 +540,15 @@ private:
             return;
         }
         if (!cornersUsed_) {
-            if (clearsSharedSums(fullResolution)) {
-                // Corrected frames with three layers on a software rasteriser: the inference writes
-                // 0 back into the pass-3 targets the interpolated frame's pass 3 sums into, at the
-                // pixels it shades, so that pass need not clear them (NeuralPasses::sharedSumTargets).
-                const auto shared = passes_.sharedSumTargets();
-                emptyPixels_.bindCovered(out_.texture, passes_.nearestDepth().id(), width_, height_, 0, shared);
-                emptyPixels_.clearToBackground(opaque_, compactOutput());  // its own output, not read here
-                glTextureBarrier();  // pass 3's writes, read by the invocations that write the same texels
-                setCommonUniforms(inference("infer_full_clears", true), frame);
-                drawFullscreen();
-                finishOutput();
-                passes_.sharedSumsClearedByInference();
-                return;
-            }
-            bindOutput();
-            setCommonUniforms(inference("infer_full", fullResolution), frame);
+            // Corrected frames with three layers on a software rasteriser: the inference also writes
+            // 0 back into the pass-3 targets the interpolated frame's pass 3 sums into, at the
+            // pixels it shades, so that pass need not clear them (NeuralPasses::sharedSumTargets).
+            const bool clearsSums = clearsSharedSums(fullResolution);
+            bindOutput(clearsSums ? passes_.sharedSumTargets() : std::array<GLuint, 3>{});
+            setCommonUniforms(inference(clearsSums ? "infer_full_clears" : "infer_full", fullResolution), frame);
             drawFullscreen();
             finishOutput();
+            if (clearsSums) passes_.sharedSumsClearedByInference();
             return;
         }
         if (cornerNetwork_.width() != width_ || cornerNetwork_.height() != height_) {
