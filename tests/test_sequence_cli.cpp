@@ -87,6 +87,27 @@ TEST(SequenceCli, BadPatternsWriteNothing) {
     }
 }
 
+// "%%" is a literal '%' in every output name, as in printf; a lone '%' is an error naming the escape.
+TEST(SequenceCli, DoublePercentIsALiteralPercentInOutputNames) {
+    const fs::path dir = starnt::test::makeTempDir("seq_cli_percent");
+    const CliRun one = run("render --scene builtin:panes --method wboit --width 32 --height 24 --out " + (dir / "a_50%%.png").string() +
+                           " --stats " + (dir / "s_%%.json").string() + " --frame-stats " + (dir / "f_%%.jsonl").string());
+    ASSERT_EQ(one.exitCode, 0) << one.err;
+    for (const char* name : {"a_50%.png", "s_%.json", "f_%.jsonl"}) EXPECT_TRUE(fs::exists(dir / name)) << name;
+    EXPECT_FALSE(fs::exists(dir / "a_50%%.png"));
+    const CliRun frames = run("render --scene builtin:panes --method wboit --width 32 --height 24 --frames 2 --out " +
+                              (dir / "b_%%_%02d.png").string());
+    ASSERT_EQ(frames.exitCode, 0) << frames.err;
+    for (const char* name : {"b_%_00.png", "b_%_01.png"}) EXPECT_TRUE(fs::exists(dir / name)) << name;
+
+    const fs::path bad = starnt::test::makeTempDir("seq_cli_percent_bad");
+    expectFailureWritingNothing("render --scene builtin:panes --width 32 --height 24 --out " + (bad / "a_50%.png").string(), bad,
+                                "write %% for a literal '%'");
+    expectFailureWritingNothing("render --scene builtin:panes --width 32 --height 24 --out " + (bad / "a.png").string() +
+                                    " --stats " + (bad / "s_%d.json").string(),
+                                bad, "frame patterns are for --out and --exr");
+}
+
 TEST(SequenceCli, BadTemporalFramesAndPathsFailClearly) {
     const fs::path dir = starnt::test::makeTempDir("seq_cli_bad");
     expectFailureWritingNothing(sequence(dir, "--method starnt --frames 2 --temporal 9"), dir, "--temporal '9'");

@@ -38,19 +38,37 @@ void checkOutputPath(const std::string& path, const std::string& wantedExt, cons
     if (std::filesystem::is_directory(path, ec)) throw Error(std::string(flag) + " " + path + ": is a directory");
 }
 
-// Checks a numbered-output pattern: exactly one %d or %0Nd (N 1..9) and no other '%'.
-bool isFramePattern(const std::string& path) { return path.find('%') != std::string::npos; }
-
-void checkFramePattern(const std::string& path, const char* flag) {
-    size_t pos = path.find('%');
-    size_t end = pos + 1;
-    if (end < path.size() && path[end] == '0') {
-        ++end;
-        if (end < path.size() && path[end] >= '1' && path[end] <= '9') ++end;
-        else end = std::string::npos;
+// Output names follow printf, so that a name can still hold a literal '%': "%d" or "%0Nd" (N 1..9)
+// is the frame number, "%%" a '%'. Returns how many frame numbers the name holds, or -1 when a '%'
+// starts neither.
+int frameConversions(const std::string& path) {
+    int count = 0;
+    for (size_t i = 0; i < path.size(); ++i) {
+        if (path[i] != '%') continue;
+        size_t next = i + 1;
+        if (next < path.size() && path[next] == '%') {
+            i = next;
+            continue;
+        }
+        if (next + 1 < path.size() && path[next] == '0' && path[next + 1] >= '1' && path[next + 1] <= '9') next += 2;
+        if (next >= path.size() || path[next] != 'd') return -1;
+        ++count;
+        i = next;
     }
-    if (end == std::string::npos || end >= path.size() || path[end] != 'd' || path.find('%', end) != std::string::npos) {
-        throw Error(std::string(flag) + " " + path + ": a frame pattern needs exactly one %d or %0Nd (e.g. frame_%04d.png)");
+    return count;
+}
+
+bool isFramePattern(const std::string& path) { return frameConversions(path) > 0; }
+
+// A name with one frame number is a pattern (--out and --exr only); every other '%' must be "%%".
+void checkOutputName(const std::string& path, const char* flag, bool framesAllowed) {
+    const int conversions = frameConversions(path);
+    if (conversions < 0 || conversions > 1 || (conversions == 1 && !framesAllowed)) {
+        std::string why = framesAllowed
+                              ? ": a frame pattern needs exactly one %d or %0Nd (e.g. frame_%04d.png); write %% for a literal '%'"
+                              : ": one file for the whole run (its last frame, or one line a frame); frame patterns are for "
+                                "--out and --exr; write %% for a literal '%'";
+        throw Error(std::string(flag) + " " + path + why);
     }
 }
 
@@ -58,6 +76,17 @@ std::string framePath(const std::string& pattern, int frame) {
     char buf[4096];
     std::snprintf(buf, sizeof buf, pattern.c_str(), frame);
     return buf;
+}
+
+// The file a name without a frame number writes ("%%" -> '%'); for a pattern, its frame 0.
+std::string fileName(const std::string& path) {
+    if (isFramePattern(path)) return framePath(path, 0);
+    std::string file;
+    for (size_t i = 0; i < path.size(); ++i) {
+        file += path[i];
+        if (path[i] == '%' && i + 1 < path.size() && path[i + 1] == '%') ++i;
+    }
+    return file;
 }
 
 struct RenderArgs {
@@ -122,7 +151,7 @@ void declareRenderOptions(CLI::App& app, const std::shared_ptr<RenderArgs>& args
     cmd->add_option("--reference-method", a.referenceMethod,
                     "also render this method (e.g. abuffer) per frame and record MSE/FLIP against it");
     cmd->add_option("--weights", a.weights, "starnt, starnt-residual, starnt-d, dfaoit: weights file (default: the shipped weights)");
-    cmd->add_option("--out", a.out, "output image (.png, sRGB); frame_%04d.png writes every frame")->required();
+    cmd->add_option("--out", a.out, "output image (.png, sRGB); frame_%04d.png writes every frame, %% is a literal %")->required();
     cmd->add_option("--exr", a.exr, "also write linear float EXR");
     cmd->add_option("--stats", a.stats, "write statistics JSON");
     cmd->callback([args, cmd] {
@@ -212,31 +241,26 @@ void checkRenderArgs(const RenderArgs& a) {
                     " has no interpolated frames to correct, refresh or warp (use starnt, hybrid or dfaoit)");
     }
     checkFlagsApply(a);
-    if (isFramePattern(a.out)) checkFramePattern(a.out, "--out");
-    if (isFramePattern(a.exr)) checkFramePattern(a.exr, "--exr");
-    checkOutputPath(isFramePattern(a.out) ? framePath(a.out, 0) : a.out, ".png", "--out");
-    // One file a run each: a frame pattern there would be written literally, as "t_%04d.png".
-    for (const auto& [flag, path] : {std::pair{"--tiles-image", &a.tilesImage}, std::pair{"--frame-stats", &a.frameStats},
-                                     std::pair{"--stats", &a.stats}}) {
-        if (isFramePattern(*path)) {
-            throw Error(std::string(flag) + " " + *path + ": one file for the whole run (its last frame, or one line a frame); "
-                        "frame patterns are for --out and --exr");
-        }
-    }
-    checkOutputPath(a.tilesImage, ".png", "--tiles-image");
+    checkOutputName(a.out, "--out", true);
+    checkOutputName(a.exr, "--exr", true);
+    checkOutputName(a.tilesImage, "--tiles-image", false);
+    checkOutputName(a.frameStats, "--frame-stats", false);
+    checkOutputName(a.stats, "--stats", false);
+    checkOutputPath(fileName(a.out), ".png", "--out");
+    checkOutputPath(fileName(a.tilesImage), ".png", "--tiles-image");
     if (!a.tilesImage.empty() && !methodUsesTiles(a.method, options)) {
         throw Error("--tiles-image: method " + a.method +
                     " runs no tiles with these options (use starnt, or dfaoit with --spatial on or --inference corners)");
     }
-    checkOutputPath(a.frameStats, ".jsonl", "--frame-stats");
+    checkOutputPath(fileName(a.frameStats), ".jsonl", "--frame-stats");
     if (!a.referenceMethod.empty()) {
         const auto names = methodNames();
         if (std::find(names.begin(), names.end(), a.referenceMethod) == names.end()) {
             throw Error("--reference-method '" + a.referenceMethod + "' is not a method (see `starnt methods`)");
         }
     }
-    checkOutputPath(isFramePattern(a.exr) ? framePath(a.exr, 0) : a.exr, ".exr", "--exr");
-    checkOutputPath(a.stats, ".json", "--stats");
+    checkOutputPath(fileName(a.exr), ".exr", "--exr");
+    checkOutputPath(fileName(a.stats), ".json", "--stats");
     parseColor(a.background, "--background");
     // Two outputs naming one file (also spelled differently, or one frame of a numbered sequence):
     // one would silently replace the other.
@@ -246,11 +270,10 @@ void checkRenderArgs(const RenderArgs& a) {
         for (size_t j = i + 1; j < std::size(outputs); ++j) {
             const std::string &x = *outputs[i].second, &y = *outputs[j].second;
             if (x.empty() || y.empty() || lowerExtension(x) != lowerExtension(y)) continue;  // (each flag has its own)
-            const bool xFrames = outputs[i].second != &a.tilesImage && isFramePattern(x) && (i < 2);
-            const bool yFrames = outputs[j].second != &a.tilesImage && isFramePattern(y) && (j < 2);
-            bool same = sameFile(x, y);
+            const bool xFrames = isFramePattern(x), yFrames = isFramePattern(y);  // (--out and --exr only)
+            bool same = sameFile(fileName(x), fileName(y));
             for (int f = 0; !same && (xFrames || yFrames) && f < a.frames; ++f) {
-                same = sameFile(xFrames ? framePath(x, f) : x, yFrames ? framePath(y, f) : y);
+                same = sameFile(xFrames ? framePath(x, f) : fileName(x), yFrames ? framePath(y, f) : fileName(y));
             }
             if (same) throw Error(std::string(outputs[i].first) + " and " + outputs[j].first + " name the same file, " + y);
         }
@@ -307,7 +330,7 @@ void runRender(const RenderArgs& a) {
     RenderOutput out = renderScene(sceneGpu, job);
     if (!a.tilesImage.empty()) {
         if (!out.tileOverlay) throw Error("--tiles-image: method " + a.method + " produced no tile overlay");
-        outputs.stageImage(*out.tileOverlay, a.tilesImage);
+        outputs.stageImage(*out.tileOverlay, fileName(a.tilesImage));
     }
 
     out.stats["scene"] = a.scene;
@@ -315,10 +338,10 @@ void runRender(const RenderArgs& a) {
     out.stats["gl_renderer"] = context.info().renderer;
     out.stats["gl_api"] = glApiName(context.info().api);
     out.stats["gl_version"] = context.info().version;
-    if (!numbered) outputs.stageImage(out.image, a.out);
-    if (!a.exr.empty() && !numberedExr) outputs.stageImage(out.image, a.exr);
-    if (!a.frameStats.empty()) outputs.stage(a.frameStats, frameLines);
-    if (!a.stats.empty()) outputs.stage(a.stats, out.stats.dump(2) + "\n");
+    if (!numbered) outputs.stageImage(out.image, fileName(a.out));
+    if (!a.exr.empty() && !numberedExr) outputs.stageImage(out.image, fileName(a.exr));
+    if (!a.frameStats.empty()) outputs.stage(fileName(a.frameStats), frameLines);
+    if (!a.stats.empty()) outputs.stage(fileName(a.stats), out.stats.dump(2) + "\n");
     outputs.commit();
     auto meanOf = [](const std::vector<double>& v) {
         double s = 0.0;
