@@ -130,6 +130,19 @@ TEST(Misuse, ResetBeforeTheFirstFrameAndAThrowingCallback) {
         const auto image = renderOnce(*method, c);
         EXPECT_EQ(takeGlError(), GLenum(GL_NO_ERROR)) << name << ": after a throwing callback";
         EXPECT_LE(largestDifference(image, expected), 1e-6f) << name;
+        // A callback that draws and then throws: what it drew is not in the next frame (the
+        // A-buffer's lists kept it when the next frame's clear was not ordered after its writes).
+        const DrawCallback drawScene = c.gpu->callback(f.view, f.projection, {});
+        EXPECT_THROW(method->render(f,
+                                    [&](const GeometryPass& pass) {
+                                        drawScene(pass);
+                                        throw std::runtime_error("engine failure after drawing");
+                                    }),
+                     std::runtime_error);
+        method->resetHistory();
+        const auto afterDrawing = renderOnce(*method, c);
+        EXPECT_EQ(takeGlError(), GLenum(GL_NO_ERROR)) << name << ": after a callback that drew and threw";
+        EXPECT_LE(largestDifference(afterDrawing, expected), 1e-6f) << name << ": after a callback that drew and threw";
     }
 }
 

@@ -8,10 +8,11 @@
 //     pass's GL state set; the engine sets its own uniforms on that program and issues its draws.
 // After render() the result is in outputTexture(): linear RGBA float, composited over the background
 // (FrameDesc::background or backgroundTexture), alpha 1 (or premultiplied: FrameDesc::premultipliedOutput),
-// at the frame size; RGBA32F for most methods, RGBA16F for starnt, dfaoit, hybrid and
-// starnt-residual with their default compact targets (NeuralOptions::Targets; hybrid-moments and
-// starnt-d: 16-bit values in an RGBA32F texture), which may hand out one of their pass targets,
-// written over in place. Read it before the next render().
+// at the frame size; RGBA32F for most methods, RGBA16F for starnt, dfaoit, hybrid,
+// starnt-residual and recommended with their default compact targets (NeuralOptions::Targets;
+// hybrid-moments and starnt-d: 16-bit values in an RGBA32F texture), which may hand out one of
+// their pass targets, written over in place. Ask the texture for its format (glGetTextureLevelParameteriv,
+// GL_TEXTURE_INTERNAL_FORMAT) before copying it with glCopyImageSubData. Read it before the next render().
 //
 //   auto method = starnt::createMethod("wboit", engineSurface, {});
 //   method->render(frame, [&](const starnt::GeometryPass& pass) { engine.drawTransparent(pass.program); });

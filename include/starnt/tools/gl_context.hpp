@@ -14,7 +14,7 @@
 namespace starnt {
 
 // Which API a headless context speaks. The methods run the same passes on both (docs/INTEGRATION.md):
-// Desktop is OpenGL 4.5 core with GLSL 450, Es is OpenGL ES 3.2 with GLSL ES 3.10, the mobile path.
+// Desktop is OpenGL 4.5 core with GLSL 450, Es is OpenGL ES 3.2 with GLSL ES 3.20, the mobile path.
 enum class GlApi { Desktop, Es };
 // "gl" or "gles" (the command line's --api); throws starnt::Error for anything else.
 GlApi parseGlApi(const std::string& name);

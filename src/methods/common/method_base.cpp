@@ -92,6 +92,11 @@ void MethodBase::runGeometryPass(const char* name, const gl::Program& program, c
         // The hook's calls stay nested (docs/INTEGRATION.md, "Timing"): a hook that brackets the
         // geometry with a query must see it end, or its next frame begins inside it.
         if (frame.timing) frame.timing->endGeometry();
+        // What the callback drew before it threw may still be writing storage buffers and images
+        // (the A-buffer's lists), and the barrier that follows a finished pass is skipped: without
+        // this one the next frame's clears of those buffers are not ordered after the writes (on
+        // llvmpipe the aborted frame's fragments then land in the next frame's lists).
+        glMemoryBarrier(GL_ALL_BARRIER_BITS);
         throw;
     }
     if (frame.timing) frame.timing->endGeometry();
