@@ -473,6 +473,15 @@ TEST(RenderStats, WorstInterpolatedFlashComparesWithTheRealFramesBesideIt) {
     ASSERT_TRUE(flash);
     EXPECT_DOUBLE_EQ(flash->ratio, 4.0);
     EXPECT_EQ(flash->frame, 3);
+    EXPECT_DOUBLE_EQ(flash->mse, 8.0);
+    EXPECT_DOUBLE_EQ(flash->realBeside, 2.0);
+    // Real frames equal to the reference beside a frame with some error: an infinite ratio, and
+    // what it compares.
+    const auto exactReal = worstInterpolatedFlash({{false, 0.0}, {true, 0.5}, {false, 0.0}});
+    ASSERT_TRUE(exactReal);
+    EXPECT_TRUE(std::isinf(exactReal->ratio));
+    EXPECT_DOUBLE_EQ(exactReal->mse, 0.5);
+    EXPECT_DOUBLE_EQ(exactReal->realBeside, 0.0);
     const auto tail = worstInterpolatedFlash({{false, 2.0}, {true, 3.0}});
     ASSERT_TRUE(tail);
     EXPECT_DOUBLE_EQ(tail->ratio, 1.5);

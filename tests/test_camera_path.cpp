@@ -104,6 +104,9 @@ TEST(CameraPath, BadSpecsAndFilesGiveClearErrors) {
     expectError(writeFile("broken.json", R"({"keys": [ {"position": [0, 1)"), "not valid JSON");
     expectError(writeFile("nokeys.json", R"({"frames": []})"), "'keys' array");
     expectError(writeFile("one.json", R"({"keys": [{"position": [0, 1, 5], "target": [0, 0, 0]}]})"), "at least two keys");
+    expectError(writeFile("one.json", R"({"keys": [{"position": [0, 1, 5], "target": [0, 0, 0]}]})"), "one.json needs at least two keys");
+    expectError(writeFile("upview.json", R"({"keys": [{"position": [0, 5, 0], "target": [0, 0, 0]}, {"position": [1, 1, 5], "target": [0, 0, 0]}]})"),
+                "upview.json key 0: 'up' is parallel");
     expectError(writeFile("zero.json", R"({"keys": []})"), "at least two keys");
     expectError(writeFile("notarget.json", R"({"keys": [{"position": [0, 1, 5]}, {"position": [1, 1, 5], "target": [0, 0, 0]}]})"),
                 "missing 'target'");

@@ -1171,6 +1171,81 @@ TEST(PackedLayers, ThreeLayerClosedFormIsExactForOneFragmentBehindTheThird) {
     EXPECT_EQ(a, b);
 }
 
+// A reference the view has moved far from (a camera cut: it came from another view) puts every u
+// near ln(1000) and the tail's spread in the last float bits: summed in float32, as pass 3's
+// blending sums them, the moments recentred at the third layer are rounding. The closed form then
+// takes the plain mean behind the third layer, not a colour from that rounding.
+TEST(PackedLayers, MomentsRecentredFarFromAStaleReferenceFallBackToThePlainMean) {
+    const float reference = 0.05f;
+    std::vector<Fragment> all = {{glm::vec3(0.2f, 0.4f, 0.6f), 0.3f, 0.99900f},
+                                 {glm::vec3(0.9f, 0.1f, 0.3f), 0.3f, 0.99905f},
+                                 {glm::vec3(0.1f, 0.8f, 0.2f), 0.3f, 0.99910f}};
+    for (int k = 0; k < 8; ++k) {
+        const float s = float(k) / 7.0f;
+        all.push_back({glm::vec3(4.0f * (1.0f - s), 1.0f, 4.0f * s), 0.3f, 0.99915f + 0.00007f * float(k)});
+    }
+    // The sums as pass 3 blends them: float32, in draw order (front to back here).
+    glm::vec4 sums(0.0f), moment1(0.0f);
+    float t = 1.0f, moment2 = 0.0f;
+    for (auto f = all.begin(); f != all.end(); ++f) {
+        const float u = depthBehindReference(f->depth, reference);
+        const glm::vec4 term(f->color * f->alpha, f->alpha);
+        sums += term;
+        t *= 1.0f - f->alpha;
+        moment1 += term * u;
+        moment2 += term.a * u * u;
+    }
+    const OrderedBehind m{moment1, moment2, reference};
+    const glm::vec4 l1(all[0].color, all[0].alpha), l2(all[1].color, all[1].alpha), l3(all[2].color, all[2].alpha);
+    // The case this test is about: the recentred second moment is rounding, yet positive, so the
+    // spread test alone would weigh the tail by it.
+    const float u3 = depthBehindReference(all[2].depth, reference);
+    const float d1 = depthBehindReference(all[0].depth, reference) - u3, d2 = depthBehindReference(all[1].depth, reference) - u3;
+    const glm::vec4 first = moment1 - u3 * sums;
+    const float recentred = moment2 - u3 * (moment1.a + first.a) - l1.a * d1 * d1 - l2.a * d2 * d2;
+    ASSERT_GT(recentred, 0.0f);
+    ASSERT_LT(recentred, 1e-5f * moment2);
+    const glm::vec3 got =
+        orderedClosedFormBehindThreeLayers(l1, all[0].depth, l2, all[1].depth, l3, all[2].depth, sums, t, m, kBackground);
+    // The second layer over the third over the plain mean of the eight behind it.
+    const glm::vec4 l1Terms(glm::vec3(l1) * l1.a, l1.a);
+    const glm::vec3 plain = l2.a * glm::vec3(l2) +
+                            (1.0f - l2.a) * orderedClosedFormBehindSecondFromMoments(l2, l3, sums - l1Terms, t / (1.0f - l1.a),
+                                                                                     glm::vec4(0.0f), 0.0f, kBackground);
+    for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(got[ch], plain[ch], 1e-5f) << "channel " << ch;
+}
+
+// Where the linear depth weight goes negative over the fragments that carry a channel (one far
+// behind a dense cluster), the weighted colour's channel drops below 0; the closed form then takes
+// the plain mean, not a colour clamped to 0 in that channel.
+TEST(PackedLayers, ANegativeWeightedChannelFallsBackToThePlainMean) {
+    const float reference = 0.5f;
+    const Fragment nearest{glm::vec3(0.5f), 0.2f, 0.5f};
+    std::vector<Fragment> all = {nearest};
+    for (int k = 0; k < 6; ++k) all.push_back({glm::vec3(1.0f, 0.2f, 0.0f), 0.7f, 0.6f + 0.001f * float(k)});
+    all.push_back({glm::vec3(0.0f, 0.2f, 1.0f), 0.7f, 0.95f});
+    glm::vec4 sums(0.0f);
+    float t = 1.0f;
+    for (const Fragment& f : all) sums += glm::vec4(f.color * f.alpha, f.alpha), t *= 1.0f - f.alpha;
+    const glm::vec4 layer(nearest.color, nearest.alpha);
+    const OrderedBehind m = behindMomentsOf(all, reference);
+    // The moments recentred at the nearest fragment, as orderedClosedFormBehind recentres them.
+    const float u1 = depthBehindReference(nearest.depth, reference);
+    const glm::vec4 first = m.moment1 - u1 * sums;
+    const float second = m.moment2 - u1 * (m.moment1.a + first.a);
+    const float behindAlpha = sums.a - layer.a, behindT = t / (1.0f - layer.a);
+    nn::TailMoments tm;
+    tm.alphaColorU = glm::vec3(first);
+    tm.alphaU = first.a;
+    tm.alphaU2 = second;
+    const glm::vec3 alphaColor = glm::vec3(sums) - glm::vec3(layer) * layer.a;
+    const glm::vec3 weighted = nn::momentWeightedColorUnclamped(alphaColor, behindAlpha, tm, behindT, false);
+    ASSERT_LT(weighted.b, 0.0f) << "the case this test is about: the far blue fragment's weight is negative";
+    const glm::vec3 got = orderedClosedFormBehind(layer, nearest.depth, sums, t, m, kBackground);
+    const glm::vec3 plain = (1.0f - behindT) * (alphaColor / behindAlpha) + behindT * kBackground;
+    for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(got[ch], plain[ch], 1e-5f) << "channel " << ch;
+}
+
 // The three-layer composite (correction_composite.frag.glsl with STARNT_PACKED_THREE_LAYERS) against
 // the CPU reference on random lists: the nearest layer over orderedClosedFormBehindThreeLayers, no
 // correction (the real frame kept none).

@@ -385,8 +385,14 @@ void runRender(const RenderArgs& a) {
     }
     if (out.stats.contains("error") && out.stats["error"].contains("interpolated_flash")) {
         const auto& flash = out.stats["error"]["interpolated_flash"];
-        std::printf("worst interpolated frame: %d, MSE %.2fx that of the real frames beside it\n",
-                    flash["frame"].get<int>(), flash["worst_ratio"].get<double>());
+        if (flash["real_mse_beside"].get<double>() > 0.0) {
+            std::printf("worst interpolated frame: %d, MSE %.2fx that of the real frames beside it\n", flash["frame"].get<int>(),
+                        flash["worst_ratio"].get<double>());
+        } else {
+            // (real frames equal to the reference: no ratio to give)
+            std::printf("worst interpolated frame: %d, MSE %.3g where the real frames beside it have 0\n", flash["frame"].get<int>(),
+                        flash["mse"].get<double>());
+        }
     }
 }
 

@@ -256,17 +256,28 @@ glm::vec3 orderedClosedFormBehindFromMoments(const glm::vec4& nearest, const glm
     const float mean = moment1.a / behindAlpha;
     const bool spread =
         moment2 / behindAlpha - mean * mean > float(STARNT_ORDERED_ALPHA_ROUNDING) / behindAlpha * mean * mean;
-    const glm::vec3 color = spread ? nn::momentWeightedColor(alphaColor, behindAlpha, m, behindT, false)
-                                   : glm::max(alphaColor / behindAlpha, glm::vec3(0.0f));
+    const glm::vec3 plain = glm::max(alphaColor / behindAlpha, glm::vec3(0.0f));
+    const glm::vec3 weighted = spread ? nn::momentWeightedColorUnclamped(alphaColor, behindAlpha, m, behindT, false) : plain;
+    const glm::vec3 color = glm::any(glm::lessThan(weighted, glm::vec3(0.0f))) ? plain : weighted;
     return (1.0f - behindT) * color + behindT * background;
 }
+
+namespace {
+// ordered_behind.glsl's recentredMomentsHold.
+bool recentredMomentsHold(float recentred, float moment2) {
+    return recentred > float(STARNT_ORDERED_RECENTRED_PRECISION) * moment2;
+}
+}  // namespace
 
 glm::vec3 orderedClosedFormBehind(const glm::vec4& nearest, float depth, const glm::vec4& sums, float transmittance,
                                   const OrderedBehind& ordered, const glm::vec3& background) {
     const float u = depthBehindReference(depth, ordered.reference);
     const glm::vec4 first = ordered.moment1 - u * sums;
-    return orderedClosedFormBehindFromMoments(nearest, sums, transmittance, first, ordered.moment2 - u * (ordered.moment1.a + first.a),
-                                              background);
+    const float second2 = ordered.moment2 - u * (ordered.moment1.a + first.a);
+    if (!recentredMomentsHold(second2, ordered.moment2)) {
+        return orderedClosedFormBehindFromMoments(nearest, sums, transmittance, glm::vec4(0.0f), 0.0f, background);
+    }
+    return orderedClosedFormBehindFromMoments(nearest, sums, transmittance, first, second2, background);
 }
 
 glm::vec3 orderedClosedFormBehindSecondFromMoments(const glm::vec4& nearest, const glm::vec4& second, const glm::vec4& sums,
@@ -290,6 +301,9 @@ glm::vec3 orderedClosedFormBehindTwoLayers(const glm::vec4& nearest, float depth
     const glm::vec4 nearestTerms(glm::vec3(nearest) * nearest.a, nearest.a);
     const glm::vec4 first = ordered.moment1 - u2 * sums;
     const float second2 = ordered.moment2 - u2 * (ordered.moment1.a + first.a) - nearestTerms.a * d * d;
+    if (!recentredMomentsHold(second2, ordered.moment2)) {
+        return orderedClosedFormBehindSecondFromMoments(nearest, second, sums, transmittance, glm::vec4(0.0f), 0.0f, background);
+    }
     return orderedClosedFormBehindSecondFromMoments(nearest, second, sums, transmittance, first - nearestTerms * d, second2,
                                                     background);
 }
@@ -308,11 +322,14 @@ glm::vec3 orderedClosedFormBehindThreeLayers(const glm::vec4& nearest, float dep
     const glm::vec4 nearestTerms(glm::vec3(nearest) * nearest.a, nearest.a);
     const glm::vec4 secondTerms(glm::vec3(second) * second.a, second.a);
     const glm::vec4 first = ordered.moment1 - u3 * sums;
-    const float second2 =
-        ordered.moment2 - u3 * (ordered.moment1.a + first.a) - nearestTerms.a * d1 * d1 - secondTerms.a * d2 * d2;
-    const glm::vec3 behindSecond =
-        orderedClosedFormBehindSecondFromMoments(second, third, sums - nearestTerms, transmittance / (1.0f - nearest.a),
-                                                 first - nearestTerms * d1 - secondTerms * d2, second2, background);
+    float second2 = ordered.moment2 - u3 * (ordered.moment1.a + first.a) - nearestTerms.a * d1 * d1 - secondTerms.a * d2 * d2;
+    glm::vec4 behindMoment1 = first - nearestTerms * d1 - secondTerms * d2;
+    if (!recentredMomentsHold(second2, ordered.moment2)) {
+        behindMoment1 = glm::vec4(0.0f);
+        second2 = 0.0f;
+    }
+    const glm::vec3 behindSecond = orderedClosedFormBehindSecondFromMoments(
+        second, third, sums - nearestTerms, transmittance / (1.0f - nearest.a), behindMoment1, second2, background);
     return second.a * glm::vec3(second) + open2 * behindSecond;
 }
 

@@ -280,7 +280,8 @@ private:
                  {{"frames", mseInterp_.size()}, {"mse_mean", nullableMean(mseInterp_)}, {"flip_mean", nullableMean(flipInterp_)}}},
             };
             if (const auto flash = worstInterpolatedFlash(msePerFrame_)) {
-                out.stats["error"]["interpolated_flash"] = {{"worst_ratio", flash->ratio}, {"frame", flash->frame}};
+                out.stats["error"]["interpolated_flash"] = {
+                    {"worst_ratio", flash->ratio}, {"frame", flash->frame}, {"mse", flash->mse}, {"real_mse_beside", flash->realBeside}};
             }
         }
         return out;
@@ -348,7 +349,7 @@ std::optional<InterpolatedFlash> worstInterpolatedFlash(const std::vector<std::p
         const double adjacent = sum / count;
         const double mse = msePerFrame[size_t(i)].second;
         const double ratio = adjacent > 0.0 ? mse / adjacent : (mse > 0.0 ? std::numeric_limits<double>::infinity() : 1.0);
-        if (!worst || ratio > worst->ratio) worst = InterpolatedFlash{ratio, i};
+        if (!worst || ratio > worst->ratio) worst = InterpolatedFlash{ratio, i, mse, adjacent};
     }
     return worst;
 }

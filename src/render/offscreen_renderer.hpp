@@ -86,9 +86,12 @@ double mean(const std::vector<double>& values);
 // the mean MSE of the nearest real frame before and after it (one side at the ends of a run).
 // A corrected or warped frame that goes wrong shows as a flash in an otherwise steady sequence;
 // a mean over all interpolated frames hides it. nullopt without an interpolated frame.
+// With real frames of MSE 0 beside a frame of some error the ratio is infinite (JSON null);
+// `mse` and `realBeside` say what it compares.
 struct InterpolatedFlash {
     double ratio = 0.0;
     int frame = -1;
+    double mse = 0.0, realBeside = 0.0;
 };
 std::optional<InterpolatedFlash> worstInterpolatedFlash(const std::vector<std::pair<bool, double>>& msePerFrame);
 

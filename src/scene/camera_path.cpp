@@ -148,7 +148,13 @@ CameraPath parseCameraPathSpec(const std::string& spec, const Bounds& bounds, fl
         }
         glm::vec3 up(0, 1, 0);
         if (j.contains("up")) up = readVec3(j, "up", "camera path " + spec);
-        return CameraPath::keyframes(std::move(keys), bounds, up);
+        try {
+            return CameraPath::keyframes(std::move(keys), bounds, up);
+        } catch (const Error& e) {
+            // Its messages start "camera path"; name the file there, as the reader's own do.
+            const std::string what = e.what(), prefix = "camera path";
+            throw Error(what.rfind(prefix, 0) == 0 ? prefix + " " + spec + what.substr(prefix.size()) : what);
+        }
     } catch (const nlohmann::json::exception& e) {
         throw Error("camera path " + spec + " is not valid JSON: " + e.what());
     }

@@ -49,9 +49,24 @@ vec3 orderedClosedFormBehindFromMoments(vec4 nearest, vec4 sums, float t, vec4 m
     // fragment behind look spread over |mean| sqrt(error / (sum a - a1)): below that, the plain mean.
     float mean = m1.a / behindAlpha;
     bool spread = m2 / behindAlpha - mean * mean > float(STARNT_ORDERED_ALPHA_ROUNDING) / behindAlpha * mean * mean;
-    vec3 color = spread ? momentWeightedColor(alphaColor, behindAlpha, m1, vec4(0.0, 0.0, 0.0, m2), behindT, false)
-                        : max(alphaColor / behindAlpha, vec3(0.0));
+    // A channel below 0: the linear weight went negative over the fragments that carry it (it
+    // extrapolates past the interval the moments describe): the plain mean instead.
+    vec3 plain = max(alphaColor / behindAlpha, vec3(0.0));
+    vec3 weighted = spread ? momentWeightedColorUnclamped(alphaColor, behindAlpha, m1, vec4(0.0, 0.0, 0.0, m2), behindT, false)
+                           : plain;
+    vec3 color = any(lessThan(weighted, vec3(0.0))) ? plain : weighted;
     return (1.0 - behindT) * color + behindT * background;
+}
+
+// Whether moments recentred at u_c (`recentred`: the tail's sum a (u - u_c)^2) still hold the tail's
+// spread. Each recentring subtracts terms as large as `m2` (sum a u^2 about the reference, over every
+// fragment), whose float32 sums carry about N 6e-8 of m2 in rounding (N fragments); where the view
+// has moved far from the reference (a cut) the difference was mostly rounding, and the weighted
+// colour came out wrong in isolated pixels. Below the bound the plain mean is taken, as
+// momentWeightedColor does where its own sums cannot centre (docs/DESIGN.md, "Corrected frames:
+// the reference depth follows the interpolated frames").
+bool recentredMomentsHold(float recentred, float m2) {
+    return recentred > float(STARNT_ORDERED_RECENTRED_PRECISION) * m2;
 }
 
 // The same from an interpolated frame's pass 3: `m1`, `m2` in u over every fragment, recentred at
@@ -60,7 +75,9 @@ vec3 orderedClosedFormBehind(vec4 nearest, float depth, vec4 sums, float t, vec4
                              vec3 background) {
     float u = depthBehindReference(depth, reference);
     vec4 first = m1 - u * sums;
-    return orderedClosedFormBehindFromMoments(nearest, sums, t, first, m2 - u * (m1.a + first.a), background);
+    float second2 = m2 - u * (m1.a + first.a);
+    if (!recentredMomentsHold(second2, m2)) return orderedClosedFormBehindFromMoments(nearest, sums, t, vec4(0.0), 0.0, background);
+    return orderedClosedFormBehindFromMoments(nearest, sums, t, first, second2, background);
 }
 
 // What lies behind the nearest layer when the second is known exactly too (C2, a2, behind the
@@ -93,6 +110,9 @@ vec3 orderedClosedFormBehindTwoLayers(vec4 nearest, float depth, vec4 second, fl
     vec4 nearestTerms = vec4(nearest.rgb * nearest.a, nearest.a);
     vec4 first = m1 - u2 * sums;
     float second2 = m2 - u2 * (m1.a + first.a) - nearestTerms.a * d * d;
+    if (!recentredMomentsHold(second2, m2)) {
+        return orderedClosedFormBehindSecondFromMoments(nearest, second, sums, t, vec4(0.0), 0.0, background);
+    }
     return orderedClosedFormBehindSecondFromMoments(nearest, second, sums, t, first - nearestTerms * d, second2, background);
 }
 
@@ -115,8 +135,13 @@ vec3 orderedClosedFormBehindThreeLayers(vec4 nearest, float depth, vec4 second, 
     vec4 secondTerms = vec4(second.rgb * second.a, second.a);
     vec4 first = m1 - u3 * sums;
     float second2 = m2 - u3 * (m1.a + first.a) - nearestTerms.a * d1 * d1 - secondTerms.a * d2 * d2;
+    vec4 behindM1 = first - nearestTerms * d1 - secondTerms * d2;
+    if (!recentredMomentsHold(second2, m2)) {
+        behindM1 = vec4(0.0);
+        second2 = 0.0;
+    }
     vec3 behindSecond = orderedClosedFormBehindSecondFromMoments(second, third, sums - nearestTerms, t / (1.0 - nearest.a),
-                                                                 first - nearestTerms * d1 - secondTerms * d2, second2, background);
+                                                                 behindM1, second2, background);
     return second.a * second.rgb + open2 * behindSecond;
 }
 #endif
