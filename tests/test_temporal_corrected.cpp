@@ -1215,37 +1215,6 @@ TEST(PackedLayers, MomentsRecentredFarFromAStaleReferenceFallBackToThePlainMean)
     for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(got[ch], plain[ch], 1e-5f) << "channel " << ch;
 }
 
-// Where the linear depth weight goes negative over the fragments that carry a channel (one far
-// behind a dense cluster), the weighted colour's channel drops below 0; the closed form then takes
-// the plain mean, not a colour clamped to 0 in that channel.
-TEST(PackedLayers, ANegativeWeightedChannelFallsBackToThePlainMean) {
-    const float reference = 0.5f;
-    const Fragment nearest{glm::vec3(0.5f), 0.2f, 0.5f};
-    std::vector<Fragment> all = {nearest};
-    for (int k = 0; k < 6; ++k) all.push_back({glm::vec3(1.0f, 0.2f, 0.0f), 0.7f, 0.6f + 0.001f * float(k)});
-    all.push_back({glm::vec3(0.0f, 0.2f, 1.0f), 0.7f, 0.95f});
-    glm::vec4 sums(0.0f);
-    float t = 1.0f;
-    for (const Fragment& f : all) sums += glm::vec4(f.color * f.alpha, f.alpha), t *= 1.0f - f.alpha;
-    const glm::vec4 layer(nearest.color, nearest.alpha);
-    const OrderedBehind m = behindMomentsOf(all, reference);
-    // The moments recentred at the nearest fragment, as orderedClosedFormBehind recentres them.
-    const float u1 = depthBehindReference(nearest.depth, reference);
-    const glm::vec4 first = m.moment1 - u1 * sums;
-    const float second = m.moment2 - u1 * (m.moment1.a + first.a);
-    const float behindAlpha = sums.a - layer.a, behindT = t / (1.0f - layer.a);
-    nn::TailMoments tm;
-    tm.alphaColorU = glm::vec3(first);
-    tm.alphaU = first.a;
-    tm.alphaU2 = second;
-    const glm::vec3 alphaColor = glm::vec3(sums) - glm::vec3(layer) * layer.a;
-    const glm::vec3 weighted = nn::momentWeightedColorUnclamped(alphaColor, behindAlpha, tm, behindT, false);
-    ASSERT_LT(weighted.b, 0.0f) << "the case this test is about: the far blue fragment's weight is negative";
-    const glm::vec3 got = orderedClosedFormBehind(layer, nearest.depth, sums, t, m, kBackground);
-    const glm::vec3 plain = (1.0f - behindT) * (alphaColor / behindAlpha) + behindT * kBackground;
-    for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(got[ch], plain[ch], 1e-5f) << "channel " << ch;
-}
-
 // The three-layer composite (correction_composite.frag.glsl with STARNT_PACKED_THREE_LAYERS) against
 // the CPU reference on random lists: the nearest layer over orderedClosedFormBehindThreeLayers, no
 // correction (the real frame kept none).

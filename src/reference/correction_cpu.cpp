@@ -256,9 +256,8 @@ glm::vec3 orderedClosedFormBehindFromMoments(const glm::vec4& nearest, const glm
     const float mean = moment1.a / behindAlpha;
     const bool spread =
         moment2 / behindAlpha - mean * mean > float(STARNT_ORDERED_ALPHA_ROUNDING) / behindAlpha * mean * mean;
-    const glm::vec3 plain = glm::max(alphaColor / behindAlpha, glm::vec3(0.0f));
-    const glm::vec3 weighted = spread ? nn::momentWeightedColorUnclamped(alphaColor, behindAlpha, m, behindT, false) : plain;
-    const glm::vec3 color = glm::any(glm::lessThan(weighted, glm::vec3(0.0f))) ? plain : weighted;
+    const glm::vec3 color = spread ? nn::momentWeightedColor(alphaColor, behindAlpha, m, behindT, false)
+                                   : glm::max(alphaColor / behindAlpha, glm::vec3(0.0f));
     return (1.0f - behindT) * color + behindT * background;
 }
 

@@ -260,8 +260,7 @@ void exponentialMoments(float tau, float integrals[3]) {
 }
 }  // namespace
 
-glm::vec3 momentWeightedColorUnclamped(const glm::vec3& alphaColor, float alpha, const TailMoments& m, float tTail,
-                                       bool quadraticAllowed) {
+glm::vec3 momentWeightedColor(const glm::vec3& alphaColor, float alpha, const TailMoments& m, float tTail, bool quadraticAllowed) {
     const glm::vec3 plain = glm::max(alphaColor / alpha, glm::vec3(0.0f));
     const float mean = m.alphaU / alpha;
     const float spread = std::sqrt(std::max(m.alphaU2 / alpha - mean * mean, 0.0f));
@@ -284,11 +283,7 @@ glm::vec3 momentWeightedColorUnclamped(const glm::vec3& alphaColor, float alpha,
     const glm::vec3 x1 = firstFromLo / width;
     const glm::vec3 x2 = quadratic ? ((m.alphaColorU2 - lo * m.alphaColorU) - lo * firstFromLo) / (width * width) : glm::vec3(0.0f);
     // sum a w(x) = alpha c0 exactly (the x-moments of the alphas are 1/2 and 1/3 by construction).
-    return (b0 * alphaColor + b1 * x1 + b2 * x2) / (c0 * alpha);
-}
-
-glm::vec3 momentWeightedColor(const glm::vec3& alphaColor, float alpha, const TailMoments& m, float tTail, bool quadraticAllowed) {
-    return glm::max(momentWeightedColorUnclamped(alphaColor, alpha, m, tTail, quadraticAllowed), glm::vec3(0.0f));
+    return glm::max((b0 * alphaColor + b1 * x1 + b2 * x2) / (c0 * alpha), glm::vec3(0.0f));
 }
 
 glm::vec3 momentWeightedTailColor(const PixelSums& s, const TailMoments& m) {

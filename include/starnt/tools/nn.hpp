@@ -127,10 +127,6 @@ glm::vec3 momentWeightedTailColor(const PixelSums& s, const TailMoments& m);
 // Without `quadraticAllowed` the weight is linear at most and m.alphaColorU2 is not read.
 glm::vec3 momentWeightedColor(const glm::vec3& alphaColor, float alpha, const TailMoments& m, float tTail,
                               bool quadraticAllowed = true);
-// The same before its clamp at 0: a channel below 0 means the weight went negative over fragments
-// that carry it (the ordered closed form then takes the plain mean: temporal::orderedClosedFormBehind).
-glm::vec3 momentWeightedColorUnclamped(const glm::vec3& alphaColor, float alpha, const TailMoments& m, float tTail,
-                                       bool quadraticAllowed = true);
 // hybrid-moments' composite: hybrid's with the deep tail (1 - t_tail) momentWeightedTailColor.
 glm::vec3 compositeHybridMoments(const PixelSums& s, const TailMoments& m, glm::vec3 background);
 // starnt-d (NetworkKind::StarNTDepth) inputs, in this order: STAR-NT's five (t_tail, N, C_tilde),

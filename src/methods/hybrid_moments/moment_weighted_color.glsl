@@ -24,7 +24,7 @@ vec3 exponentialMoments(float tau) {
                 (2.0 - e * (tau * tau + 2.0 * tau + 2.0)) / (tau * tau * tau));
 }
 
-vec3 momentWeightedColorUnclamped(vec3 alphaColor, float alpha, vec4 m1, vec4 m2, float tTail, bool quadraticAllowed) {
+vec3 momentWeightedColor(vec3 alphaColor, float alpha, vec4 m1, vec4 m2, float tTail, bool quadraticAllowed) {
     vec3 plain = max(alphaColor / alpha, vec3(0.0));
     float mean = m1.a / alpha;
     float spread = sqrt(max(m2.a / alpha - mean * mean, 0.0));
@@ -42,10 +42,6 @@ vec3 momentWeightedColorUnclamped(vec3 alphaColor, float alpha, vec4 m1, vec4 m2
     vec3 firstFromLo = m1.rgb - lo * alphaColor;
     vec3 x1 = firstFromLo / width;
     vec3 x2 = quadratic ? ((m2.rgb - lo * m1.rgb) - lo * firstFromLo) / (width * width) : vec3(0.0);
-    return (b0 * alphaColor + b1 * x1 + b2 * x2) / (c0 * alpha);
-}
-
-vec3 momentWeightedColor(vec3 alphaColor, float alpha, vec4 m1, vec4 m2, float tTail, bool quadraticAllowed) {
-    return max(momentWeightedColorUnclamped(alphaColor, alpha, m1, m2, tTail, quadraticAllowed), vec3(0.0));
+    return max((b0 * alphaColor + b1 * x1 + b2 * x2) / (c0 * alpha), vec3(0.0));
 }
 #endif

@@ -49,12 +49,8 @@ vec3 orderedClosedFormBehindFromMoments(vec4 nearest, vec4 sums, float t, vec4 m
     // fragment behind look spread over |mean| sqrt(error / (sum a - a1)): below that, the plain mean.
     float mean = m1.a / behindAlpha;
     bool spread = m2 / behindAlpha - mean * mean > float(STARNT_ORDERED_ALPHA_ROUNDING) / behindAlpha * mean * mean;
-    // A channel below 0: the linear weight went negative over the fragments that carry it (it
-    // extrapolates past the interval the moments describe): the plain mean instead.
-    vec3 plain = max(alphaColor / behindAlpha, vec3(0.0));
-    vec3 weighted = spread ? momentWeightedColorUnclamped(alphaColor, behindAlpha, m1, vec4(0.0, 0.0, 0.0, m2), behindT, false)
-                           : plain;
-    vec3 color = any(lessThan(weighted, vec3(0.0))) ? plain : weighted;
+    vec3 color = spread ? momentWeightedColor(alphaColor, behindAlpha, m1, vec4(0.0, 0.0, 0.0, m2), behindT, false)
+                        : max(alphaColor / behindAlpha, vec3(0.0));
     return (1.0 - behindT) * color + behindT * background;
 }
 
