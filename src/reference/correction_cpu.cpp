@@ -262,20 +262,21 @@ glm::vec3 orderedClosedFormBehindFromMoments(const glm::vec4& nearest, const glm
 }
 
 namespace {
-// ordered_behind.glsl's recentredMomentsHold.
-bool recentredMomentsHold(float recentred, float moment2) {
-    return recentred > float(STARNT_ORDERED_RECENTRED_PRECISION) * moment2;
+// ordered_behind.glsl's dropRoundedMoments.
+void dropRoundedMoments(glm::vec4& moment1Recentred, float& moment2Recentred, float moment2) {
+    if (!(moment2Recentred > float(STARNT_ORDERED_RECENTRED_PRECISION) * moment2)) {
+        moment1Recentred = glm::vec4(0.0f);
+        moment2Recentred = 0.0f;
+    }
 }
 }  // namespace
 
 glm::vec3 orderedClosedFormBehind(const glm::vec4& nearest, float depth, const glm::vec4& sums, float transmittance,
                                   const OrderedBehind& ordered, const glm::vec3& background) {
     const float u = depthBehindReference(depth, ordered.reference);
-    const glm::vec4 first = ordered.moment1 - u * sums;
-    const float second2 = ordered.moment2 - u * (ordered.moment1.a + first.a);
-    if (!recentredMomentsHold(second2, ordered.moment2)) {
-        return orderedClosedFormBehindFromMoments(nearest, sums, transmittance, glm::vec4(0.0f), 0.0f, background);
-    }
+    glm::vec4 first = ordered.moment1 - u * sums;
+    float second2 = ordered.moment2 - u * (ordered.moment1.a + first.a);
+    dropRoundedMoments(first, second2, ordered.moment2);
     return orderedClosedFormBehindFromMoments(nearest, sums, transmittance, first, second2, background);
 }
 
@@ -299,12 +300,10 @@ glm::vec3 orderedClosedFormBehindTwoLayers(const glm::vec4& nearest, float depth
     const float d = depthBehindReference(depth, ordered.reference) - u2;
     const glm::vec4 nearestTerms(glm::vec3(nearest) * nearest.a, nearest.a);
     const glm::vec4 first = ordered.moment1 - u2 * sums;
-    const float second2 = ordered.moment2 - u2 * (ordered.moment1.a + first.a) - nearestTerms.a * d * d;
-    if (!recentredMomentsHold(second2, ordered.moment2)) {
-        return orderedClosedFormBehindSecondFromMoments(nearest, second, sums, transmittance, glm::vec4(0.0f), 0.0f, background);
-    }
-    return orderedClosedFormBehindSecondFromMoments(nearest, second, sums, transmittance, first - nearestTerms * d, second2,
-                                                    background);
+    float second2 = ordered.moment2 - u2 * (ordered.moment1.a + first.a) - nearestTerms.a * d * d;
+    glm::vec4 behindMoment1 = first - nearestTerms * d;
+    dropRoundedMoments(behindMoment1, second2, ordered.moment2);
+    return orderedClosedFormBehindSecondFromMoments(nearest, second, sums, transmittance, behindMoment1, second2, background);
 }
 
 glm::vec3 orderedClosedFormBehindThreeLayers(const glm::vec4& nearest, float depth, const glm::vec4& second, float secondDepth,
@@ -323,10 +322,7 @@ glm::vec3 orderedClosedFormBehindThreeLayers(const glm::vec4& nearest, float dep
     const glm::vec4 first = ordered.moment1 - u3 * sums;
     float second2 = ordered.moment2 - u3 * (ordered.moment1.a + first.a) - nearestTerms.a * d1 * d1 - secondTerms.a * d2 * d2;
     glm::vec4 behindMoment1 = first - nearestTerms * d1 - secondTerms * d2;
-    if (!recentredMomentsHold(second2, ordered.moment2)) {
-        behindMoment1 = glm::vec4(0.0f);
-        second2 = 0.0f;
-    }
+    dropRoundedMoments(behindMoment1, second2, ordered.moment2);
     const glm::vec3 behindSecond = orderedClosedFormBehindSecondFromMoments(
         second, third, sums - nearestTerms, transmittance / (1.0f - nearest.a), behindMoment1, second2, background);
     return second.a * glm::vec3(second) + open2 * behindSecond;

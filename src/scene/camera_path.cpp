@@ -60,12 +60,12 @@ CameraPath CameraPath::orbit(const Bounds& bounds, float startDeg, float endDeg,
     return path;
 }
 
-CameraPath CameraPath::keyframes(std::vector<CameraKey> keys, const Bounds& bounds, glm::vec3 up) {
-    if (keys.size() < 2) throw Error("camera path needs at least two keys, got " + std::to_string(keys.size()));
-    if (!finite3(up) || glm::length(up) < 1e-6f) throw Error("camera path: 'up' must be a finite non-zero vector");
+CameraPath CameraPath::keyframes(std::vector<CameraKey> keys, const Bounds& bounds, glm::vec3 up, const std::string& source) {
+    if (keys.size() < 2) throw Error(source + " needs at least two keys, got " + std::to_string(keys.size()));
+    if (!finite3(up) || glm::length(up) < 1e-6f) throw Error(source + ": 'up' must be a finite non-zero vector");
     for (size_t i = 0; i < keys.size(); ++i) {
         const CameraKey& k = keys[i];
-        const std::string where = "camera path key " + std::to_string(i);
+        const std::string where = source + " key " + std::to_string(i);
         if (!finite3(k.position) || !finite3(k.target)) throw Error(where + ": position/target not finite");
         if (glm::length(k.position - k.target) < 1e-9f) throw Error(where + ": position equals target");
         if (!(k.fovYDeg > 0.5f && k.fovYDeg < 179.0f)) throw Error(where + ": fov_y_deg must be in (0.5, 179)");
@@ -148,13 +148,7 @@ CameraPath parseCameraPathSpec(const std::string& spec, const Bounds& bounds, fl
         }
         glm::vec3 up(0, 1, 0);
         if (j.contains("up")) up = readVec3(j, "up", "camera path " + spec);
-        try {
-            return CameraPath::keyframes(std::move(keys), bounds, up);
-        } catch (const Error& e) {
-            // Its messages start "camera path"; name the file there, as the reader's own do.
-            const std::string what = e.what(), prefix = "camera path";
-            throw Error(what.rfind(prefix, 0) == 0 ? prefix + " " + spec + what.substr(prefix.size()) : what);
-        }
+        return CameraPath::keyframes(std::move(keys), bounds, up, "camera path " + spec);
     } catch (const nlohmann::json::exception& e) {
         throw Error("camera path " + spec + " is not valid JSON: " + e.what());
     }

@@ -20,8 +20,10 @@ public:
     static CameraPath orbit(const Bounds& bounds, float startDeg, float endDeg, float elevationDeg, float aspect);
     // Keys are passed through at equal parameter spacing; positions and targets follow a
     // Catmull-Rom spline (end keys repeated), the field of view is interpolated linearly. At least
-    // two keys; throws starnt::Error otherwise.
-    static CameraPath keyframes(std::vector<CameraKey> keys, const Bounds& bounds, glm::vec3 up = {0, 1, 0});
+    // two keys; throws starnt::Error otherwise, its message starting with `source` (the file the
+    // keys came from, for one).
+    static CameraPath keyframes(std::vector<CameraKey> keys, const Bounds& bounds, glm::vec3 up = {0, 1, 0},
+                                const std::string& source = "camera path");
 
     // t in [0, 1] (clamped).
     Camera at(double t) const;

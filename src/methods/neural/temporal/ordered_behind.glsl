@@ -54,15 +54,18 @@ vec3 orderedClosedFormBehindFromMoments(vec4 nearest, vec4 sums, float t, vec4 m
     return (1.0 - behindT) * color + behindT * background;
 }
 
-// Whether moments recentred at u_c (`recentred`: the tail's sum a (u - u_c)^2) still hold the tail's
-// spread. Each recentring subtracts terms as large as `m2` (sum a u^2 about the reference, over every
+// Zeroes moments recentred at u_c (`m2Recentred`: the tail's sum a (u - u_c)^2) that no longer hold
+// the tail's spread. Each recentring subtracts terms as large as `m2` (sum a u^2 about the reference, over every
 // fragment), whose float32 sums carry about N 6e-8 of m2 in rounding (N fragments); where the view
 // has moved far from the reference (a cut) the difference was mostly rounding, and the weighted
 // colour came out wrong in isolated pixels. Below the bound the plain mean is taken, as
 // momentWeightedColor does where its own sums cannot centre (docs/DESIGN.md, "Corrected frames:
 // the reference depth follows the interpolated frames").
-bool recentredMomentsHold(float recentred, float m2) {
-    return recentred > float(STARNT_ORDERED_RECENTRED_PRECISION) * m2;
+void dropRoundedMoments(inout vec4 m1Recentred, inout float m2Recentred, float m2) {
+    if (!(m2Recentred > float(STARNT_ORDERED_RECENTRED_PRECISION) * m2)) {
+        m1Recentred = vec4(0.0);
+        m2Recentred = 0.0;
+    }
 }
 
 // The same from an interpolated frame's pass 3: `m1`, `m2` in u over every fragment, recentred at
@@ -72,7 +75,7 @@ vec3 orderedClosedFormBehind(vec4 nearest, float depth, vec4 sums, float t, vec4
     float u = depthBehindReference(depth, reference);
     vec4 first = m1 - u * sums;
     float second2 = m2 - u * (m1.a + first.a);
-    if (!recentredMomentsHold(second2, m2)) return orderedClosedFormBehindFromMoments(nearest, sums, t, vec4(0.0), 0.0, background);
+    dropRoundedMoments(first, second2, m2);
     return orderedClosedFormBehindFromMoments(nearest, sums, t, first, second2, background);
 }
 
@@ -106,10 +109,9 @@ vec3 orderedClosedFormBehindTwoLayers(vec4 nearest, float depth, vec4 second, fl
     vec4 nearestTerms = vec4(nearest.rgb * nearest.a, nearest.a);
     vec4 first = m1 - u2 * sums;
     float second2 = m2 - u2 * (m1.a + first.a) - nearestTerms.a * d * d;
-    if (!recentredMomentsHold(second2, m2)) {
-        return orderedClosedFormBehindSecondFromMoments(nearest, second, sums, t, vec4(0.0), 0.0, background);
-    }
-    return orderedClosedFormBehindSecondFromMoments(nearest, second, sums, t, first - nearestTerms * d, second2, background);
+    vec4 behindM1 = first - nearestTerms * d;
+    dropRoundedMoments(behindM1, second2, m2);
+    return orderedClosedFormBehindSecondFromMoments(nearest, second, sums, t, behindM1, second2, background);
 }
 
 // The same with the nearest three layers packed (docs/DESIGN.md, "Corrected frames: three layers and
@@ -132,10 +134,7 @@ vec3 orderedClosedFormBehindThreeLayers(vec4 nearest, float depth, vec4 second, 
     vec4 first = m1 - u3 * sums;
     float second2 = m2 - u3 * (m1.a + first.a) - nearestTerms.a * d1 * d1 - secondTerms.a * d2 * d2;
     vec4 behindM1 = first - nearestTerms * d1 - secondTerms * d2;
-    if (!recentredMomentsHold(second2, m2)) {
-        behindM1 = vec4(0.0);
-        second2 = 0.0;
-    }
+    dropRoundedMoments(behindM1, second2, m2);
     vec3 behindSecond = orderedClosedFormBehindSecondFromMoments(second, third, sums - nearestTerms, t / (1.0 - nearest.a),
                                                                  behindM1, second2, background);
     return second.a * second.rgb + open2 * behindSecond;

@@ -42,7 +42,7 @@
 #define STARNT_ORDERED_ALPHA_ROUNDING 1e-3
 // The ordered closed form's moments, recentred at a layer, are kept only where the tail's sum
 // a (u - u_c)^2 is above this share of sum a u^2 about the reference over every fragment (the float32
-// rounding of a hundred fragments' sums is 6e-6 of it): ordered_behind.glsl, recentredMomentsHold.
+// rounding of a hundred fragments' sums is 6e-6 of it): ordered_behind.glsl, dropRoundedMoments.
 #define STARNT_ORDERED_RECENTRED_PRECISION 1e-5
 // Their interpolated frames sum the transmittance as an optical depth, -ln(1 - a) per fragment
 // (ordered_behind.glsl), with 1 - a at least this: an opaque fragment adds 39.1, a transmittance
