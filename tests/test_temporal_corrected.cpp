@@ -1572,3 +1572,39 @@ TEST(PackedLayers, TwoLayersWithoutWhatTheyNeedIsAnErrorNamingIt) {
         EXPECT_NE(std::string(e.what()).find("tail-moment method"), std::string::npos) << e.what();
     }
 }
+
+// recommended interpolates where the context finds its interpolated frames' exact layers, and
+// renders every frame real (starnt-d's frames) where it lacks GL_EXT_shader_framebuffer_fetch
+// (recommendedOptionsInContext; docs/DESIGN.md, "The recommended configuration without framebuffer
+// fetch"). ctest runs this test a second time with the extension hidden (MESA_EXTENSION_OVERRIDE),
+// where STARNT_TEST_EXPECT_NO_FRAMEBUFFER_FETCH makes sure it was.
+TEST(TemporalCorrected, RecommendedInterpolatesOnlyWhereTheContextFindsExactLayers) {
+    test::TestScene c(makeBuiltinScene("tubes", 3), 64, 48, 30.0f, 15.0f, kBackground);
+    const bool fetch = epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch");
+    if (std::getenv("STARNT_TEST_EXPECT_NO_FRAMEBUFFER_FETCH")) ASSERT_FALSE(fetch) << "the override did not hide the extension";
+    EXPECT_EQ(recommendedOptionsInContext().neural.temporalInterval, fetch ? kRecommendedTemporalInterval : 1);
+    // What the caller chose is kept: an interval, or the one-layer frames asked for by name.
+    MethodOptions k2, oneLayer;
+    k2.neural.temporalInterval = 2;
+    oneLayer.neural.correctedLayers = NeuralOptions::CorrectedLayers::One;
+    EXPECT_EQ(recommendedOptionsInContext(k2).neural.temporalInterval, 2);
+    EXPECT_EQ(recommendedOptionsInContext(oneLayer).neural.temporalInterval, kRecommendedTemporalInterval);
+
+    const std::vector<float> yaws = {0.0f, 1.0f, 2.0f, 3.0f};
+    auto m = createMethod("recommended", SceneGpu::surfaceShader(), {});
+    int interpolated = 0;
+    std::vector<std::vector<glm::vec4>> frames;
+    for (float yaw : yaws) {
+        Camera cam = c.camera;
+        cam.position = cam.target + glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(yaw), glm::vec3(0, 1, 0)) *
+                                              glm::vec4(cam.position - cam.target, 0.0f));
+        FrameDesc f = c.frame();
+        f.view = cam.view();
+        f.projection = cam.projection(c.aspect());
+        m->render(f, c.gpu->callback(f.view, f.projection, {}));
+        interpolated += m->lastFrameStats().interpolated();
+        frames.push_back(readRgba(m->outputTexture(), c.width, c.height));
+    }
+    EXPECT_EQ(interpolated, fetch ? 3 : 0);
+    if (!fetch) EXPECT_EQ(frames, renderSequence(c, MethodOptions{}, yaws, "starnt-d")) << "starnt-d's frames";
+}

@@ -125,6 +125,14 @@ public:
 // other option is kept. docs/INTEGRATION.md, "Which method".
 constexpr int kRecommendedTemporalInterval = 8;
 MethodOptions recommendedOptions(MethodOptions options = {});
+// What createMethod("recommended", surface, options) runs with in the current GL context:
+// recommendedOptions(options), except that every frame is real where the context lacks
+// GL_EXT_shader_framebuffer_fetch and the caller left the interval (1, not auto), the temporal mode
+// (Correct) and the corrected layers (Auto) to the configuration. There its interpolated frames could
+// keep only one exact layer: measured no faster than every frame real on a GPU, and flashing
+// (docs/DESIGN.md, "The recommended configuration without framebuffer fetch"). Needs the context
+// current.
+MethodOptions recommendedOptionsInContext(MethodOptions options = {});
 
 // Names accepted by createMethod, in a stable order.
 std::vector<std::string> methodNames();

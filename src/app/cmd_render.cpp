@@ -307,6 +307,11 @@ void runRender(const RenderArgs& a) {
     HeadlessGlContext context(parseGlApi(a.api));
     SceneGpu sceneGpu(scene);
     RenderJob job = makeRenderJob(a, scene);
+    if (a.method == "recommended" && recommendedOptionsInContext(job.methodOptions).neural.temporalInterval == 1) {
+        std::fprintf(stderr, "starnt: note: this OpenGL context lacks GL_EXT_shader_framebuffer_fetch, so `recommended` renders "
+                             "every frame real (starnt-d): its interpolated frames would keep one exact layer, no faster and "
+                             "less stable (docs/DESIGN.md, \"The recommended configuration without framebuffer fetch\")\n");
+    }
     // (for the warning when no transparent fragment is seen: a scene with none to draw)
     const bool opaqueOnly = sceneGpu.hasOpaque(job.surface) && !sceneGpu.hasTransparent(job.surface);
     const bool numbered = isFramePattern(a.out);

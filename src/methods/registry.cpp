@@ -3,6 +3,8 @@
 #include "methods/neural/neural_method.hpp"
 #include "starnt/error.hpp"
 
+#include <epoxy/gl.h>
+
 namespace starnt {
 namespace {
 
@@ -10,12 +12,13 @@ using Factory = std::unique_ptr<OitMethod> (*)(const SurfaceShader&, const Metho
 
 // The recommended configuration (docs/DESIGN.md, "The recommended configuration"): starnt-d's tail
 // with corrected interpolated frames. The caller's options are honoured, except that "every frame
-// real" (interval 1, not auto) becomes the recommended interval: for no interpolated frames, ask
+// real" (interval 1, not auto) becomes the recommended interval where the context can find the
+// interpolated frames' exact layers (recommendedOptionsInContext): for no interpolated frames, ask
 // for starnt-d itself.
 std::unique_ptr<OitMethod> createRecommendedMethod(const SurfaceShader& surface, const MethodOptions& options) {
     NeuralMethodConfig config = *neuralConfig("starnt-d");
     config.name = "recommended";  // name() and messages say what the engine asked for
-    return createNeuralMethod(config, surface, recommendedOptions(options));
+    return createNeuralMethod(config, surface, recommendedOptionsInContext(options));
 }
 struct Entry {
     const char* name;
@@ -40,6 +43,15 @@ MethodOptions recommendedOptions(MethodOptions options) {
         options.neural.temporalInterval = kRecommendedTemporalInterval;
     }
     return options;
+}
+
+MethodOptions recommendedOptionsInContext(MethodOptions options) {
+    const NeuralOptions& asked = options.neural;
+    const bool leftToTheConfiguration = asked.temporalInterval == 1 && !asked.temporalAuto &&
+                                        asked.temporalMode == NeuralOptions::TemporalMode::Correct &&
+                                        asked.correctedLayers == NeuralOptions::CorrectedLayers::Auto;
+    if (leftToTheConfiguration && !epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) return options;
+    return recommendedOptions(options);
 }
 
 std::vector<std::string> methodNames() {
