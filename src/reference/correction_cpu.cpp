@@ -231,16 +231,16 @@ float referenceAt(const std::vector<float>& reference, int width, int x, int y) 
     return reference[size_t(y / tile) * size_t(tilesX) + size_t(x / tile)];
 }
 
-OrderedBehind behindMomentsOf(const std::vector<Fragment>& fragments, float reference) {
+OrderedBehind behindMomentsOf(const std::vector<Fragment>& fragments, float reference, float pivot) {
     glm::dvec4 first(0.0);
     double second = 0.0;
     for (const Fragment& f : fragments) {
-        const float u = depthBehindReference(f.depth, reference);
+        const float u = depthBehindReference(f.depth, reference) - pivot;
         const glm::vec4 term = glm::vec4(f.color * f.alpha, f.alpha) * u;  // the shader's float operations
         first += glm::dvec4(term);
         second += double(term.a * u);
     }
-    return {glm::vec4(first), float(second), reference};
+    return {glm::vec4(first), float(second), reference, pivot};
 }
 
 glm::vec3 orderedClosedFormBehindFromMoments(const glm::vec4& nearest, const glm::vec4& sums, float transmittance,
@@ -273,7 +273,7 @@ void dropRoundedMoments(glm::vec4& moment1Recentred, float& moment2Recentred, fl
 
 glm::vec3 orderedClosedFormBehind(const glm::vec4& nearest, float depth, const glm::vec4& sums, float transmittance,
                                   const OrderedBehind& ordered, const glm::vec3& background) {
-    const float u = depthBehindReference(depth, ordered.reference);
+    const float u = depthBehindReference(depth, ordered.reference) - ordered.pivot;
     glm::vec4 first = ordered.moment1 - u * sums;
     float second2 = ordered.moment2 - u * (ordered.moment1.a + first.a);
     dropRoundedMoments(first, second2, ordered.moment2);
@@ -296,8 +296,8 @@ glm::vec3 orderedClosedFormBehindTwoLayers(const glm::vec4& nearest, float depth
                                            const glm::vec4& sums, float transmittance, const OrderedBehind& ordered,
                                            const glm::vec3& background) {
     if (!(second.a > 0.0f)) return orderedClosedFormBehind(nearest, depth, sums, transmittance, ordered, background);
-    const float u2 = depthBehindReference(secondDepth, ordered.reference);
-    const float d = depthBehindReference(depth, ordered.reference) - u2;
+    const float u2 = depthBehindReference(secondDepth, ordered.reference) - ordered.pivot;
+    const float d = depthBehindReference(depth, ordered.reference) - ordered.pivot - u2;
     const glm::vec4 nearestTerms(glm::vec3(nearest) * nearest.a, nearest.a);
     const glm::vec4 first = ordered.moment1 - u2 * sums;
     float second2 = ordered.moment2 - u2 * (ordered.moment1.a + first.a) - nearestTerms.a * d * d;
@@ -314,9 +314,9 @@ glm::vec3 orderedClosedFormBehindThreeLayers(const glm::vec4& nearest, float dep
     }
     const float open2 = 1.0f - second.a;
     if (!(open2 > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE))) return glm::vec3(second);
-    const float u3 = depthBehindReference(thirdDepth, ordered.reference);
-    const float d1 = depthBehindReference(depth, ordered.reference) - u3;
-    const float d2 = depthBehindReference(secondDepth, ordered.reference) - u3;
+    const float u3 = depthBehindReference(thirdDepth, ordered.reference) - ordered.pivot;
+    const float d1 = depthBehindReference(depth, ordered.reference) - ordered.pivot - u3;
+    const float d2 = depthBehindReference(secondDepth, ordered.reference) - ordered.pivot - u3;
     const glm::vec4 nearestTerms(glm::vec3(nearest) * nearest.a, nearest.a);
     const glm::vec4 secondTerms(glm::vec3(second) * second.a, second.a);
     const glm::vec4 first = ordered.moment1 - u3 * sums;

@@ -78,14 +78,16 @@ glm::uvec2 packedLayerEmpty();
 float depthBehindReference(float z, float reference);
 std::vector<float> referenceDepthOnCpu(const std::vector<float>& depth, int width, int height);
 float referenceAt(const std::vector<float>& reference, int width, int x, int y);
-// What an interpolated pixel's pass 3 sums behind the reference depth: (sum a C u, sum a u) and
-// sum a u^2 over every fragment.
+// What an interpolated pixel's pass 3 sums behind the reference depth: (sum a C v, sum a v) and
+// sum a v^2 over every fragment, v = u - pivot: the pivot is 0, or with three layers the u of the
+// pixel's first fragment in draw order (pass3_accumulate.frag.glsl).
 struct OrderedBehind {
     glm::vec4 moment1{0.0f};
     float moment2 = 0.0f;
     float reference = 1.0f;
+    float pivot = 0.0f;
 };
-OrderedBehind behindMomentsOf(const std::vector<Fragment>& fragments, float reference);
+OrderedBehind behindMomentsOf(const std::vector<Fragment>& fragments, float reference, float pivot = 0.0f);
 // What lies behind the nearest layer (C1, a1 at window depth `depth`) weighted by depth: the
 // moments recentred at the nearest fragment's u1 (its own terms then vanish), then
 // nn::momentWeightedColor, linear at most, over the rest (their alpha sum sum a - a1, transmittance T / (1 - a1);

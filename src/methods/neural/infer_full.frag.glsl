@@ -61,7 +61,7 @@ void main() {
     vec3 closedForm = orderedClosedFormBehind(vec4(s.c1, s.a1), texelFetch(u_captureDepth, t, 0).r,
                                               vec4(s.sumAlphaColor, s.sumAlpha), s.transmittance, imageLoad(u_behindMoment1, t),
                                               texelFetch(u_colorCount, t, 0).g,
-                                              imageLoad(u_captureReference, t / STARNT_ORDERED_REFERENCE_TILE).r, background());
+                                              imageLoad(u_captureReference, t / STARNT_ORDERED_REFERENCE_TILE).r, 0.0, background());
 #elif defined(STARNT_ORDERED_CLOSED_FORM)
     // The tail-moment methods where pass 3 could not sum those moments (fewer than 6 draw buffers):
     // against hybrid-moments' composite, the nearest to the ordered closed form they have.

@@ -16,8 +16,8 @@
 //   or with STARNT_PACKED_TWO_LAYERS (framebuffer fetch, the tail-moment methods):
 //   target 2 (RGBA32UI, read and rewritten):          the nearest two fragments (packed_nearest.h)
 //   and with STARNT_PACKED_THREE_LAYERS:
-//   target 4 (RGBA32UI, read and rewritten):          the third nearest (insertThreeLayers) and the
-//                                                      reference depth (packed_nearest.h)
+//   target 4 (RGBA32UI, read and rewritten):          the third nearest (insertThreeLayers), the
+//                                                      reference depth and the pivot (packed_nearest.h)
 //   and with STARNT_BEHIND_MOMENTS (corrected frames of the tail-moment methods), u a fragment's
 //   depth behind the reference depth (ordered_behind.glsl), over every fragment:
 //   target 1 (the count's, RG32F, blend ONE/ONE):      sum a u^2, sum -ln(1 - a) (the optical
@@ -97,9 +97,23 @@ void main() {
     uvec4 layers = outPackedLayers;
     uvec4 thirdTexel = outThirdLayer;  // the third layer, and the reference depth beside it
     uvec2 third = thirdTexel.xy;
+#ifdef STARNT_BEHIND_MOMENTS
+    // The moments are summed about the u of the pixel's first fragment (the pivot, kept in .w, where
+    // the composite reads it): near the pixel's own fragments, so that their recentring at the third
+    // layer keeps the spread of a thin stack that lies far behind the reference (ordered_behind.glsl;
+    // docs/DESIGN.md, "Far from the reference: the moments about the pixel's first fragment"). No
+    // layer yet: this is the pixel's first fragment.
+    float reference = uintBitsToFloat(thirdTexel.z);
+    float u = depthBehindReference(gl_FragCoord.z, reference);
+    float pivot = (layers.x >> kLayerLowBits) == kLayerMaxKey ? u : uintBitsToFloat(thirdTexel.w);
+#endif
     insertThreeLayers(layers, third, gl_FragCoord.z, s);
     outPackedLayers = layers;
+#ifdef STARNT_BEHIND_MOMENTS
+    outThirdLayer = uvec4(third, thirdTexel.z, floatBitsToUint(pivot));
+#else
     outThirdLayer = uvec4(third, thirdTexel.zw);
+#endif
 #else
     outPackedLayers = insertLayer(outPackedLayers, packLayer(gl_FragCoord.z, s));
 #endif
@@ -110,12 +124,12 @@ void main() {
     float second = texelFetch(u_secondDepth, ivec2(gl_FragCoord.xy), 0).r;
 #endif
 #ifdef STARNT_BEHIND_MOMENTS
-#ifdef STARNT_PACKED_THREE_LAYERS
-    float reference = uintBitsToFloat(thirdTexel.z);
-#else
+#ifndef STARNT_PACKED_THREE_LAYERS
     float reference = texelFetch(u_reference, ivec2(gl_FragCoord.xy) / STARNT_ORDERED_REFERENCE_TILE, 0).r;
 #endif
-#ifdef STARNT_BEHIND_SECOND
+#if defined(STARNT_PACKED_THREE_LAYERS)
+    float behind = u - pivot;
+#elif defined(STARNT_BEHIND_SECOND)
     // Behind pass 2's layer only, in v = u - u2 (ordered_behind.glsl: orderedClosedFormBehindSecondFromMoments).
     float behind = gl_FragCoord.z > second ? depthBehindReference(gl_FragCoord.z, reference) - depthBehindReference(second, reference)
                                            : 0.0;

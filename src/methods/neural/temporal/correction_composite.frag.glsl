@@ -107,18 +107,18 @@ void main() {
 #ifdef STARNT_PACKED_THREE_LAYERS
             behind = orderedClosedFormBehindThreeLayers(fresh, depth, second, secondDepth, third, thirdDepth, texelFetch(u_sumAlphaColor, p, 0),
                                                       transmittance, texelFetch(u_behindMoment1, p, 0), secondAndTransmittance.x,
-                                                      uintBitsToFloat(thirdTexel.z),
+                                                      uintBitsToFloat(thirdTexel.z), uintBitsToFloat(thirdTexel.w),
                                                       background());
 #else
             behind = orderedClosedFormBehindTwoLayers(fresh, depth, second, secondDepth, texelFetch(u_sumAlphaColor, p, 0),
                                                       transmittance, texelFetch(u_behindMoment1, p, 0), secondAndTransmittance.x,
-                                                      texelFetch(u_reference, p / STARNT_ORDERED_REFERENCE_TILE, 0).r,
+                                                      texelFetch(u_reference, p / STARNT_ORDERED_REFERENCE_TILE, 0).r, 0.0,
                                                       background());
 #endif
 #elif defined(STARNT_ORDERED_BEHIND)
             behind = orderedClosedFormBehind(fresh, depth, texelFetch(u_sumAlphaColor, p, 0), transmittance,
                                              texelFetch(u_behindMoment1, p, 0), secondAndTransmittance.x,
-                                             texelFetch(u_reference, p / STARNT_ORDERED_REFERENCE_TILE, 0).r, background());
+                                             texelFetch(u_reference, p / STARNT_ORDERED_REFERENCE_TILE, 0).r, 0.0, background());
 #else
             behind = closedFormBehind(fresh, texelFetch(u_sumAlphaColor, p, 0), transmittance, background());
 #endif

@@ -68,11 +68,12 @@ void dropRoundedMoments(inout vec4 m1Recentred, inout float m2Recentred, float m
     }
 }
 
-// The same from an interpolated frame's pass 3: `m1`, `m2` in u over every fragment, recentred at
+// The same from an interpolated frame's pass 3: `m1`, `m2` in u - `pivot` over every fragment (pivot: the
+// u pass 3 took its sums about, 0 or the first fragment's: STARNT_PACKED_THREE_LAYERS), recentred at
 // u1, the nearest fragment's (at window depth `depth`), with the sums over every fragment.
 vec3 orderedClosedFormBehind(vec4 nearest, float depth, vec4 sums, float t, vec4 m1, float m2, float reference,
-                             vec3 background) {
-    float u = depthBehindReference(depth, reference);
+                             float pivot, vec3 background) {
+    float u = depthBehindReference(depth, reference) - pivot;
     vec4 first = m1 - u * sums;
     float second2 = m2 - u * (m1.a + first.a);
     dropRoundedMoments(first, second2, m2);
@@ -102,10 +103,10 @@ vec3 orderedClosedFormBehindSecondFromMoments(vec4 nearest, vec4 second, vec4 su
 // what a real frame sums behind the second layer only by fragments at the nearest layer's key
 // other than it (coplanar duplicates).
 vec3 orderedClosedFormBehindTwoLayers(vec4 nearest, float depth, vec4 second, float secondDepth, vec4 sums, float t, vec4 m1,
-                                      float m2, float reference, vec3 background) {
-    if (!(second.a > 0.0)) return orderedClosedFormBehind(nearest, depth, sums, t, m1, m2, reference, background);
-    float u2 = depthBehindReference(secondDepth, reference);
-    float d = depthBehindReference(depth, reference) - u2;
+                                      float m2, float reference, float pivot, vec3 background) {
+    if (!(second.a > 0.0)) return orderedClosedFormBehind(nearest, depth, sums, t, m1, m2, reference, pivot, background);
+    float u2 = depthBehindReference(secondDepth, reference) - pivot;
+    float d = depthBehindReference(depth, reference) - pivot - u2;
     vec4 nearestTerms = vec4(nearest.rgb * nearest.a, nearest.a);
     vec4 first = m1 - u2 * sums;
     float second2 = m2 - u2 * (m1.a + first.a) - nearestTerms.a * d * d;
@@ -120,15 +121,15 @@ vec3 orderedClosedFormBehindTwoLayers(vec4 nearest, float depth, vec4 second, fl
 // third layer was found.
 vec3 orderedClosedFormBehindThreeLayers(vec4 nearest, float depth, vec4 second, float secondDepth, vec4 third,
                                         float thirdDepth, vec4 sums, float t, vec4 m1, float m2, float reference,
-                                        vec3 background) {
+                                        float pivot, vec3 background) {
     if (!(third.a > 0.0)) {
-        return orderedClosedFormBehindTwoLayers(nearest, depth, second, secondDepth, sums, t, m1, m2, reference, background);
+        return orderedClosedFormBehindTwoLayers(nearest, depth, second, secondDepth, sums, t, m1, m2, reference, pivot, background);
     }
     float open2 = 1.0 - second.a;
     if (!(open2 > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE))) return second.rgb;
-    float u3 = depthBehindReference(thirdDepth, reference);
-    float d1 = depthBehindReference(depth, reference) - u3;
-    float d2 = depthBehindReference(secondDepth, reference) - u3;
+    float u3 = depthBehindReference(thirdDepth, reference) - pivot;
+    float d1 = depthBehindReference(depth, reference) - pivot - u3;
+    float d2 = depthBehindReference(secondDepth, reference) - pivot - u3;
     vec4 nearestTerms = vec4(nearest.rgb * nearest.a, nearest.a);
     vec4 secondTerms = vec4(second.rgb * second.a, second.a);
     vec4 first = m1 - u3 * sums;

@@ -54,7 +54,9 @@
 // depth (ordered_behind.glsl), which pass 3 reads there and writes back unchanged: a texel its
 // framebuffer fetch has read anyway, where a texture fetch for every fragment cost 35-45 ms of a
 // 420-450 ms interpolated frame on llvmpipe (hairball, 1280x720). Written with the clear
-// (third_layer_clear.frag.glsl) or by the composite that clears the targets; .w is 0.
+// (third_layer_clear.frag.glsl) or by the composite that clears the targets; .w the pixel's pivot,
+// the u its first fragment of pass 3 took (pass3_accumulate.frag.glsl), about which the moments
+// behind the reference are summed.
 #define STARNT_PACKED_LAYER_KEY_BITS 25
 #define STARNT_PACKED_LAYER_ALPHA_BITS 10
 #define STARNT_PACKED_LAYER_R_BITS 10
