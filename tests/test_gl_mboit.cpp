@@ -5,11 +5,14 @@
 #include <cmath>
 #include <cstdio>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "reference/mboit_cpu.hpp"
 #include "reference/cpu_raster.hpp"
 #include "starnt/error.hpp"
 #include "starnt/tools/metrics.hpp"
 #include "gl/gpu_timer.hpp"
+#include "temporal_test_support.hpp"
 #include "test_support.hpp"
 
 using namespace starnt;
@@ -239,4 +242,36 @@ TEST(MboitCli, BadMomentsValueIsOneClearError) {
     const test::CliRun r = test::run(args);
     EXPECT_EQ(r.err.rfind("starnt: error: ", 0), 0u) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+// An orthographic view (an engine's shadow or top view): depth is linear in distance, so it is warped
+// linearly, as the CPU reference does; it was refused ("needs a perspective projection") or, with a
+// near plane above 0, warped as a perspective it is not.
+TEST(GlMboit, AnOrthographicViewIsWarpedLinearly) {
+    test::TestScene s = makeScene("random");
+    const float distance = glm::length(s.camera.position - s.camera.target);
+    const float half = 0.45f * distance;
+    for (float nearPlane : {-0.5f * distance, 0.2f * distance}) {
+        FrameDesc f = s.frame();
+        f.projection = glm::ortho(-half * s.aspect(), half * s.aspect(), -half, half, nearPlane, 2.0f * distance);
+        const DepthWarp warp = DepthWarp::fromProjection(f.projection);
+        EXPECT_TRUE(warp.affine);
+        EXPECT_DOUBLE_EQ(warp.warp(0.25), -0.5);
+        auto image = [&](const std::string& name) {
+            auto method = createMethod(name, SceneGpu::surfaceShader(), MethodOptions{});
+            method->render(f, s.gpu->callback(f.view, f.projection, {}));
+            return test::readRgba(method->outputTexture(), kW, kH);
+        };
+        const auto exact = image("abuffer"), wboit = image("wboit"), mboit = image("mboit");
+        auto mse = [&](const std::vector<glm::vec4>& a) {
+            double sum = 0.0;
+            for (size_t i = 0; i < a.size(); ++i)
+                for (int c = 0; c < 3; ++c) sum += double(a[i][c] - exact[i][c]) * double(a[i][c] - exact[i][c]);
+            return sum / double(3 * a.size());
+        };
+        std::printf("[ mboit ] random, orthographic (near %.2f of the distance): MSE %.3g (wboit %.3g)\n",
+                    nearPlane / distance, mse(mboit), mse(wboit));
+        EXPECT_GT(mse(wboit), 0.0);
+        EXPECT_LT(mse(mboit), 0.5 * mse(wboit));
+    }
 }

@@ -7,7 +7,11 @@
 
 #include <cmath>
 
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "methods/common/method_base.hpp"
 #include "scene/scene_gpu.hpp"
+#include "starnt/tools/gl_context.hpp"
 #include "starnt/error.hpp"
 #include "starnt/oit_method.hpp"
 #include "test_support.hpp"
@@ -97,7 +101,8 @@ TEST(Misuse, AbsurdSizesFailBeforeAllocating) {
     for (auto& [name, options] : everyMethod()) {
         auto method = createMethod(name, SceneGpu::surfaceShader(), options);
         takeGlError();
-        for (const auto [w, h] : {std::pair{20000, 20000}, std::pair{-64, 32}, std::pair{48, 0}}) {
+        // 0x0 first: a method's size before its first frame is 0x0 too, and must not pass for "unchanged".
+        for (const auto [w, h] : {std::pair{0, 0}, std::pair{20000, 20000}, std::pair{-64, 32}, std::pair{48, 0}}) {
             FrameDesc f = c.frame();
             f.width = w;
             f.height = h;
@@ -380,4 +385,58 @@ TEST(Misuse, TheSuiteSeesGlErrors) {
     EXPECT_EQ(takeGlError(), GLenum(GL_INVALID_OPERATION));
     const std::vector<std::string> seen = test::takeExpectedGlErrors();
     EXPECT_FALSE(seen.empty()) << "the KHR_debug watch missed a GL error";
+}
+
+// A process with a desktop context and an ES one (an editor and its preview): the ES context's clip
+// control is read there, whichever API read its convention first.
+TEST(Misuse, AnEsContextReadsItsOwnClipControlAfterADesktopContext) {
+    test::glContext();
+    glm::mat4 reversed = glm::perspective(glm::radians(50.0f), 1.5f, 0.1f, 10.0f);
+    reversed = glm::mat4(1.0f, 0.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 0.0f, -0.5f, 0.0f, 0.0f, 0.0f, 0.5f, 1.0f) * reversed;
+    {
+        HeadlessGlContext desktop(GlApi::Desktop);
+        desktop.makeCurrent();
+        EXPECT_FALSE(readDepthConvention(reversed).zeroToOne);
+        HeadlessGlContext es(GlApi::Es);
+        es.makeCurrent();
+        if (!epoxy_has_gl_extension("GL_EXT_clip_control")) {
+            test::glContext();
+            GTEST_SKIP() << "no GL_EXT_clip_control";
+        }
+        glClipControlEXT(GL_LOWER_LEFT_EXT, GL_ZERO_TO_ONE_EXT);
+        const DepthConvention c = readDepthConvention(reversed);
+        EXPECT_TRUE(c.zeroToOne) << "the ES context's GL_ZERO_TO_ONE";
+        EXPECT_TRUE(c.reversed);
+        glClipControlEXT(GL_LOWER_LEFT_EXT, GL_NEGATIVE_ONE_TO_ONE_EXT);
+    }
+    test::glContext();
+}
+
+// An error the engine left pending is still there for it after render(): the library does not read
+// glGetError on its way (its allocations ask the buffer's size instead).
+TEST(Misuse, AGlErrorLeftPendingByTheEngineStaysPending) {
+    test::TestScene c(makeBuiltinScene("tubes", 3), 48, 32, 30.0f, 15.0f, kBackground);
+    const bool watched = test::glErrorsWatched();
+    for (auto& [name, options] : everyMethod()) {
+        auto method = createMethod(name, SceneGpu::surfaceShader(), options);
+        takeGlError();
+        glEnable(GLenum(0xBAD0));  // not a capability: GL_INVALID_ENUM, left pending
+        renderOnce(*method, c);  // the first frame allocates every target
+        EXPECT_EQ(takeGlError(), GLenum(GL_INVALID_ENUM)) << name;
+        if (watched) test::takeExpectedGlErrors();
+    }
+}
+
+// An initial A-buffer pool that is no number of nodes: one error naming the option.
+TEST(Misuse, AnAbsurdInitialABufferPoolIsAnError) {
+    test::glContext();
+    for (double nodes : {-1.0, std::nan(""), 1e30}) {
+        MethodOptions o;
+        o.abuffer.initialNodesPerPixel = nodes;
+        const std::string error = test::errorOf([&] { createMethod("abuffer", SceneGpu::surfaceShader(), o); });
+        EXPECT_NE(error.find("initialNodesPerPixel"), std::string::npos) << nodes << ": " << error;
+    }
+    MethodOptions none;
+    none.abuffer.initialNodesPerPixel = 0.0;  // grows from the smallest pool
+    EXPECT_NO_THROW(createMethod("abuffer", SceneGpu::surfaceShader(), none));
 }

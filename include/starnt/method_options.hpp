@@ -10,7 +10,7 @@ namespace starnt {
 
 // abuffer: exact per-pixel fragment lists (the reference).
 struct AbufferOptions {
-    double initialNodesPerPixel = 4.0;              // initial pool size; it grows on overflow
+    double initialNodesPerPixel = 4.0;              // initial pool size, 0..65536; it grows on overflow
     size_t memoryCapBytes = size_t(2) << 30;        // createMethod/render fail with a clear error beyond this
 };
 

@@ -142,7 +142,12 @@ Buffer::Buffer(size_t bytes, const void* data, GLbitfield flags) : bytes_(bytes)
         handle_ = Handle<deleteBuffer>(id);
         glNamedBufferStorage(id, GLsizeiptr(bytes), data, flags);
     }
-    if (glGetError() == GL_OUT_OF_MEMORY) {
+    // A store the GL could not create leaves the size at 0 (GL_OUT_OF_MEMORY). Asked by the size, not
+    // by glGetError, which would take an error the engine left pending before render().
+    GLint64 size = 0;
+    if (isEs()) glGetBufferParameteri64v(GL_COPY_WRITE_BUFFER, GL_BUFFER_SIZE, &size);
+    else glGetNamedBufferParameteri64v(id, GL_BUFFER_SIZE, &size);
+    if (size != GLint64(bytes)) {
         handle_.reset();
         throw Error("out of GPU memory allocating a buffer of " + std::to_string(bytes) + " bytes");
     }
@@ -177,7 +182,9 @@ FramebufferHandle makeFramebuffer(std::initializer_list<const Texture2D*> colors
         status = glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER);
     }
     if (status != GL_FRAMEBUFFER_COMPLETE) {
-        throw Error("internal: incomplete framebuffer (status 0x" + std::to_string(status) + ")");
+        char hex[16];
+        std::snprintf(hex, sizeof hex, "0x%04X", unsigned(status));
+        throw Error(std::string("internal: incomplete framebuffer (status ") + hex + ")");
     }
     return fb;
 }

@@ -91,6 +91,7 @@ Complex interpolatedMomentSum(const std::vector<Complex>& x, const std::vector<d
 
 DepthWarp DepthWarp::fromProjection(const glm::mat4& projection) {
     const double p22 = projection[2][2], p32 = projection[3][2];
+    if (projection[2][3] == 0.0f) return DepthWarp{0.0, 0.0, true};
     return DepthWarp{p32 / (p22 - 1.0), p32 / (p22 + 1.0)};
 }
 
@@ -100,6 +101,7 @@ double DepthWarp::viewDepth(double windowDepth) const {
 }
 
 double DepthWarp::warp(double windowDepth) const {
+    if (affine) return std::clamp(windowDepth * 2.0 - 1.0, -1.0, 1.0);
     const double z = 2.0 * std::log(viewDepth(windowDepth) / nearPlane) / std::log(farPlane / nearPlane) - 1.0;
     return std::clamp(z, -1.0, 1.0);
 }

@@ -14,10 +14,12 @@
 
 namespace starnt::mboit {
 
-// Window depth -> the paper's logarithmic warped depth in [-1, 1] (mboit_settings.hpp).
+// Window depth -> the paper's logarithmic warped depth in [-1, 1] (mboit_settings.hpp); under an
+// affine (orthographic) projection the normalised depth itself (mboit_common.glsl).
 struct DepthWarp {
     double nearPlane = 0.1, farPlane = 100.0;
-    // near and far of an OpenGL perspective projection (clip z in [-1, 1]).
+    bool affine = false;
+    // near and far of an OpenGL perspective projection (clip z in [-1, 1]), or an affine one.
     static DepthWarp fromProjection(const glm::mat4& projection);
     double viewDepth(double windowDepth) const;
     double warp(double windowDepth) const;  // clamped to [-1, 1]

@@ -12,7 +12,15 @@
 namespace starnt {
 
 ABufferLists::ABufferLists(bool captureOrder, const MethodOptions& options)
-    : captureOrder_(captureOrder), options_(options) {}
+    : captureOrder_(captureOrder), options_(options) {
+    // The pool grows on overflow, so any start works; past this bound the first frame's size would
+    // overflow its count before the memory cap could name it.
+    const double initial = options.abuffer.initialNodesPerPixel;
+    if (!(initial >= 0.0 && initial <= kMaxInitialNodesPerPixel)) {
+        throw Error("MethodOptions::abuffer.initialNodesPerPixel must be within 0.." + std::to_string(int(kMaxInitialNodesPerPixel)) +
+                    " (got " + std::to_string(initial) + ")");
+    }
+}
 
 void ABufferLists::allocate(int width, int height, uint64_t capacity) {
     const size_t perNode = kABufferNodeBytes * (captureOrder_ ? 2 : 1);

@@ -47,5 +47,7 @@ private:
 
 // Bytes one A-buffer node takes (uvec4); twice that in capture mode (full-precision colour).
 constexpr size_t kABufferNodeBytes = 16;
+// MethodOptions::abuffer.initialNodesPerPixel at most this (the pool grows from there on overflow).
+constexpr double kMaxInitialNodesPerPixel = 65536.0;
 
 }  // namespace starnt

@@ -34,8 +34,9 @@ void MethodBase::render(const FrameDesc& frame, const DrawCallback& draw) {
         throw Error("render(): the current OpenGL context is not the one this method was created in (its framebuffers and vertex arrays are in no other)");
     }
     // A new size is checked against the context's limits before anything of it is allocated
-    // (setFrameSize); the same size was checked when it was new.
-    if (frame.width != width_ || frame.height != height_) gl::checkFrameSize(frame.width, frame.height);
+    // (setFrameSize); the same size was checked when it was new (before the first frame the size is
+    // 0x0, which is never valid).
+    if (frame.width != width_ || frame.height != height_ || width_ < 1) gl::checkFrameSize(frame.width, frame.height);
     const FrameDesc canonical = beginDepthConvention(frame);
     opaque_.begin(canonical);
     // State an engine may leave set that no pass sets for itself (docs/INTEGRATION.md, "State"):
@@ -151,11 +152,16 @@ thread_local DepthConvention currentConvention;
 DepthConvention readDepthConvention(const glm::mat4& projection) {
     DepthConvention c;
     GLint mode = GL_NEGATIVE_ONE_TO_ONE;
-    // Desktop 4.5 has clip control; ES only with the extension (asked once: the extension walk
-    // queries every extension string).
-    static const bool esClipControl = gl::isEs() && epoxy_has_gl_extension("GL_EXT_clip_control");
+    // Desktop 4.5 has clip control; ES only with the extension (asked on the first ES context only,
+    // not on whichever context came first in a process that has both: the extension walk queries
+    // every extension string).
+    bool clipControl = !gl::isEs();
+    if (!clipControl) {
+        static const bool esClipControl = epoxy_has_gl_extension("GL_EXT_clip_control");
+        clipControl = esClipControl;
+    }
     GLint origin = GL_LOWER_LEFT;
-    if (!gl::isEs() || esClipControl) {
+    if (clipControl) {
         glGetIntegerv(GL_CLIP_DEPTH_MODE, &mode);
         glGetIntegerv(GL_CLIP_ORIGIN, &origin);
     }

@@ -61,16 +61,24 @@ public:
             accum_ = gl::Texture2D(GL_RGBA32F, width_, height_);
             accumFb_ = gl::makeFramebuffer({&accum_});
         }
-        // near/far of the projection for the logarithmic depth warp.
+        // near/far of a perspective projection for the logarithmic depth warp; an affine one
+        // (orthographic: its clip w does not depend on depth) has depth linear in distance already,
+        // and is warped linearly (mboit_common.glsl), as the MBOIT paper does for orthographic views.
         const float p22 = frame.projection[2][2], p32 = frame.projection[3][2];
-        const float nearPlane = p32 / (p22 - 1.0f);
-        // An infinite far plane (p22 = -1): the warp's logarithm ends 10^7 near planes away.
-        float farPlane = p32 / (p22 + 1.0f);
-        if (!(farPlane > 0.0f && farPlane < nearPlane * 1e7f)) farPlane = nearPlane * 1e7f;
-        if (!(nearPlane > 0.0f && farPlane > nearPlane)) throw Error("mboit: needs a perspective projection with 0 < near < far");
-        const float warp[2] = {std::log(nearPlane), 2.0f / std::log(farPlane / nearPlane)};
+        const bool affine = frame.projection[2][3] == 0.0f;
+        float warp[2] = {0.0f, 1.0f};
+        if (!affine) {
+            const float nearPlane = p32 / (p22 - 1.0f);
+            // An infinite far plane (p22 = -1): the warp's logarithm ends 10^7 near planes away.
+            float farPlane = p32 / (p22 + 1.0f);
+            if (!(farPlane > 0.0f && farPlane < nearPlane * 1e7f)) farPlane = nearPlane * 1e7f;
+            if (!(nearPlane > 0.0f && farPlane > nearPlane)) throw Error("mboit: needs a perspective projection with 0 < near < far");
+            warp[0] = std::log(nearPlane);
+            warp[1] = 2.0f / std::log(farPlane / nearPlane);
+        }
         auto setWarp = [&](const gl::Program& p) {
             glUniform2f(p.uniform("u_projZ"), p22, p32);
+            glUniform1i(p.uniform("u_affine"), affine);
             glUniform2fv(p.uniform("u_warp"), 1, warp);
             glUniform1f(p.uniform("u_wrapAngle"), mboit::kWrappingZoneAngle);
         };

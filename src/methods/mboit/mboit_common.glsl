@@ -9,14 +9,17 @@
 const float MBOIT_PI = 3.14159265358979;
 
 uniform vec2 u_projZ;        // projection[2][2], projection[3][2]: view depth from window depth
+uniform bool u_affine;       // an affine (orthographic) projection: depth is linear in distance
 uniform vec2 u_warp;         // ln(near), 2 / ln(far / near)
 uniform float u_wrapAngle;   // trigonometric wrapping zone (0.1 pi)
 
-// The paper's logarithmic depth warp to [-1, 1] (mboit_settings.hpp).
+// The paper's logarithmic depth warp to [-1, 1] (mboit_settings.hpp); under an affine projection
+// normalised depth itself, linear in distance between its near and far planes.
 float mboitWarpedDepth(float windowZ) {
     float ndc = windowZ * 2.0 - 1.0;
     float viewDepth = abs(u_projZ.y / (ndc + u_projZ.x));
-    return clamp((log(viewDepth) - u_warp.x) * u_warp.y - 1.0, -1.0, 1.0);
+    float warped = u_affine ? ndc : (log(viewDepth) - u_warp.x) * u_warp.y - 1.0;
+    return clamp(warped, -1.0, 1.0);
 }
 
 // Phase on the circle for the trigonometric moments: [-1, 1] -> [0, 2 pi - wrapAngle].
