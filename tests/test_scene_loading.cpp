@@ -33,7 +33,8 @@ namespace {
 struct SuiteScene {
     const char* file;
     size_t triangles;      // README table (OBJ: after triangulation)
-    size_t zeroArea;       // zero-area triangles validateScene removes (measured; almost all repeat an index)
+    size_t zeroArea;       // zero-area triangles validateScene removes (measured; almost all repeat an index;
+                           // Buggy 2613 and Gearbox 862 when the bound was the scene extent's, not the triangle's)
     bool alphaBelowOne;    // every material has baseColorFactor.a < 1 (see the note below)
     bool normals;          // every mesh has normals
 };
@@ -50,8 +51,8 @@ const SuiteScene kSuite[] = {
     {"candycat/spot.obj", 5856, 0, false, false},
     {"candycat/Fox.glb", 576, 0, false, false},
     {"tree/tree_grove.glb", 20002, 90, true, true},
-    {"powerplant/Buggy_flat.glb", 474329, 2613, false, true},
-    {"powerplant/GearboxAssy_flat.glb", 646064, 862, false, true},
+    {"powerplant/Buggy_flat.glb", 474329, 2581, false, true},
+    {"powerplant/GearboxAssy_flat.glb", 646064, 861, false, true},
     {"hair/hair_procedural.glb", 515166, 64, true, true},
     {"hairball/hairball_procedural.glb", 990000, 0, true, false},
     {"smoke/smoke_procedural.glb", 2800, 0, true, false},

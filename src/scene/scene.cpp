@@ -204,13 +204,15 @@ size_t validateScene(Scene& scene, const std::string& source) {
                             " has a NaN or infinite colour");
     }
 
-    // Zero-area triangles: |cross(b-a, c-a)| (twice the area) <= 1e-12 * extent^2, where extent is the
-    // largest side of the scene's bounding box. Such triangles cannot cover a pixel at any sensible
-    // resolution; computed in double so float rounding of large coordinates does not matter.
+    // Zero-area triangles: |cross(b-a, c-a)| (twice the area) <= 1e-12 x the triangle's longest edge
+    // squared, i.e. its height under 1e-12 of its length: a repeated index, three points on a line,
+    // or a sliver no float rasteriser can cover, at any distance. Measured against the triangle's own
+    // size, not the scene's: a leaf a centimetre across in a scene ten kilometres wide is small, not
+    // degenerate, and the camera may stand beside it. In double, so that float rounding of large
+    // coordinates does not count.
     const Bounds b = scene.bounds();
     const glm::dvec3 size = glm::dvec3(b.max) - glm::dvec3(b.min);
     const double extent = std::max({size.x, size.y, size.z});
-    const double threshold = 1e-12 * extent * extent;
     size_t removed = 0;
     for (Mesh& mesh : scene.meshes) {
         size_t out = 0;
@@ -219,7 +221,8 @@ size_t validateScene(Scene& scene, const std::string& source) {
             const glm::dvec3 p1(mesh.positions[mesh.indices[t + 1]]);
             const glm::dvec3 p2(mesh.positions[mesh.indices[t + 2]]);
             const double twiceArea = glm::length(glm::cross(p1 - p0, p2 - p0));
-            if (!(twiceArea > threshold)) {
+            const double longest = std::max({glm::dot(p1 - p0, p1 - p0), glm::dot(p2 - p1, p2 - p1), glm::dot(p0 - p2, p0 - p2)});
+            if (!(twiceArea > 1e-12 * longest)) {
                 ++removed;
                 continue;
             }
@@ -237,10 +240,10 @@ size_t validateScene(Scene& scene, const std::string& source) {
                                       [](const Mesh& m) { return m.indices.empty(); }),
                        scene.meshes.end());
     if (scene.meshes.empty()) {
-        // Say why when triangles were there: all of them too thin for the scene's own extent.
+        // Say why when triangles were there: all of them of zero area.
         throw Error(source + ": scene has no renderable triangles" +
                     (removed > 0 ? " (its " + std::to_string(removed) + " triangle" + (removed == 1 ? " is" : "s are") +
-                                       " of zero area at the scene's scale: twice the area at most 1e-12 x its extent squared)"
+                                       " of zero area: twice the area at most 1e-12 x the longest edge squared)"
                                  : std::string()));
     }
     if (removed > 0)
