@@ -138,3 +138,20 @@ TEST(CameraPath, CoordinatesBeyondTheSceneRangeAreNamed) {
         EXPECT_NE(std::string(e.what()).find("'position' is beyond the supported range"), std::string::npos) << e.what();
     }
 }
+
+// A key so far from the scene that its sphere rounds away in float (1e18 from a scene of size 1,
+// within the coordinate limit): a depth range all the same, not near == far (every depth one value).
+TEST(CameraPath, AKeyFarBeyondTheSceneKeepsADepthRange) {
+    std::vector<CameraKey> keys(2);
+    keys[0].position = {1e18f, 0.0f, 3.0f};
+    keys[1].position = {0.0f, 0.0f, 3.0f};
+    const CameraPath path = CameraPath::keyframes(keys, kBounds);
+    for (double t : {0.0, 0.5}) {
+        const Camera c = path.at(t);
+        EXPECT_GT(c.nearPlane, 0.0f) << t;
+        EXPECT_LT(c.nearPlane, c.farPlane) << t;
+        const glm::mat4 p = c.projection(1.5f);
+        auto ndc = [&](float d) { const glm::vec4 v = p * glm::vec4(0.0f, 0.0f, -d, 1.0f); return v.z / v.w; };
+        EXPECT_NE(ndc(c.nearPlane), ndc(c.farPlane)) << t;
+    }
+}

@@ -14,13 +14,6 @@
 namespace starnt {
 namespace {
 
-void fitClipPlanes(Camera& cam, const Bounds& bounds) {
-    const float r = std::max(bounds.radius(), 1e-6f);
-    const float d = glm::length(cam.position - bounds.center());
-    cam.farPlane = d + r * 1.05f;
-    cam.nearPlane = std::max(d - r * 1.05f, cam.farPlane * 1e-4f);
-}
-
 bool finite3(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 glm::vec3 readVec3(const nlohmann::json& j, const char* key, const std::string& path) {
@@ -38,6 +31,17 @@ glm::vec3 readVec3(const nlohmann::json& j, const char* key, const std::string& 
 }
 
 }  // namespace
+
+void fitClipPlanes(Camera& cam, const Bounds& bounds) {
+    const float r = std::max(bounds.radius(), 1e-6f);
+    const float d = glm::length(cam.position - bounds.center());
+    cam.farPlane = d + r * 1.05f;
+    cam.nearPlane = std::max(d - r * 1.05f, cam.farPlane * 1e-4f);
+    // So far away that d +- r rounds to d in float (a camera 1e18 from a scene of size 1): keep a
+    // depth range all the same, for a frame with nothing in it rather than a projection that maps
+    // every depth to one value.
+    cam.nearPlane = std::min(cam.nearPlane, cam.farPlane * 0.999f);
+}
 
 glm::mat4 Camera::view() const { return glm::lookAt(position, target, up); }
 

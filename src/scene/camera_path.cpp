@@ -37,13 +37,6 @@ glm::vec3 fallbackUp(const glm::vec3& up) {
     return glm::normalize(glm::cross(up, axis));
 }
 
-void fitClipPlanes(Camera& cam, const Bounds& bounds) {
-    const float r = std::max(bounds.radius(), 1e-6f);
-    const float d = glm::length(cam.position - bounds.center());
-    cam.farPlane = d + r * 1.05f;
-    cam.nearPlane = std::max(d - r * 1.05f, cam.farPlane * 1e-4f);
-}
-
 }  // namespace
 
 CameraPath CameraPath::orbit(const Bounds& bounds, float startDeg, float endDeg, float elevationDeg, float aspect) {

@@ -25,6 +25,10 @@ struct Camera {
 // sphere.
 Camera orbitCamera(const Bounds& bounds, float azimuthDeg, float elevationDeg, float aspect, float fovYDeg = 45.0f);
 
+// Sets cam's near and far planes to hug the bounds' sphere seen from cam.position (near at least
+// 1e-4 of far; a depth range even where the camera is so far away that the sphere rounds away).
+void fitClipPlanes(Camera& cam, const Bounds& bounds);
+
 // The default camera: orbitCamera(bounds, 0, 15, aspect).
 Camera autoFrameCamera(const Bounds& bounds, float aspect);
 
