@@ -29,6 +29,14 @@ inline std::vector<glm::vec4> readRgba(GLuint texture, int w, int h) {
     return out;
 }
 
+// Mean squared error of the RGB channels between two images of the same size (alpha left out).
+inline double rgbMse(const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b) {
+    double sum = 0.0;
+    for (size_t i = 0; i < a.size(); ++i)
+        for (int ch = 0; ch < 3; ++ch) sum += double(a[i][ch] - b[i][ch]) * double(a[i][ch] - b[i][ch]);
+    return sum / double(3 * a.size());
+}
+
 // An RGBA32UI texture's texels in GL order.
 inline std::vector<glm::uvec4> readRgbaUint(GLuint texture, int w, int h) {
     std::vector<glm::uvec4> out(size_t(w) * size_t(h));

@@ -263,12 +263,7 @@ TEST(GlMboit, AnOrthographicViewIsWarpedLinearly) {
             return test::readRgba(method->outputTexture(), kW, kH);
         };
         const auto exact = image("abuffer"), wboit = image("wboit"), mboit = image("mboit");
-        auto mse = [&](const std::vector<glm::vec4>& a) {
-            double sum = 0.0;
-            for (size_t i = 0; i < a.size(); ++i)
-                for (int c = 0; c < 3; ++c) sum += double(a[i][c] - exact[i][c]) * double(a[i][c] - exact[i][c]);
-            return sum / double(3 * a.size());
-        };
+        auto mse = [&](const std::vector<glm::vec4>& a) { return test::rgbMse(a, exact); };
         std::printf("[ mboit ] random, orthographic (near %.2f of the distance): MSE %.3g (wboit %.3g)\n",
                     nearPlane / distance, mse(mboit), mse(wboit));
         EXPECT_GT(mse(wboit), 0.0);

@@ -694,12 +694,7 @@ TEST(TemporalCorrected, ThreeLayersAtAStillCameraAreNoFartherFromTheABufferThanT
     if (const char* missing = threeLayersMissing()) GTEST_SKIP() << missing;
     const auto frames = renderSequence(c, correctedOptions(), {0.0f, 0.0f, 0.0f, 0.0f}, "recommended");
     const auto exact = renderSequence(c, MethodOptions{}, {0.0f}, "abuffer");
-    auto mse = [](const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b) {
-        double sum = 0.0;
-        for (size_t i = 0; i < a.size(); ++i)
-            for (int ch = 0; ch < 3; ++ch) sum += double(a[i][ch] - b[i][ch]) * double(a[i][ch] - b[i][ch]);
-        return sum / double(3 * a.size());
-    };
+    const auto mse = test::rgbMse;
     const double real = mse(frames[0], exact[0]), interpolated = mse(frames[1], exact[0]), apart = mse(frames[1], frames[0]);
     std::printf("still camera, MSE against the A-buffer: real %.3g, interpolated %.3g; between them %.3g\n", real, interpolated, apart);
     EXPECT_NE(frames[1], frames[0]) << "no correction: the closed form alone";
@@ -998,12 +993,7 @@ TEST(PackedLayers, InterpolatedFramesNearerTheABufferWithTwoLayers) {
     const auto oneLayer = renderSequence(c, one, yaws, "recommended");
     const auto twoLayers = renderSequence(c, two, yaws, "recommended");
     const auto exact = renderSequence(c, MethodOptions{}, yaws, "abuffer");
-    auto mse = [](const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b) {
-        double sum = 0.0;
-        for (size_t i = 0; i < a.size(); ++i)
-            for (int ch = 0; ch < 3; ++ch) sum += double(a[i][ch] - b[i][ch]) * double(a[i][ch] - b[i][ch]);
-        return sum / double(3 * a.size());
-    };
+    const auto mse = test::rgbMse;
     double interpolatedOne = 0.0, interpolatedTwo = 0.0;
     for (size_t f = 0; f < yaws.size(); ++f) {
         if (f % 2 == 0) {
@@ -1539,12 +1529,7 @@ TEST(PackedLayers, ThreeLayersLeaveRealFramesAsAtKOneAndBringInterpolatedFramesN
     const auto threeLayers = renderSequence(c, three, yaws, "starnt-d");
     const auto everyFrameReal = renderSequence(c, still, yaws, "starnt-d");
     const auto exact = renderSequence(c, MethodOptions{}, yaws, "abuffer");
-    auto mse = [](const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b) {
-        double sum = 0.0;
-        for (size_t i = 0; i < a.size(); ++i)
-            for (int ch = 0; ch < 3; ++ch) sum += double(a[i][ch] - b[i][ch]) * double(a[i][ch] - b[i][ch]);
-        return sum / double(3 * a.size());
-    };
+    const auto mse = test::rgbMse;
     double interpolatedTwo = 0.0, interpolatedThree = 0.0, real = 0.0;
     for (size_t f = 0; f < yaws.size(); ++f) {
         if (f % 2 == 0) {
@@ -1653,12 +1638,7 @@ TEST(PackedLayers, AThinStackFarBehindTheReferenceKeepsItsDepthOrder) {
     test::TestScene c(std::move(scene), 160, 90, 15.0f, 20.0f, kBackground);
     const auto frames = renderSequence(c, MethodOptions{}, {0.0f, 0.0f}, "recommended");
     const auto exact = renderSequence(c, MethodOptions{}, {0.0f}, "abuffer");
-    auto mse = [](const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b) {
-        double sum = 0.0;
-        for (size_t i = 0; i < a.size(); ++i)
-            for (int ch = 0; ch < 3; ++ch) sum += double(a[i][ch] - b[i][ch]) * double(a[i][ch] - b[i][ch]);
-        return sum / double(3 * a.size());
-    };
+    const auto mse = test::rgbMse;
     const double real = mse(frames[0], exact[0]), interpolated = mse(frames[1], exact[0]);
     std::printf("thin stack, still camera, MSE against the A-buffer: real %.3g, interpolated %.3g\n", real, interpolated);
     EXPECT_GT(real, 0.0);

@@ -117,27 +117,36 @@ vec3 orderedClosedFormBehindTwoLayers(vec4 nearest, float depth, vec4 second, fl
 
 // The same with the nearest three layers packed (docs/DESIGN.md, "Corrected frames: three layers and
 // no correction"): the second layer over the third over the ordered closed form of what lies behind
-// it, the moments recentred at u3 less the nearest two layers' terms; the two-layer form where no
-// third layer was found.
+// it, the moments recentred at u3 less the nearest two layers' terms; where fewer layers were found,
+// the two-layer form (recentred at u2) or the one-layer form (at u1), as
+// orderedClosedFormBehindTwoLayers and orderedClosedFormBehind make them. Written as one evaluation
+// chosen by selects, not as calls of those forms: llvmpipe runs every branch for every pixel, and
+// the nested forms evaluated the closed form five times where one is used (docs/DESIGN.md,
+// "Findings on Mesa llvmpipe"). The CPU reference keeps the nested forms (correction_cpu.cpp).
 vec3 orderedClosedFormBehindThreeLayers(vec4 nearest, float depth, vec4 second, float secondDepth, vec4 third,
                                         float thirdDepth, vec4 sums, float t, vec4 m1, float m2, float reference,
                                         float pivot, vec3 background) {
-    if (!(third.a > 0.0)) {
-        return orderedClosedFormBehindTwoLayers(nearest, depth, second, secondDepth, sums, t, m1, m2, reference, pivot, background);
-    }
-    float open2 = 1.0 - second.a;
-    if (!(open2 > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE))) return second.rgb;
-    float u3 = depthBehindReference(thirdDepth, reference) - pivot;
-    float d1 = depthBehindReference(depth, reference) - pivot - u3;
-    float d2 = depthBehindReference(secondDepth, reference) - pivot - u3;
-    vec4 nearestTerms = vec4(nearest.rgb * nearest.a, nearest.a);
-    vec4 secondTerms = vec4(second.rgb * second.a, second.a);
-    vec4 first = m1 - u3 * sums;
-    float second2 = m2 - u3 * (m1.a + first.a) - nearestTerms.a * d1 * d1 - secondTerms.a * d2 * d2;
+    bool hasThird = third.a > 0.0, hasSecond = hasThird || second.a > 0.0;
+    // The deepest layer found, whose closed form behind it is composited under the others.
+    vec4 deepest = hasThird ? third : (hasSecond ? second : nearest);
+    float uc = depthBehindReference(hasThird ? thirdDepth : (hasSecond ? secondDepth : depth), reference) - pivot;
+    float d1 = depthBehindReference(depth, reference) - pivot - uc;
+    float d2 = depthBehindReference(secondDepth, reference) - pivot - uc;
+    // The layers in front of the deepest one (the deepest's own terms vanish at uc).
+    vec4 nearestTerms = hasSecond ? vec4(nearest.rgb * nearest.a, nearest.a) : vec4(0.0);
+    vec4 secondTerms = hasThird ? vec4(second.rgb * second.a, second.a) : vec4(0.0);
+    vec4 first = m1 - uc * sums;
+    float second2 = m2 - uc * (m1.a + first.a) - nearestTerms.a * d1 * d1 - secondTerms.a * d2 * d2;
     vec4 behindM1 = first - nearestTerms * d1 - secondTerms * d2;
     dropRoundedMoments(behindM1, second2, m2);
-    vec3 behindSecond = orderedClosedFormBehindSecondFromMoments(second, third, sums - nearestTerms, t / (1.0 - nearest.a),
-                                                                 behindM1, second2, background);
-    return second.a * second.rgb + open2 * behindSecond;
+    float behindT = hasSecond ? t / (1.0 - nearest.a) : t;
+    behindT = hasThird ? behindT / (1.0 - second.a) : behindT;
+    vec3 behind = orderedClosedFormBehindFromMoments(deepest, (sums - nearestTerms) - secondTerms, behindT, behindM1, second2,
+                                                     background);
+    float open3 = 1.0 - third.a, open2 = 1.0 - second.a;
+    vec3 behindSecond = !hasThird ? behind
+                                  : (open3 > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE) ? third.a * third.rgb + open3 * behind : third.rgb);
+    return !hasSecond ? behindSecond
+                      : (open2 > float(STARNT_TEMPORAL_MIN_TRANSMITTANCE) ? second.a * second.rgb + open2 * behindSecond : second.rgb);
 }
 #endif
