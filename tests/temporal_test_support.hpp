@@ -52,6 +52,17 @@ inline glm::mat4 turnedViewProj(int w, int h, float yawDeg) {
     return proj * view;
 }
 
+// The scene's frame with its camera turned about its target by +yaw degrees around y.
+inline FrameDesc turnedFrame(const TestScene& c, float yaw) {
+    Camera cam = c.camera;
+    const glm::vec3 offset = cam.position - cam.target;
+    cam.position = cam.target + glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(yaw), glm::vec3(0, 1, 0)) * glm::vec4(offset, 0.0f));
+    FrameDesc f = c.frame();
+    f.view = cam.view();
+    f.projection = cam.projection(c.aspect());
+    return f;
+}
+
 // Renders `yaws` with the starnt method and `options`, the camera turned about its target by +yaw
 // around y (over FrameDesc::backgroundTexture `background` where given; the projection
 // `clipTransform` x the camera's, e.g. a z flip for a reversed projection); returns each output in
@@ -62,12 +73,8 @@ inline std::vector<std::vector<glm::vec4>> renderSequence(TestScene& c, const Me
     auto method = createMethod(name, SceneGpu::surfaceShader(), options);
     std::vector<std::vector<glm::vec4>> out;
     for (float yaw : yaws) {
-        Camera cam = c.camera;
-        const glm::vec3 offset = cam.position - cam.target;
-        cam.position = cam.target + glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(yaw), glm::vec3(0, 1, 0)) * glm::vec4(offset, 0.0f));
-        FrameDesc f = c.frame();
-        f.view = cam.view();
-        f.projection = clipTransform * cam.projection(c.aspect());
+        FrameDesc f = turnedFrame(c, yaw);
+        f.projection = clipTransform * f.projection;
         f.backgroundTexture = background;
         method->render(f, c.gpu->callback(f.view, f.projection, {}));
         glFinish();

@@ -1598,12 +1598,7 @@ TEST(TemporalCorrected, RecommendedInterpolatesOnlyWhereTheContextFindsExactLaye
     int interpolated = 0;
     std::vector<std::vector<glm::vec4>> frames;
     for (float yaw : yaws) {
-        Camera cam = c.camera;
-        cam.position = cam.target + glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(yaw), glm::vec3(0, 1, 0)) *
-                                              glm::vec4(cam.position - cam.target, 0.0f));
-        FrameDesc f = c.frame();
-        f.view = cam.view();
-        f.projection = cam.projection(c.aspect());
+        const FrameDesc f = test::turnedFrame(c, yaw);
         m->render(f, c.gpu->callback(f.view, f.projection, {}));
         interpolated += m->lastFrameStats().interpolated();
         frames.push_back(readRgba(m->outputTexture(), c.width, c.height));
