@@ -4,8 +4,10 @@ headline table: per variant the mean over scenes of MSE and FLIP relative to WBO
 MBOIT (and on how many scenes below it), frame time relative to DFAOIT (mean and max; the bench's
 long-run frame time, where temporal variants weigh real and interpolated frames by their shares in
 the schedule, and beside it the plain mean of the timed frames; and the GPU time, a timestamp pair
-around each frame, where the bench recorded one), pass 2+3
-fragments relative to DFAOIT; then each acceleration against the same method without it, from the
+around each frame, where the bench recorded one), the GPU
+estimate relative to DFAOIT's (an estimate from the fragments and the bytes they write, never a
+measurement), fragments relative to DFAOIT, the bytes a fragment writes over every geometry pass
+(32-bit float bytes in brackets); then each acceleration against the same method without it, from the
 same files, paired as the bench pairs them (each variant's acceleration_off in results.json).
 
 Usage: scripts/bench_summary.py RESULTS.json [RESULTS.json ...]   (Markdown on stdout)
@@ -53,6 +55,20 @@ def gpu_ms(m):
     return v if isinstance(v, (int, float)) else None
 
 
+def estimate_ms(m):
+    """The GPU estimate (render/gpu_estimate.hpp) of the frame, or None in results from before it."""
+    v = m["stats"].get("gpu_estimate_ms_long_run")
+    return v if isinstance(v, (int, float)) else None
+
+
+def blend_bytes(m, cls=None):
+    """Bytes a fragment writes, summed over the geometry passes of the real frames (one class, or all)."""
+    total = 0.0
+    for p in m["stats"].get("pass_blend", {}).values():
+        total += sum(b for k, b in p.items() if k != "target_bits_per_pixel" and (cls is None or k == cls))
+    return total
+
+
 def fragments(m):
     return sum(p.get("fragment_invocations", 0) for p in m["stats"].get("pass_counters", {}).values())
 
@@ -69,8 +85,9 @@ def main(paths):
     for _, d in scenes:
         variants += [v for v in d if v not in variants]
     print("| variant | MSE / WBOIT | FLIP / WBOIT | MSE / MBOIT (scenes below) | time / DFAOIT (max) | window time / DFAOIT (max) "
-          "| GPU time / DFAOIT (max) | fragments / DFAOIT | ms per frame (per scene) |")
-    print("|---|---|---|---|---|---|---|---|---|")
+          "| GPU time / DFAOIT (max) | GPU estimate / DFAOIT (max) | fragments / DFAOIT | bytes a fragment writes, all passes (float32) "
+          "| ms per frame (per scene) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for v in variants:
         rows = [(n, d) for n, d in scenes if v in d and all(k in d for k in ("wboit", "mboit", "dfaoit"))]
         if not rows:
@@ -79,6 +96,10 @@ def main(paths):
         w = [window_ms(d[v]) / window_ms(d["dfaoit"]) for _, d in rows]
         g = [gpu_ms(d[v]) / gpu_ms(d["dfaoit"]) for _, d in rows if gpu_ms(d[v]) and gpu_ms(d["dfaoit"])]
         gpu = f"{statistics.mean(g):.2f} ({max(g):.2f})" if len(g) == len(rows) else "-"  # llvmpipe: none
+        e = [estimate_ms(d[v]) / estimate_ms(d["dfaoit"]) for _, d in rows if estimate_ms(d[v]) and estimate_ms(d["dfaoit"])]
+        est = f"{statistics.mean(e):.2f} ({max(e):.2f})" if len(e) == len(rows) else "-"  # results from before the estimate
+        first = rows[0][1][v]
+        written = f"{blend_bytes(first):.0f} ({blend_bytes(first, 'float32'):.0f})" if first["stats"].get("pass_blend") else "-"
         fr = [fragments(d[v]) / max(fragments(d["dfaoit"]), 1) for _, d in rows]
         ms = ", ".join(f"{frame_ms(d[v]):.2f}" for _, d in rows)
         q = lambda d, k, x: (d[k].get("quality") or {}).get(x)
@@ -90,7 +111,7 @@ def main(paths):
                       f"{statistics.mean(mb):.2f} ({sum(x < 1 for x in mb)}/{len(rows)})")
         else:
             errors = "- | - | -"  # no errors measured (a run that failed after its timed frames)
-        print(f"| {v} | {errors} | {statistics.mean(t):.2f} ({max(t):.2f}) | {statistics.mean(w):.2f} ({max(w):.2f}) | {gpu} | {statistics.mean(fr):.2f} | {ms} |")
+        print(f"| {v} | {errors} | {statistics.mean(t):.2f} ({max(t):.2f}) | {statistics.mean(w):.2f} ({max(w):.2f}) | {gpu} | {est} | {statistics.mean(fr):.2f} | {written} | {ms} |")
     print("\nEach acceleration against the same method without it (frame time ratio per scene, mean):\n")
     for faster, (base, what) in pairs.items():
         ratios = [(n, frame_ms(d[faster]) / frame_ms(d[base])) for n, d in scenes if faster in d and base in d]

@@ -153,6 +153,62 @@ void frameTimeTable(std::ostringstream& md, const Results& r) {
         [](double v) { return ms(v); });
 }
 
+// The GPU estimate (render/gpu_estimate.hpp) beside, never inside, the measured tables: long-run
+// means of each frame's estimate, and the ratio to DFAOIT's estimate in the same run.
+void gpuEstimateTable(std::ostringstream& md, const Results& r) {
+    const auto estimate = [](const CaseResult& c) -> std::optional<double> {
+        if (!c.ok || !c.stats.contains("gpu_estimate_ms_long_run") || !c.stats["gpu_estimate_ms_long_run"].is_number()) return std::nullopt;
+        return c.stats["gpu_estimate_ms_long_run"].get<double>();
+    };
+    bool any = false;
+    std::string model;
+    for (const auto& s : r.scenes)
+        for (const auto& c : s.cases) {
+            any = any || estimate(c).has_value();
+            if (model.empty() && c.stats.contains("gpu_estimate_model")) model = c.stats["gpu_estimate_model"].get<std::string>();
+        }
+    if (!any) return;
+    md << "## GPU estimate (ms a frame; an estimate, not a measurement)\n\n"
+          "What a GPU would take for these frames: each geometry pass's fragments (pipeline statistics) times a cost "
+          "that grows with the bytes each fragment writes by format class (`pass_blend`), each full-screen pass its "
+          "pixels; coefficients fitted to "
+       << model << " (docs/DESIGN.md, \"Cost on a GPU\"). Long-run means; in brackets the ratio to DFAOIT's estimate.\n\n";
+    sceneByVariantTable(
+        md, r,
+        [&](const CaseResult& c) {
+            const auto e = estimate(c);
+            if (!e) return std::string(kMissing);
+            const SceneResult* scene = nullptr;
+            for (const auto& s : r.scenes)
+                for (const auto& other : s.cases)
+                    if (&other == &c) scene = &s;
+            const CaseResult* dfaoit = scene ? scene->find("dfaoit") : nullptr;
+            const auto base = dfaoit ? estimate(*dfaoit) : std::nullopt;
+            return ms(*e) + (base && *base > 0 ? " (" + fixed(*e / *base, 2) + "x)" : std::string());
+        },
+        estimate, [](double v) { return ms(v); });
+    md << "Bytes a fragment writes into its colour targets per geometry pass (`pass_blend` of the real frames; "
+          "32-bit float bytes in brackets) and the bits a pixel of the targets it binds, from the first scene:\n\n"
+          "| variant | passes |\n|---|---|\n";
+    for (const auto& v : r.plan.variants) {
+        for (const auto& s : r.scenes) {
+            const CaseResult* c = s.find(v.name);
+            if (!c || !c->ok || !c->stats.contains("pass_blend")) continue;
+            std::string cell;
+            for (auto& [pass, blend] : c->stats["pass_blend"].items()) {
+                double bytes = 0;
+                for (auto& [cls, value] : blend.items())
+                    if (cls != "target_bits_per_pixel") bytes += value.get<double>();
+                cell += (cell.empty() ? "" : "; ") + pass + " " + fixed(bytes, 1) + " B (" + fixed(blend.value("float32", 0.0), 1) +
+                        "), " + std::to_string(blend.value("target_bits_per_pixel", 0)) + " bits";
+            }
+            md << "| " << v.name << " | " << (cell.empty() ? std::string(kMissing) : cell) << " |\n";
+            break;
+        }
+    }
+    md << '\n';
+}
+
 void passBreakdownTable(std::ostringstream& md, const Results& r) {
     md << "## Per-pass breakdown (ms)\n\n"
           "As the paper's ablation table: passes 1-3 and inference of DFAOIT (full resolution), Pass N↓ and "
@@ -493,6 +549,7 @@ std::string reportMarkdown(const Results& results) {
     std::ostringstream md;
     header(md, results);
     frameTimeTable(md, results);
+    gpuEstimateTable(md, results);
     passBreakdownTable(md, results);
     scalesAndWorkTables(md, results);
     speedupTable(md, results);

@@ -215,17 +215,31 @@ json toJson(const Results& r) {
 
 std::string toCsv(const Results& r) {
     // Pass columns: the union of pass names over every case, so one file holds every method.
-    std::set<std::string> passNames;
+    // Geometry-pass columns likewise: fragments a frame (pass_counters) and what a fragment writes
+    // (pass_blend of the real frames): what scripts/fit_gpu_estimate.py fits a GPU's pass times to.
+    std::set<std::string> passNames, geometryNames;
     for (const auto& s : r.scenes) {
         for (const auto& c : s.cases) {
             if (c.stats.contains("pass_ms")) {
                 for (auto& [name, value] : c.stats["pass_ms"].items()) passNames.insert(name);
             }
+            for (const char* key : {"pass_counters", "pass_blend"}) {
+                if (!c.stats.contains(key)) continue;
+                for (auto& [name, value] : c.stats[key].items()) geometryNames.insert(name);
+            }
         }
     }
+    auto nested = [](const json& st, const char* group, const std::string& pass, const char* key) -> std::optional<double> {
+        if (!st.contains(group) || !st[group].contains(pass) || !st[group][pass].contains(key)) return std::nullopt;
+        return st[group][pass][key].get<double>();
+    };
     std::ostringstream out;
     out << "scene,variant,method,status,width,height,frames,frame_ms_mean,real_frame_ms,interpolated_frame_ms,frame_ms_long_run";
     for (const auto& p : passNames) out << ",pass_" << p << "_ms";
+    out << ",gpu_estimate_ms_long_run";
+    for (const auto& p : geometryNames) {
+        out << ",pass_" << p << "_fragments,blend_" << p << "_bytes,blend_" << p << "_float32_bytes,blend_" << p << "_bits_per_pixel";
+    }
     out << ",scale_pass2,scale_pass3,max_fragments,memory_bytes,mse,mse_x100,flip,last_png_mse,last_png_flip,"
            "mse_reduction_vs_wboit_percent,flip_reduction_vs_wboit_percent,speedup_vs_dfaoit_percent,q_percent_per_ms,error\n";
     for (const auto& s : r.scenes) {
@@ -239,6 +253,19 @@ std::string toCsv(const Results& r) {
                 std::optional<double> v;
                 if (st.contains("pass_ms") && st["pass_ms"].contains(p)) v = st["pass_ms"][p].get<double>();
                 out << ',' << csvNumber(v);
+            }
+            out << ',' << csvNumber(statNumber(st, "gpu_estimate_ms_long_run"));
+            for (const auto& p : geometryNames) {
+                std::optional<double> bytes;
+                if (st.contains("pass_blend") && st["pass_blend"].contains(p)) {
+                    bytes = 0.0;
+                    for (auto& [cls, value] : st["pass_blend"][p].items()) {
+                        if (cls != "target_bits_per_pixel") *bytes += value.get<double>();
+                    }
+                }
+                out << ',' << csvNumber(nested(st, "pass_counters", p, "fragment_invocations")) << ',' << csvNumber(bytes) << ','
+                    << csvNumber(nested(st, "pass_blend", p, "float32")) << ','
+                    << csvNumber(nested(st, "pass_blend", p, "target_bits_per_pixel"));
             }
             out << ',' << csvNumber(statNumber(st, "scale_pass2")) << ',' << csvNumber(statNumber(st, "scale_pass3")) << ','
                 << csvNumber(statNumber(st, "max_fragments")) << ',' << csvNumber(statNumber(st, "memory_bytes"));

@@ -141,7 +141,7 @@ private:
                     nlohmann::json frame = record.stats;
                     // The timed run's figures for this frame, the compared run's errors.
                     const nlohmann::json& t = timedFrames.at(size_t(record.index));
-                    for (const char* key : {"frame_ms", "frame_gpu_ms", "pass_ms", "pass_counters"}) frame[key] = t.at(key);
+                    for (const char* key : {"frame_ms", "frame_gpu_ms", "pass_ms", "pass_counters", "pass_blend", "gpu_estimate_ms"}) frame[key] = t.at(key);
                     c.frames.push_back(std::move(frame));
                     step(record);
                 };
@@ -217,7 +217,7 @@ private:
                     again.stats["timing_round"] = round;
                     c.stats = std::move(again.stats);
                     for (size_t f = 0; f < timedFrames.size(); ++f) {
-                        for (const char* key : {"frame_ms", "frame_gpu_ms", "pass_ms", "pass_counters"}) {
+                        for (const char* key : {"frame_ms", "frame_gpu_ms", "pass_ms", "pass_counters", "pass_blend", "gpu_estimate_ms"}) {
                             if (timedFrames[f].contains(key)) c.frames[f][key] = timedFrames[f][key];
                         }
                     }

@@ -47,10 +47,13 @@ GpuPassTimer::GpuPassTimer(bool finishAndWallClock)
 
 GpuPassTimer::~GpuPassTimer() {
     if (!hasCurrentContext()) return;  // the queries die with their context
-    for (auto& p : pendingCounters_)
+    for (auto& p : pendingCounters_) {
         for (size_t i = 0; i < 3; ++i) freeCounterQueries_[i].push_back(p.queries[i]);
+        if (p.samples) freeSampleQueries_.push_back(p.samples);
+    }
     for (auto& list : freeCounterQueries_)
         if (!list.empty()) glDeleteQueries(GLsizei(list.size()), list.data());
+    if (!freeSampleQueries_.empty()) glDeleteQueries(GLsizei(freeSampleQueries_.size()), freeSampleQueries_.data());
     for (auto& p : pending_) {
         free_.push_back(p.begin);
         free_.push_back(p.end);
@@ -120,6 +123,7 @@ std::map<std::string, double> GpuPassTimer::collect() {
 }
 
 void GpuPassTimer::beginCounters(const std::string& pass) {
+    if (!blend_.count(pass)) blend_[pass] = describeBoundColourTargets();
     if (!countersAvailable_) return;
     if (countersOpen_) throw Error("internal: GpuPassTimer::beginCounters('" + pass + "') inside another pass");
     PendingCounters p{pass, {}};
@@ -132,6 +136,22 @@ void GpuPassTimer::beginCounters(const std::string& pass) {
         }
         glBeginQuery(kCounterTargets[i], p.queries[i]);
     }
+    // GL allows one occlusion query at a time: none while peel's (or an engine's) runs.
+    bool occlusionActive = false;
+    for (GLenum target : {GL_SAMPLES_PASSED, GL_ANY_SAMPLES_PASSED, GL_ANY_SAMPLES_PASSED_CONSERVATIVE}) {
+        GLint current = 0;
+        glGetQueryiv(target, GL_CURRENT_QUERY, &current);
+        occlusionActive = occlusionActive || current != 0;
+    }
+    if (!occlusionActive) {
+        if (freeSampleQueries_.empty()) {
+            glGenQueries(1, &p.samples);
+        } else {
+            p.samples = freeSampleQueries_.back();
+            freeSampleQueries_.pop_back();
+        }
+        glBeginQuery(GL_SAMPLES_PASSED, p.samples);
+    }
     pendingCounters_.push_back(std::move(p));
     countersOpen_ = true;
 }
@@ -140,6 +160,7 @@ void GpuPassTimer::endCounters() {
     if (!countersAvailable_) return;
     if (!countersOpen_) throw Error("internal: GpuPassTimer::endCounters without beginCounters");
     for (GLenum target : kCounterTargets) glEndQuery(target);
+    if (!pendingCounters_.empty() && pendingCounters_.back().samples) glEndQuery(GL_SAMPLES_PASSED);
     countersOpen_ = false;
 }
 
@@ -148,10 +169,24 @@ std::map<std::string, PassCounters> GpuPassTimer::collectCounters() {
     for (const PendingCounters& p : pendingCounters_) {
         GLuint64 v[3] = {0, 0, 0};
         for (size_t i = 0; i < 3; ++i) glGetQueryObjectui64v(p.queries[i], GL_QUERY_RESULT, &v[i]);
-        out[p.name] += PassCounters{v[0], v[1], v[2]};
+        PassCounters c{v[0], v[1], v[2]};
+        if (p.samples) {
+            GLuint64 samples = 0;
+            glGetQueryObjectui64v(p.samples, GL_QUERY_RESULT, &samples);
+            c.samplesPassed = samples;
+            c.samplesCounted = true;
+            freeSampleQueries_.push_back(p.samples);
+        }
+        out[p.name] += c;
         for (size_t i = 0; i < 3; ++i) freeCounterQueries_[i].push_back(p.queries[i]);
     }
     pendingCounters_.clear();
+    return out;
+}
+
+std::map<std::string, PassBlend> GpuPassTimer::collectBlend() {
+    std::map<std::string, PassBlend> out;
+    out.swap(blend_);
     return out;
 }
 

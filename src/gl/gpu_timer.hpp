@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "gl/pass_blend.hpp"
 #include "starnt/oit_method.hpp"
 
 namespace starnt::gl {
@@ -26,10 +27,18 @@ struct PassCounters {
     uint64_t vertexInvocations = 0;
     uint64_t fragmentInvocations = 0;
     uint64_t primitives = 0;  // primitives submitted
+    // Samples that passed the depth test and reached the targets (GL_SAMPLES_PASSED): exact on
+    // every driver, where llvmpipe's fragment invocations count whole 4x4 blocks, partly covered
+    // ones too (2-8x a GPU's count on the suite: docs/results/gpu_estimate_fit.md). Counted
+    // where no other occlusion query is active (peel's, an engine's), else 0 with samplesCounted false.
+    uint64_t samplesPassed = 0;
+    bool samplesCounted = false;
     PassCounters& operator+=(const PassCounters& o) {
         vertexInvocations += o.vertexInvocations;
         fragmentInvocations += o.fragmentInvocations;
         primitives += o.primitives;
+        samplesPassed += o.samplesPassed;
+        samplesCounted = samplesCounted || o.samplesCounted;
         return *this;
     }
 };
@@ -62,6 +71,10 @@ public:
     void endCounters();
     // Waits for this frame's counter queries and returns them per pass name; resets.
     std::map<std::string, PassCounters> collectCounters();
+    // What each geometry pass of this frame writes into its colour targets (pass_blend.hpp), read
+    // at beginCounters whether or not the context counts; the first description of a name in a
+    // frame stands. Returns it per pass name; resets.
+    std::map<std::string, PassBlend> collectBlend();
 
 private:
     struct Pending {
@@ -81,7 +94,10 @@ private:
     struct PendingCounters {
         std::string name;
         std::array<GLuint, 3> queries;
+        GLuint samples = 0;  // GL_SAMPLES_PASSED, 0 where not counted
     };
+    std::vector<GLuint> freeSampleQueries_;
+    std::map<std::string, PassBlend> blend_;
     bool countersAvailable_ = false;
     bool countersOpen_ = false;
     std::vector<PendingCounters> pendingCounters_;

@@ -15,6 +15,7 @@
 
 #include "gl/gl_util.hpp"
 #include "gl/gpu_timer.hpp"
+#include "render/gpu_estimate.hpp"
 #include "reference/fragment_capture.hpp"
 #include "starnt/error.hpp"
 #include "starnt/tools/metrics.hpp"
@@ -53,7 +54,8 @@ namespace {
 nlohmann::json nullableMean(const std::vector<double>& v) { return v.empty() ? nlohmann::json(nullptr) : nlohmann::json(mean(v)); }
 nlohmann::json nullableMedian(const std::vector<double>& v) { return v.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(v)); }
 
-// `pass_counters`: pass name -> {"vertex_invocations", "fragment_invocations", "primitives"},
+// `pass_counters`: pass name -> {"vertex_invocations", "fragment_invocations", "primitives",
+// "samples_passed" (where counted)},
 // each divided by `frames` (the mean per frame over several frames; passes a frame did not run
 // count 0 for it).
 nlohmann::json countersJson(const std::map<std::string, gl::PassCounters>& counters, size_t frames = 1) {
@@ -63,6 +65,21 @@ nlohmann::json countersJson(const std::map<std::string, gl::PassCounters>& count
         out[name] = {{"vertex_invocations", double(c.vertexInvocations) / n},
                      {"fragment_invocations", double(c.fragmentInvocations) / n},
                      {"primitives", double(c.primitives) / n}};
+        if (c.samplesCounted) out[name]["samples_passed"] = double(c.samplesPassed) / n;
+    }
+    return out;
+}
+
+// `pass_blend` (gl/pass_blend.hpp): pass name -> bytes a fragment writes by format class, always
+// naming float32, float16, unorm16, unorm8 and uint32 (0 where unused) so that "float32: 0" is a
+// value a check reads, and the bits a pixel of the pass's colour targets hold.
+nlohmann::json passBlendJson(const std::map<std::string, gl::PassBlend>& passes) {
+    nlohmann::json out = nlohmann::json::object();
+    for (const auto& [name, blend] : passes) {
+        nlohmann::json pass = {{"float32", 0.0}, {"float16", 0.0}, {"unorm16", 0.0}, {"unorm8", 0.0}, {"uint32", 0.0}};
+        for (const auto& [cls, bytes] : blend.bytesByClass) pass[cls] = bytes;
+        pass["target_bits_per_pixel"] = blend.targetBitsPerPixel;
+        out[name] = pass;
     }
     return out;
 }
@@ -152,6 +169,10 @@ private:
             gpuFrameTimes_ ? std::optional<double>(frameTimer_.collect()["frame"]) : std::nullopt;
         const auto passes = timer_.collect();
         const auto counters = timer_.collectCounters();
+        const auto blend = timer_.collectBlend();
+        // (none without fragment counts: OpenGL ES has no pipeline statistics queries)
+        const std::optional<double> estimateMs =
+            timer_.countersAvailable() ? std::optional(gpuEstimateMs(counters, blend, passes, job_.width, job_.height)) : std::nullopt;
         const FrameStats typedStats = method_->lastFrameStats();
         const nlohmann::json methodStats = frameStatsJson(typedStats);
         const bool interpolated = typedStats.interpolated();
@@ -162,7 +183,9 @@ private:
         record.camera = camera;
         record.stats = {{"frame", i}, {"frame_ms", ms}, {"frame_gpu_ms", gpuMs ? nlohmann::json(*gpuMs) : nlohmann::json(nullptr)},
                         {"interpolated", interpolated}, {"pass_ms", passes},
-                        {"pass_counters", countersJson(counters)}, {"memory_bytes", method_->gpuMemoryBytes()},
+                        {"pass_counters", countersJson(counters)}, {"pass_blend", passBlendJson(blend)},
+                        {"gpu_estimate_ms", estimateMs ? nlohmann::json(*estimateMs) : nlohmann::json(nullptr)},
+                        {"memory_bytes", method_->gpuMemoryBytes()},
                         {"rss_bytes", residentMemoryBytes()}};
         for (const char* key : {"scale_pass2", "scale_pass3", "w_bar", "tile_levels", "probe_frame", "shading_rate_image", "shading_rate_tiles"}) {
             if (methodStats.contains(key)) record.stats[key] = methodStats[key];
@@ -181,11 +204,16 @@ private:
             record.reference = referenceOfFrame;
             job_.onFrame(record);
         }
+        if (!blend.empty()) (interpolated ? interpolatedBlend_ : realBlend_) = blend;
         // Without warm-up frames the first frame compiles shaders on first use: not timed then.
         if (i == 0 && job_.frames > 1 && job_.warmupFrames == 0) return;
         frameMs_.push_back(ms);
         if (gpuMs) frameGpuMs_.push_back(*gpuMs);
         (interpolated ? interpolatedMs_ : realMs_).push_back(ms);
+        if (estimateMs) {
+            estimateMs_.push_back(*estimateMs);
+            (interpolated ? interpolatedEstimateMs_ : realEstimateMs_).push_back(*estimateMs);
+        }
         if (gpuMs) (interpolated ? interpolatedGpuMs_ : realGpuMs_).push_back(*gpuMs);
         realShareSum_ += typedStats.neural ? 1.0 / double(std::max(typedStats.neural->temporalInterval, 1)) : 1.0;
         for (auto& [name, value] : passes) passMs_[name].push_back(value);
@@ -252,6 +280,13 @@ private:
             {"frame_gpu_ms_long_run", longRunOrWindowMean(realGpuMs_, interpolatedGpuMs_, frameGpuMs_)},
             {"pass_ms", passes},
             {"pass_counters", countersJson(counterSums_, frameMs_.size())},
+            // What each geometry pass writes a fragment (the real frames'; the interpolated frames' apart).
+            {"pass_blend", passBlendJson(realBlend_)},
+            // A GPU's frame time predicted from the counters and pass_blend (render/gpu_estimate.hpp):
+            // an estimate, apart from every measured time.
+            {"gpu_estimate_ms_mean", nullableMean(estimateMs_)},
+            {"gpu_estimate_ms_long_run", longRunOrWindowMean(realEstimateMs_, interpolatedEstimateMs_, estimateMs_)},
+            {"gpu_estimate_model", gpuEstimateModel().source},
             {"pass_counters_source", timer_.countersAvailable() ? "GL_ARB_pipeline_statistics_query, mean per timed frame"
                                                                 : "unavailable (no pipeline statistics queries)"},
             {"scale_pass2", 1.0},
@@ -269,6 +304,7 @@ private:
             {"pass_timing", gl::passTimingDescription()},
             {"method_stats", methodStats},
         };
+        if (!interpolatedBlend_.empty()) out.stats["pass_blend_interpolated"] = passBlendJson(interpolatedBlend_);
         for (auto& [key, value] : methodStats.items()) {
             if (out.stats.contains(key) && key != "max_fragments" && key != "frames") out.stats[key] = value;
         }
@@ -301,6 +337,8 @@ private:
     // Timed frames (after the warm-up): frame times, per-pass times and work counters.
     std::vector<double> frameMs_, realMs_, interpolatedMs_, frameGpuMs_, realGpuMs_, interpolatedGpuMs_;
     double realShareSum_ = 0.0;  // sum over the timed frames of 1 / K
+    std::vector<double> estimateMs_, realEstimateMs_, interpolatedEstimateMs_;  // gpu_estimate.hpp, per timed frame
+    std::map<std::string, gl::PassBlend> realBlend_, interpolatedBlend_;       // the last of each kind of frame
 
     nlohmann::json longRunOrWindowMean(const std::vector<double>& real, const std::vector<double>& interpolated,
                                        const std::vector<double>& all) const {

@@ -1,0 +1,64 @@
+#include "gl/pass_blend.hpp"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+
+#include "gl/gl_util.hpp"
+
+namespace starnt::gl {
+namespace {
+
+// The class of a target from what the driver says of its channels: component type and the widest
+// channel (RGB10_A2 is "unorm10", R11F_G11F_B10F "float11").
+std::string formatClass(GLint componentType, int widestBits) {
+    const std::string bits = std::to_string(widestBits);
+    switch (componentType) {
+        case GL_FLOAT: return "float" + bits;
+        case GL_UNSIGNED_NORMALIZED: return "unorm" + bits;
+        case GL_SIGNED_NORMALIZED: return "snorm" + bits;
+        case GL_UNSIGNED_INT: return "uint" + bits;
+        case GL_INT: return "int" + bits;
+        default: return "other" + bits;
+    }
+}
+
+}  // namespace
+
+PassBlend describeBoundColourTargets() {
+    PassBlend out;
+    GLint framebuffer = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
+    if (framebuffer == 0) return out;
+    GLint maxDrawBuffers = 0;
+    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &maxDrawBuffers);
+    for (GLint i = 0; i < maxDrawBuffers; ++i) {
+        GLint attachment = GL_NONE;
+        glGetIntegerv(GL_DRAW_BUFFER0 + i, &attachment);
+        if (attachment == GL_NONE) continue;
+        GLint objectType = GL_NONE;
+        glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GLenum(attachment), GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE,
+                                              &objectType);
+        if (objectType == GL_NONE) continue;
+        const GLenum sizes[4] = {GL_FRAMEBUFFER_ATTACHMENT_RED_SIZE, GL_FRAMEBUFFER_ATTACHMENT_GREEN_SIZE,
+                                 GL_FRAMEBUFFER_ATTACHMENT_BLUE_SIZE, GL_FRAMEBUFFER_ATTACHMENT_ALPHA_SIZE};
+        GLint bits[4] = {0, 0, 0, 0};
+        for (int c = 0; c < 4; ++c) glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GLenum(attachment), sizes[c], &bits[c]);
+        GLint componentType = GL_NONE;
+        glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GLenum(attachment), GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE,
+                                              &componentType);
+        GLboolean mask[4] = {GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE};
+        glGetBooleani_v(GL_COLOR_WRITEMASK, GLuint(i), mask);
+        int written = 0;
+        for (int c = 0; c < 4; ++c) {
+            out.targetBitsPerPixel += bits[c];
+            if (mask[c]) written += bits[c];
+        }
+        if (written == 0) continue;
+        const int widest = *std::max_element(bits, bits + 4);
+        out.bytesByClass[formatClass(componentType, widest)] += double(written) / 8.0;
+    }
+    return out;
+}
+
+}  // namespace starnt::gl
