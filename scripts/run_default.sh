@@ -2,7 +2,7 @@
 # The main job: install, build, then render the built-in default scene with the recommended method
 # and every other one, and compare each against the A-buffer ground truth. Writes PNGs, stats and
 # a summary to out/default/. Each method renders 4 untimed warm-up frames (shader compiles, tiles
-# settle) and 16 timed ones (two groups of the recommended K = 8); the summary gives their mean
+# settle) and 16 timed ones (two groups of starnt-d's corrected frames at K = 8); the summary gives their mean
 # (with interpolated frames a median would report one kind of frame only).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,8 +24,8 @@ summary="$out/summary.md"
   echo "glFinish + wall clock). On llvmpipe the"
   echo "exact A-buffer is fast on this small scene (few fragments a pixel, a CPU with caches); its memory grows"
   echo "with the fragment count and its sort with the depth complexity, which is why a GPU engine picks a bounded"
-  echo "approximation. The recommended method renders one real frame, then seven corrected interpolated ones"
-  echo "(K = 8; docs/DESIGN.md, \"The recommended configuration\"); its time is the mean over both kinds."
+  echo "approximation. The recommended method is chosen per context: here (framebuffer fetch) kbuffer-moments, one"
+  echo "geometry pass a frame keeping the nearest three fragments exact (docs/DESIGN.md, \"The recommended configuration\")."
   echo
   echo "| method | frame ms (mean) | MSE x10^2 | FLIP | GPU memory MiB |"
   echo "|---|---|---|---|---|"

@@ -138,11 +138,11 @@ TEST(SequenceCli, TemporalTwoAlternates) {
 }
 
 // Warm-up frames run on to the end of their temporal group, so the timed frames start at a real
-// frame whatever K is: at K = 8 (recommended) 3 warm-up frames become 8, and the timed frames are
+// frame whatever K is: at K = 8 (starnt-d's corrected frames) 3 warm-up frames become 8, and the timed frames are
 // one real then seven interpolated; the summary counts the 8.
 TEST(SequenceCli, WarmUpEndsAtTheEndOfATemporalGroup) {
     const fs::path dir = starnt::test::makeTempDir("seq_cli_warmup");
-    const CliRun r = run(sequence(dir, "--method recommended --frames 9 --warmup 3 --stats " + (dir / "summary.json").string()));
+    const CliRun r = run(sequence(dir, "--method starnt-d --temporal 8 --frames 9 --warmup 3 --stats " + (dir / "summary.json").string()));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const std::vector<nlohmann::json> lines = readLines(dir / "s.jsonl");
     ASSERT_EQ(lines.size(), 9u);

@@ -1576,25 +1576,25 @@ TEST(PackedLayers, TwoLayersWithoutWhatTheyNeedIsAnErrorNamingIt) {
     }
 }
 
-// recommended interpolates where the context finds its interpolated frames' exact layers, and
-// renders every frame real (starnt-d's frames) where it lacks GL_EXT_shader_framebuffer_fetch
-// (recommendedOptionsInContext; docs/DESIGN.md, "The recommended configuration without framebuffer
-// fetch"). ctest runs this test a second time with the extension hidden (MESA_EXTENSION_OVERRIDE),
-// where STARNT_TEST_EXPECT_NO_FRAMEBUFFER_FETCH makes sure it was.
-TEST(TemporalCorrected, RecommendedInterpolatesOnlyWhereTheContextFindsExactLayers) {
+// recommended with temporal frames asked for (docs/DESIGN.md, "The recommended configuration"): the
+// caller's interval is kept, and one-layer frames asked for by name get recommended's interval; with
+// the defaults it renders every frame in one of two methods of its own (test_kbuffer_moments.cpp).
+// ctest runs this test a second time with framebuffer fetch hidden (MESA_EXTENSION_OVERRIDE), where
+// STARNT_TEST_EXPECT_NO_FRAMEBUFFER_FETCH makes sure it was.
+TEST(TemporalCorrected, RecommendedKeepsTheTemporalFramesTheCallerAsksFor) {
     test::TestScene c(makeBuiltinScene("tubes", 3), 64, 48, 30.0f, 15.0f, kBackground);
     const bool fetch = epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch");
     if (std::getenv("STARNT_TEST_EXPECT_NO_FRAMEBUFFER_FETCH")) ASSERT_FALSE(fetch) << "the override did not hide the extension";
-    EXPECT_EQ(recommendedOptionsInContext().neural.temporalInterval, fetch ? kRecommendedTemporalInterval : 1);
-    // What the caller chose is kept: an interval, or the one-layer frames asked for by name.
+    EXPECT_EQ(recommendedOptionsInContext().neural.temporalInterval, 1);
     MethodOptions k2, oneLayer;
     k2.neural.temporalInterval = 2;
     oneLayer.neural.correctedLayers = NeuralOptions::CorrectedLayers::One;
     EXPECT_EQ(recommendedOptionsInContext(k2).neural.temporalInterval, 2);
     EXPECT_EQ(recommendedOptionsInContext(oneLayer).neural.temporalInterval, kRecommendedTemporalInterval);
+    EXPECT_EQ(recommendedMethodInContext(oneLayer), "starnt-d");
 
     const std::vector<float> yaws = {0.0f, 1.0f, 2.0f, 3.0f};
-    auto m = createMethod("recommended", SceneGpu::surfaceShader(), {});
+    auto m = createMethod("recommended", SceneGpu::surfaceShader(), oneLayer);
     int interpolated = 0;
     std::vector<std::vector<glm::vec4>> frames;
     for (float yaw : yaws) {
@@ -1603,8 +1603,10 @@ TEST(TemporalCorrected, RecommendedInterpolatesOnlyWhereTheContextFindsExactLaye
         interpolated += m->lastFrameStats().interpolated();
         frames.push_back(readRgba(m->outputTexture(), c.width, c.height));
     }
-    EXPECT_EQ(interpolated, fetch ? 3 : 0);
-    if (!fetch) EXPECT_EQ(frames, renderSequence(c, MethodOptions{}, yaws, "starnt-d")) << "starnt-d's frames";
+    EXPECT_EQ(interpolated, 3);
+    MethodOptions starntD = oneLayer;
+    starntD.neural.temporalInterval = kRecommendedTemporalInterval;
+    EXPECT_EQ(frames, renderSequence(c, starntD, yaws, "starnt-d")) << "starnt-d's frames at K = 8, one layer";
 }
 
 // A thin stack far behind the reference depth (docs/DESIGN.md, "Far from the reference: the moments
@@ -1631,7 +1633,7 @@ TEST(PackedLayers, AThinStackFarBehindTheReferenceKeepsItsDepthOrder) {
         scene.meshes.push_back(mesh);
     }
     test::TestScene c(std::move(scene), 160, 90, 15.0f, 20.0f, kBackground);
-    const auto frames = renderSequence(c, MethodOptions{}, {0.0f, 0.0f}, "recommended");
+    const auto frames = renderSequence(c, recommendedOptions(), {0.0f, 0.0f}, "recommended");
     const auto exact = renderSequence(c, MethodOptions{}, {0.0f}, "abuffer");
     const auto mse = test::rgbMse;
     const double real = mse(frames[0], exact[0]), interpolated = mse(frames[1], exact[0]);

@@ -118,21 +118,25 @@ public:
     virtual void resetHistory() {}
 };
 
-// The configuration the project recommends, `createMethod("recommended", ...)`: starnt-d (the tail
-// by depth moments, corrected by a network) with temporal frames, one real frame then
-// kRecommendedTemporalInterval - 1 corrected interpolated frames. recommendedOptions returns
-// `options` with that interval where it asks for every frame real (interval 1, not auto); every
-// other option is kept. docs/INTEGRATION.md, "Which method".
+// The configuration the project recommends, `createMethod("recommended", ...)`, chosen per context
+// (docs/INTEGRATION.md, "Which method"; docs/DESIGN.md, "The recommended configuration"):
+// - where the caller left the temporal settings at their defaults (interval 1, not auto, corrected
+//   mode, Auto layers, one pass) and the context has GL_EXT_shader_framebuffer_fetch and 5 draw
+//   buffers: kbuffer-moments, one geometry pass a frame (the nearest three fragments exact, the
+//   ordered closed form of the depth moments behind them);
+// - elsewhere with the defaults: starnt-d with every frame real (interpolated frames of one exact
+//   layer measured no faster on a GPU, and flashing: docs/DESIGN.md, "The recommended configuration
+//   without framebuffer fetch");
+// - where the caller asked for temporal frames: starnt-d with them (recommendedOptions).
+// recommendedMethodInContext names the method, recommendedOptionsInContext gives its options; both
+// need the context current.
+// recommendedOptions returns `options` with kRecommendedTemporalInterval where it asks for every
+// frame real (interval 1, not auto): starnt-d's interval of choice where interpolated frames are
+// wanted.
 constexpr int kRecommendedTemporalInterval = 8;
 MethodOptions recommendedOptions(MethodOptions options = {});
-// What createMethod("recommended", surface, options) runs with in the current GL context:
-// recommendedOptions(options), except that every frame is real where the context lacks
-// GL_EXT_shader_framebuffer_fetch and the caller left the interval (1, not auto), the temporal mode
-// (Correct) and the corrected layers (Auto) to the configuration. There its interpolated frames could
-// keep only one exact layer: measured no faster than every frame real on a GPU, and flashing
-// (docs/DESIGN.md, "The recommended configuration without framebuffer fetch"). Needs the context
-// current.
 MethodOptions recommendedOptionsInContext(MethodOptions options = {});
+std::string recommendedMethodInContext(const MethodOptions& options = {});
 
 // Names accepted by createMethod, in a stable order.
 std::vector<std::string> methodNames();

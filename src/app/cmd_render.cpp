@@ -233,8 +233,8 @@ void checkRenderArgs(const RenderArgs& a) {
         // recommendedOptions turns "every frame real" into its own interval, which an engine's
         // default options ask for; on the command line it was asked for by name.
         throw Error("--temporal " + a.acceleration.temporal +
-                    ": the recommended configuration renders interpolated frames (K = " + std::to_string(kRecommendedTemporalInterval) +
-                    "); for every frame real use --method starnt-d, its K = 1");
+                    ": the recommended configuration chooses its frames per context (kbuffer-moments where framebuffer fetch "
+                    "exists, else starnt-d); for starnt-d with every frame real use --method starnt-d");
     }
     if (a.temporalModeGiven && !methodHasNearestPass(a.method)) {
         throw Error("--temporal-mode: method " + a.method +
@@ -307,10 +307,15 @@ void runRender(const RenderArgs& a) {
     HeadlessGlContext context(parseGlApi(a.api));
     SceneGpu sceneGpu(scene);
     RenderJob job = makeRenderJob(a, scene);
-    if (a.method == "recommended" && recommendedOptionsInContext(job.methodOptions).neural.temporalInterval == 1) {
-        std::fprintf(stderr, "starnt: note: this OpenGL context lacks GL_EXT_shader_framebuffer_fetch, so `recommended` renders "
-                             "every frame real (starnt-d): its interpolated frames would keep one exact layer, no faster and "
-                             "less stable (docs/DESIGN.md, \"The recommended configuration without framebuffer fetch\")\n");
+    if (a.method == "recommended") {
+        const std::string chosen = recommendedMethodInContext(job.methodOptions);
+        const int interval = recommendedOptionsInContext(job.methodOptions).neural.temporalInterval;
+        std::fprintf(stderr, "starnt: note: `recommended` renders %s in this OpenGL context: %s\n",
+                     chosen == "kbuffer-moments" ? "kbuffer-moments" : interval == 1 ? "starnt-d, every frame real" : "starnt-d with interpolated frames",
+                     chosen == "kbuffer-moments" ? "it has framebuffer fetch for the nearest three layers"
+                     : interval > 1           ? "the temporal options asked for them"
+                                              : "it lacks GL_EXT_shader_framebuffer_fetch, which kbuffer-moments needs "
+                                                "(docs/DESIGN.md, \"The recommended configuration without framebuffer fetch\")");
     }
     // (for the warning when no transparent fragment is seen: a scene with none to draw)
     const bool opaqueOnly = sceneGpu.hasOpaque(job.surface) && !sceneGpu.hasTransparent(job.surface);

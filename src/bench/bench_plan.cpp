@@ -67,14 +67,23 @@ const std::vector<Variant>& allVariants() {
                                 [](MethodOptions& o) { o.neural.spatial = true; }),
                     "starnt-residual-full", "tiles"),
         accelerated(makeVariant("recommended", "recommended",
-                                "the recommended configuration: starnt-d's tail, temporal K = " +
-                                    std::to_string(kRecommendedTemporalInterval) + " with corrected frames"),
-                    "starnt-d", "K = " + std::to_string(kRecommendedTemporalInterval) + " corrected"),
+                                "the recommended configuration, chosen per context: kbuffer-moments where the context has "
+                                "framebuffer fetch, else starnt-d with every frame real"),
+                    "starnt-d", "the choice per context"),
         // The lead issue's K = 2 against K = 1, for the recommended configuration itself.
         accelerated(makeVariant("recommended-k2", "recommended",
                                 "the recommended configuration at K = 2: one real frame, then one corrected interpolated frame",
                                 [](MethodOptions& o) { o.neural.temporalInterval = 2; }),
                     "starnt-d", "K = 2 corrected"),
+        makeVariant("kbuffer-moments", "kbuffer-moments",
+                    "one geometry pass a frame: the nearest three fragments exact by framebuffer fetch, the ordered closed form "
+                    "of the depth moments behind them (no network; needs GL_EXT_shader_framebuffer_fetch)"),
+        // What recommended renders where the context has no framebuffer fetch for kbuffer-moments
+        // but the interpolated frames are asked for anyway: starnt-d with K = 8 corrected frames.
+        accelerated(makeVariant("starnt-d-k8", "starnt-d",
+                                "starnt-d with temporal K = " + std::to_string(kRecommendedTemporalInterval) + " corrected frames",
+                                [](MethodOptions& o) { o.neural.temporalInterval = kRecommendedTemporalInterval; }),
+                    "starnt-d", "K = " + std::to_string(kRecommendedTemporalInterval) + " corrected"),
         accelerated(makeVariant("starnt-vrs", "starnt",
                                 "STAR-NT, tiles on with per-tile pass-3 shading rates through the driver's shading-rate image "
                                 "where it has one (GPU; elsewhere the same as starnt)",
@@ -129,7 +138,7 @@ const std::vector<Variant>& allVariants() {
 }
 
 std::vector<std::string> defaultVariantNames() {
-    return {"unsorted", "wboit", "mboit", "mboit-t3", "dfaoit", "starnt-full", "hybrid", "hybrid-moments", "starnt-d", "recommended", "starnt-residual-full", "starnt",
+    return {"unsorted", "wboit", "mboit", "mboit-t3", "dfaoit", "starnt-full", "hybrid", "hybrid-moments", "starnt-d", "recommended", "kbuffer-moments", "starnt-residual-full", "starnt",
             "starnt-paper", "starnt-total", "starnt-total-refresh",
             "starnt-total-warp", "starnt-corners"};
 }

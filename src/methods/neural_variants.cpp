@@ -9,6 +9,7 @@
 //   starnt-residual  StarNT, 5 inputs      hybrid's tail + a correction   5-32-16-3 linear   -
 //   hybrid-moments   StarNT's inputs       tail weighted by depth moments none               reduced passes*
 //   starnt-d         StarNTDepth, 8 inputs hybrid-moments' + a correction 8-32-16-3 linear   reduced passes*
+//   kbuffer-moments  one pass: 3 exact layers by framebuffer fetch, the ordered closed form behind none  reduced passes*, temporal frames
 //
 //   * tiles (--spatial on), fixed scales below 1, corner inference and joint upsampling: the tail
 //     moments are relative to pass 2's depth at the same pixel (docs/DESIGN.md, "hybrid-moments and
@@ -50,6 +51,12 @@ const std::vector<NeuralMethodConfig>& neuralVariants() {
          .compositeShader = "methods/starnt_d/starnt_d_composite.frag.glsl",
          .defaultWeights = "methods/starnt_d/starnt_d_weights.json",
          .tailMoments = true},
+        {.name = "kbuffer-moments",
+         .kind = nn::NetworkKind::StarNT,
+         .compositeShader = "methods/hybrid_moments/hybrid_moments_composite.frag.glsl",
+         .evaluatesNetwork = false,
+         .tailMoments = true,
+         .layeredEveryFrame = true},
     };
     return variants;
 }

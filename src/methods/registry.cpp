@@ -10,15 +10,18 @@ namespace {
 
 using Factory = std::unique_ptr<OitMethod> (*)(const SurfaceShader&, const MethodOptions&);
 
-// The recommended configuration (docs/DESIGN.md, "The recommended configuration"): starnt-d's tail
-// with corrected interpolated frames. The caller's options are honoured, except that "every frame
-// real" (interval 1, not auto) becomes the recommended interval where the context can find the
-// interpolated frames' exact layers (recommendedOptionsInContext): for no interpolated frames, ask
-// for starnt-d itself.
+// The recommended configuration (docs/DESIGN.md, "The recommended configuration"), chosen per
+// context: recommendedMethodInContext's method with recommendedOptionsInContext's options.
 std::unique_ptr<OitMethod> createRecommendedMethod(const SurfaceShader& surface, const MethodOptions& options) {
-    NeuralMethodConfig config = *neuralConfig("starnt-d");
+    NeuralMethodConfig config = *neuralConfig(recommendedMethodInContext(options));
     config.name = "recommended";  // name() and messages say what the engine asked for
     return createNeuralMethod(config, surface, recommendedOptionsInContext(options));
+}
+
+// The caller left the temporal settings to the configuration (the defaults).
+bool leftToTheConfiguration(const NeuralOptions& asked) {
+    return asked.temporalInterval == 1 && !asked.temporalAuto && asked.temporalMode == NeuralOptions::TemporalMode::Correct &&
+           asked.correctedLayers == NeuralOptions::CorrectedLayers::Auto && asked.correctedOnePass;
 }
 struct Entry {
     const char* name;
@@ -46,12 +49,15 @@ MethodOptions recommendedOptions(MethodOptions options) {
 }
 
 MethodOptions recommendedOptionsInContext(MethodOptions options) {
-    const NeuralOptions& asked = options.neural;
-    const bool leftToTheConfiguration = asked.temporalInterval == 1 && !asked.temporalAuto &&
-                                        asked.temporalMode == NeuralOptions::TemporalMode::Correct &&
-                                        asked.correctedLayers == NeuralOptions::CorrectedLayers::Auto;
-    if (leftToTheConfiguration && !epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) return options;
+    if (leftToTheConfiguration(options.neural)) return options;  // kbuffer-moments, or starnt-d at K = 1
     return recommendedOptions(options);
+}
+
+std::string recommendedMethodInContext(const MethodOptions& options) {
+    if (!leftToTheConfiguration(options.neural) || !epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) return "starnt-d";
+    GLint drawBuffers = 0;
+    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &drawBuffers);
+    return drawBuffers >= 5 ? "kbuffer-moments" : "starnt-d";
 }
 
 std::vector<std::string> methodNames() {

@@ -43,14 +43,17 @@ public:
           passes_(surface, opaque_, config.kind == nn::NetworkKind::DFAOIT, options_.neural.targets,
                   narrowLayersApply(config, options_, spatial_, corners_), config.tailMoments),
           layers_(correctedLayers(config, options_)),
-          temporal_(options_, config.tailMoments, layers_) {
+          temporal_(options_, config.tailMoments, layers_, config.layeredEveryFrame) {
         if (spatial_ || corners_) tiles_ = std::make_unique<tiles::GpuTiles>();
         shadingRates_ = shadingRatesApply();
         if (shadingRates_) tiles_->enableShadingRates();
+        if (config_.layeredEveryFrame) passes_.packedPassOnly();
         if (temporal_.interpolates() && temporal_.corrects()) {
             if (layers_ == 3) {
                 passes_.findThreeLayers(options_.neural.compositeClearsTargets);
-                if (passes_.compositeClearsTargets() && skipEmpty() && !tiles_) inference("infer_full_clears", true);
+                if (passes_.compositeClearsTargets() && skipEmpty() && !tiles_ && !config_.layeredEveryFrame) {
+                    inference("infer_full_clears", true);
+                }
             }
             else if (layers_ == 2) passes_.findTwoLayers();
             if (options_.neural.correctedOnePass) passes_.preparePackedNearestAndSums();
@@ -66,6 +69,7 @@ public:
         // Compile up front what the frames will need, so no frame pays for a shader compile: the
         // full-resolution variant for the first frame (no tile history) and fixed 100 % scales,
         // the upsampling one when scales below 1 can occur.
+        if (config_.layeredEveryFrame) return;  // no real frame, no inference
         const bool fixedFull = options_.neural.fixedScale2 == 1.0f && options_.neural.fixedScale3 == 1.0f;
         const bool mayReduce = options_.neural.fixedScale2 > 0.0f ? !fixedFull : spatial_;
         for (const char* stage : {"infer_full", "infer_corners", "infer_fill"}) {
@@ -103,8 +107,9 @@ public:
         n.spatial = spatial_;
         n.cornerInference = corners_;
         n.cornerInferenceUsed = cornersUsed_;
-        n.interpolated = temporal_.lastWasInterpolated();
-        n.temporalInterval = temporal_.interval();
+        // kbuffer-moments' frames are all of one kind, its own: none is interpolated.
+        n.interpolated = temporal_.lastWasInterpolated() && !config_.layeredEveryFrame;
+        n.temporalInterval = config_.layeredEveryFrame ? 1 : temporal_.interval();
         n.temporalMode = temporal_.mode();
         n.realFrameMsAverage = temporal_.averageRealFrameMs();
         n.interpolatedFrameMsAverage = temporal_.averageInterpolatedFrameMs();
@@ -172,28 +177,12 @@ public:
         // "Opaque geometry").
         const bool premultipliedHistory = temporal_.interpolates() && !temporal_.corrects() && opaque_.active();
         if (!temporal_.beginFrame(frame.width, frame.height)) {
-            // Interpolated: the passes the temporal mode asks for, fresh at this camera, then the
-            // temporal frames' composite (no inference, no tiles).
-            switch (temporal_.interpolatedPasses()) {
-                case TemporalFrames::Passes::NearestAndSums:
-                    passes_.runNearestAndSums(frame, draw, temporal_.behindReference());
-                    break;
-                case TemporalFrames::Passes::PackedNearestAndSums:
-                    passes_.runPackedNearestAndSums(frame, draw, temporal_.behindReference());
-                    break;
-                case TemporalFrames::Passes::Nearest: passes_.runNearest(frame, draw); break;
-                case TemporalFrames::Passes::None: break;
+            if (config_.layeredEveryFrame) {
+                if (!out_.texture) chooseOutput(false);
+                // The first frame makes the reference depth its moments are taken behind, then renders.
+                if (temporal_.takeLayeredPriming()) renderInterpolated(frame, draw, viewProjection);
             }
-            TemporalPassTargets targets = temporalTargets(true);
-            if (temporal_.interpolatedPasses() == TemporalFrames::Passes::PackedNearestAndSums) {
-                targets.packedNearest = passes_.packedNearest();
-                targets.thirdLayer = passes_.thirdLayer();
-                if (passes_.compositeClearsTargets()) targets.clearByComposite = passes_.packedTargets();
-            }
-            targets.behindMoment1 = passes_.behindMoment1();
-            targets.behindMoment2 = passes_.behindMoment2();
-            temporal_.interpolate(viewProjection, targets, opaque_, out_.texture, frame.timing);
-            if (targets.clearByComposite[0]) passes_.targetsClearedByComposite();
+            renderInterpolated(frame, draw, viewProjection);
             return;
         }
         const bool transmittanceInAlpha = premultipliedHistory && !frame.premultipliedOutput;
@@ -220,6 +209,31 @@ public:
     }
 
 private:
+    // An interpolated frame (kbuffer-moments: every frame): the passes the temporal mode asks for,
+    // fresh at this camera, then the temporal frames' composite (no inference, no tiles).
+    void renderInterpolated(const FrameDesc& frame, const DrawCallback& draw, const glm::mat4& viewProjection) {
+        switch (temporal_.interpolatedPasses()) {
+            case TemporalFrames::Passes::NearestAndSums:
+                passes_.runNearestAndSums(frame, draw, temporal_.behindReference());
+                break;
+            case TemporalFrames::Passes::PackedNearestAndSums:
+                passes_.runPackedNearestAndSums(frame, draw, temporal_.behindReference());
+                break;
+            case TemporalFrames::Passes::Nearest: passes_.runNearest(frame, draw); break;
+            case TemporalFrames::Passes::None: break;
+        }
+        TemporalPassTargets targets = temporalTargets(true);
+        if (temporal_.interpolatedPasses() == TemporalFrames::Passes::PackedNearestAndSums) {
+            targets.packedNearest = passes_.packedNearest();
+            targets.thirdLayer = passes_.thirdLayer();
+            if (passes_.compositeClearsTargets()) targets.clearByComposite = passes_.packedTargets();
+        }
+        targets.behindMoment1 = passes_.behindMoment1();
+        targets.behindMoment2 = passes_.behindMoment2();
+        temporal_.interpolate(viewProjection, targets, opaque_, out_.texture, frame.timing);
+        if (targets.clearByComposite[0]) passes_.targetsClearedByComposite();
+    }
+
     // This frame's pass targets for the temporal frames; pass 3's only with `sums`.
     TemporalPassTargets temporalTargets(bool sums) const {
         return {passes_.nearest().id(), passes_.nearestDepth().id(), sums ? passes_.alphaColor().id() : 0u,
@@ -346,6 +360,7 @@ private:
     // naming it; `auto` takes the most the context allows, else one layer.
     static int correctedLayers(const NeuralMethodConfig& config, const MethodOptions& o) {
         using L = NeuralOptions::CorrectedLayers;
+        if (config.layeredEveryFrame) return layeredLayers(config);
         if (o.neural.correctedLayers == L::One) return 1;
         const bool corrected = (o.neural.temporalInterval > 1 || o.neural.temporalAuto) &&
                                o.neural.temporalMode == NeuralOptions::TemporalMode::Correct;
@@ -375,6 +390,22 @@ private:
         return 2;
     }
 
+    // kbuffer-moments keeps three layers by framebuffer fetch in five draw buffers, or is refused
+    // with what the context lacks. (A path through GL_ARB_fragment_shader_interlock for desktop
+    // GPUs without fetch is not built: docs/DESIGN.md, "kbuffer-moments".)
+    static int layeredLayers(const NeuralMethodConfig& config) {
+        if (!epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch")) {
+            throw Error(config.name + " needs GL_EXT_shader_framebuffer_fetch (GL_ARB_fragment_shader_interlock is not used) "
+                        "in this OpenGL context: on a desktop GPU without it, take recommended or starnt-d");
+        }
+        GLint drawBuffers = 0;
+        glGetIntegerv(GL_MAX_DRAW_BUFFERS, &drawBuffers);
+        if (drawBuffers < 5) {
+            throw Error(config.name + " needs 5 draw buffers (GL_MAX_DRAW_BUFFERS is " + std::to_string(drawBuffers) + ")");
+        }
+        return 3;
+    }
+
     static const MethodOptions& validated(const NeuralMethodConfig& config, const MethodOptions& o) {
         auto scaleOk = [](float s) { return s == 0.0f || (s >= float(STARNT_SCALE_MIN) && s <= 1.0f); };
         if (!scaleOk(o.neural.fixedScale2) || !scaleOk(o.neural.fixedScale3) || ((o.neural.fixedScale2 == 0.0f) != (o.neural.fixedScale3 == 0.0f))) {
@@ -382,6 +413,14 @@ private:
         }
         if (o.neural.temporalInterval < 1 || o.neural.temporalInterval > kMaxTemporalInterval) {
             throw Error("temporal interval must be within 1.." + std::to_string(kMaxTemporalInterval));
+        }
+        if (config.layeredEveryFrame) {
+            using L = NeuralOptions::CorrectedLayers;
+            if (o.neural.temporalInterval != 1 || o.neural.temporalAuto || o.neural.temporalMode != NeuralOptions::TemporalMode::Correct ||
+                (o.neural.correctedLayers != L::Auto && o.neural.correctedLayers != L::Three) || !o.neural.correctedOnePass) {
+                throw Error(config.name + " renders every frame in one pass of its own: temporal options (--temporal, "
+                            "--temporal-mode, --corrected-layers, --corrected-passes) do not apply to it");
+            }
         }
         if (config.tailMoments) {
             // Its moments are relative to pass 2's depth at the same pixel: no reduced pass, no upsampling.

@@ -21,6 +21,11 @@ struct NeuralMethodConfig {
     // hybrid-moments: pass 3 also sums the tail's depth moments (NeuralPasses); every pass at full
     // resolution (tiles, reduced scales, corner inference and joint upsampling are refused).
     bool tailMoments = false;
+    // kbuffer-moments: every frame is one geometry pass that keeps the nearest three fragments
+    // exactly by framebuffer fetch and composites the ordered closed form behind them (the frames
+    // recommended interpolates, as a method of their own: docs/DESIGN.md, "kbuffer-moments"). No
+    // network, no real frames; the reference depth of a frame's moments is the last frame's.
+    bool layeredEveryFrame = false;
 };
 
 std::unique_ptr<OitMethod> createNeuralMethod(const NeuralMethodConfig& config, const SurfaceShader& surface,

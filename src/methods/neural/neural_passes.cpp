@@ -161,16 +161,25 @@ void NeuralPasses::resize(int width, int height) {
     const bool compact = targets_ == NeuralOptions::Targets::Compact;
     const GLenum color = compact ? GL_RGBA16F : GL_RGBA32F, single = compact ? GL_R16F : GL_R32F;
     const GLenum layer = narrowLayers_ ? GL_RGB10_A2 : color;
-    nearest_ = gl::Texture2D(layer, width, height);
     nearestDepth_ = gl::Texture2D(GL_DEPTH_COMPONENT32F, width, height);
-    second_ = gl::Texture2D(layer, width, height);
-    secondDepth_ = gl::Texture2D(narrowLayers_ ? GL_DEPTH_COMPONENT16 : GL_DEPTH_COMPONENT32F, width, height);
+    if (!packedOnly_) {
+        nearest_ = gl::Texture2D(layer, width, height);
+        second_ = gl::Texture2D(layer, width, height);
+        secondDepth_ = gl::Texture2D(narrowLayers_ ? GL_DEPTH_COMPONENT16 : GL_DEPTH_COMPONENT32F, width, height);
+    }
     if (narrowLayers_) layerAlpha_ = gl::Texture2D(GL_RG16F, width, height);
     // The tail moments are centred with sum a C at read time, which a 16-bit sum would spoil
     // (measured on chess 320x180: MSE 2.9e-6 against 1.2e-6 with 32-bit sums), and weighted by the
     // tail's optical depth -ln t_tail, which a 16-bit transmittance clamps beyond about 11.
     alphaColor_ = gl::Texture2D(tailMoments_ ? GL_RGBA32F : color, width, height, GL_LINEAR);
     colorCount_ = gl::Texture2D(colorSums_ ? color : countBesideBehind_ ? GL_RG32F : single, width, height, GL_LINEAR);
+    alphaColorOnlyFb_ = gl::makeFramebuffer({&alphaColor_});
+    packedFb_.reset();  // runPackedNearestAndSums makes it again around the new targets
+    if (tailMoments_) tailMoment1_ = gl::Texture2D(GL_RGBA32F, width, height);
+    if (packedOnly_) {
+        makeSumsFramebuffer();
+        return;
+    }
     transmittance_ = gl::Texture2D(compact && !tailMoments_ ? compactTransmittanceFormat() : GL_R32F, width, height, GL_LINEAR);
     if (narrowLayers_) {
         pass1Fb_ = gl::makeFramebuffer({&nearest_, &layerAlpha_}, &nearestDepth_);
@@ -179,18 +188,13 @@ void NeuralPasses::resize(int width, int height) {
         pass1Fb_ = gl::makeFramebuffer({&nearest_}, &nearestDepth_);
         pass2Fb_ = gl::makeFramebuffer({&second_}, &secondDepth_);
     }
-    if (tailMoments_) {
-        tailMoment1_ = gl::Texture2D(GL_RGBA32F, width, height);
-        tailMoment2_ = gl::Texture2D(GL_RGBA32F, width, height);
-    }
+    if (tailMoments_) tailMoment2_ = gl::Texture2D(GL_RGBA32F, width, height);
     makePass3Framebuffer();
     makeSumsFramebuffer();
-    packedFb_.reset();  // runPackedNearestAndSums makes it again around the new targets
     pass3BehindFb_.reset();
     pass3TailFb_.reset();
     nearestOnlyFb_ = gl::makeFramebuffer({&nearest_});
     secondOnlyFb_ = gl::makeFramebuffer({&second_});
-    alphaColorOnlyFb_ = gl::makeFramebuffer({&alphaColor_});
 }
 
 void NeuralPasses::makeSumsFramebuffer() {
@@ -209,7 +213,7 @@ void NeuralPasses::widenCountBesideBehind() {
     countBesideBehind_ = true;
     colorCount_ = gl::Texture2D(GL_RG32F, width_, height_, GL_LINEAR);
     forgetTargets();  // a new texture
-    makePass3Framebuffer();
+    if (!packedOnly_) makePass3Framebuffer();
     makeSumsFramebuffer();
     packedFb_.reset();
     pass3BehindFb_.reset();

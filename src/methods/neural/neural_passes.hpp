@@ -161,6 +161,10 @@ public:
     // buffers): docs/DESIGN.md, "Corrected frames: three layers and no correction".
     // `compositeClears`: NeuralOptions::compositeClearsTargets (compositeClearsTargets() below).
     void findThreeLayers(bool compositeClears = false);
+    // kbuffer-moments: only the packed pass ever runs (runPackedNearestAndSums), so resize allocates
+    // only its targets (no pass-1 colour, pass 2, transmittance or second tail-moment target).
+    // Before the first frame.
+    void packedPassOnly() { packedOnly_ = true; }
     GLuint thirdLayer() const { return threeLayers_ ? thirdLayer_.id() : 0u; }
     // Three layers on desktop GL with a software rasteriser, unless turned off (findThreeLayers;
     // docs/DESIGN.md, "Corrected frames: the composite clears pass 3's targets"): there clears of
@@ -274,6 +278,7 @@ private:
     bool twoLayers_ = false;       // findTwoLayers
     gl::Texture2D packedLayers_;   // the nearest two fragments (twoLayers_), allocated on first need
     bool threeLayers_ = false;     // findThreeLayers
+    bool packedOnly_ = false;      // packedPassOnly
     bool compositeClears_ = false;  // compositeClearsTargets()
     // What holds its clear value at every texel, so that the next pass into it skips its clear
     // (compositeClears_ only): sharedSumTargets() (sumsClear_: after a clearing composite or

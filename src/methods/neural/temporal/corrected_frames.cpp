@@ -37,13 +37,33 @@ CorrectedFrames::CorrectedFrames(bool ordered, int layers)
     }
 }
 
-void CorrectedFrames::keepReference(GLuint depth, int width, int height, bool packed) {
+void CorrectedFrames::allocateReference(int width, int height) {
     const int tilesX = (width + STARNT_ORDERED_REFERENCE_TILE - 1) / STARNT_ORDERED_REFERENCE_TILE;
     const int tilesY = (height + STARNT_ORDERED_REFERENCE_TILE - 1) / STARNT_ORDERED_REFERENCE_TILE;
     if (reference_.width() != tilesX || reference_.height() != tilesY) {
         referenceTiles_ = gl::Texture2D(GL_R32F, tilesX, tilesY);
         reference_ = gl::Texture2D(GL_R32F, tilesX, tilesY);
     }
+}
+
+void CorrectedFrames::startLayered(int width, int height) {
+    if (!threeLayers_) throw Error("internal: frames layered every frame need three layers");
+    if (width < 1 || height < 1) throw Error("corrected frames: empty frame size");
+    allocateReference(width, height);
+    drawIntoTexture(framebuffer_, reference_.id(), reference_.width(), reference_.height());
+    const float farPlane[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+    glClearBufferfv(GL_COLOR, 0, farPlane);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    width_ = width;
+    height_ = height;
+    viewProj_ = glm::mat4(1.0f);  // read only for the correction, which these frames never keep
+    hasFrame_ = true;
+    hasCorrection_ = false;
+}
+
+void CorrectedFrames::keepReference(GLuint depth, int width, int height, bool packed) {
+    allocateReference(width, height);
+    const int tilesX = reference_.width(), tilesY = reference_.height();
     const struct {
         const gl::Program& program;
         GLuint source, target;

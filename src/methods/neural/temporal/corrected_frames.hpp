@@ -49,6 +49,10 @@ public:
     FusedTargets beginFusedCapture(GLenum compositeFormat, GLuint depth, int width, int height, const glm::mat4& viewProj);
     void endFusedCapture();
     bool hasFrame() const { return hasFrame_; }
+    // Three layers, with no real frame (kbuffer-moments): a frame of this size whose reference depth
+    // is the far plane everywhere (depthBehindReference still orders the fragments in front of it),
+    // for a first frame that only makes the reference of the next (TemporalFrames::takeLayeredPriming).
+    void startLayered(int width, int height);
     int width() const { return width_; }
     int height() const { return height_; }
 
@@ -102,6 +106,7 @@ private:
     // Ordered only: the reference depth from a real frame's pass-1 `depth` or, `packed`, from an
     // interpolated frame's packed layers (three layers: the next interpolated frame's reference).
     void keepReference(GLuint depth, int width, int height, bool packed = false);
+    void allocateReference(int width, int height);  // at one texel per reference tile
     void bindComposite(GLuint nearestOrPacked, GLuint depth, GLuint sumAlphaColor,
                        GLuint transmittance, GLuint behindMoment1, GLuint behindMoment2);
     bool ordered_ = false;

@@ -4,12 +4,14 @@
 
 namespace starnt {
 
-TemporalFrames::TemporalFrames(const MethodOptions& options, bool orderedBehind, int layers)
+TemporalFrames::TemporalFrames(const MethodOptions& options, bool orderedBehind, int layers, bool layeredEveryFrame)
     : schedule_(options),
       clock_(gl::wallClockTimingNeeded()),
       mode_(options.neural.temporalMode),
       skipEmptyPixels_(options.neural.skipEmptyPixels),
-      onePass_(options.neural.correctedOnePass) {
+      onePass_(options.neural.correctedOnePass || layeredEveryFrame),
+      layered_(layeredEveryFrame) {
+    if (layered_ && (!orderedBehind || layers != 3)) throw Error("internal: frames layered every frame need three ordered layers");
     if (!interpolates()) return;
     if (corrects()) corrected_ = std::make_unique<temporal::CorrectedFrames>(orderedBehind, layers);
     else reprojector_ = std::make_unique<temporal::Reprojector>();
@@ -24,6 +26,14 @@ bool TemporalFrames::beginFrame(int width, int height) {
     const int keptWidth = corrected_ ? corrected_->width() : reprojector_ ? reprojector_->width() : 0;
     const int keptHeight = corrected_ ? corrected_->height() : reprojector_ ? reprojector_->height() : 0;
     if (hasKeptFrame() && (width != keptWidth || height != keptHeight)) reset();
+    if (layered_) {
+        if (!corrected_->hasFrame()) {
+            corrected_->startLayered(width, height);
+            priming_ = true;
+        }
+        lastInterpolated_ = true;
+        return false;
+    }
     bool real = schedule_.nextFrameIsReal();
     // The schedule cannot know whether the kept frame exists (e.g. a real frame that threw).
     if (!real && !hasKeptFrame()) {
@@ -73,7 +83,7 @@ void TemporalFrames::interpolate(const glm::mat4& viewProj, const TemporalPassTa
                                             passes.behindMoment2, passes.thirdLayer,
                                             passes.clearByComposite[0] ? std::span<const GLuint>(passes.clearByComposite)
                                                                        : std::span<const GLuint>(),
-                                            !schedule_.lastOfGroup());
+                                            layered_ || !schedule_.lastOfGroup());
             } else {
                 corrected_->composite(viewProj, passes.nearest, passes.nearestDepth, passes.sumAlphaColor, passes.transmittance,
                                       background, outputTexture, passes.behindMoment1, passes.behindMoment2);
@@ -107,6 +117,7 @@ void TemporalFrames::reset() {
     if (corrected_) corrected_->reset();
     clock_.take();  // a measurement of before the reset no longer applies
     lastInterpolated_ = false;
+    priming_ = false;
 }
 
 }  // namespace starnt

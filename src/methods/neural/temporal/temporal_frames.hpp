@@ -52,7 +52,11 @@ public:
     // `orderedBehind`: the method has tail moments, and its corrected frames weigh what lies behind
     // the nearest layer by depth (CorrectedFrames' `ordered`).
     // orderedBehind, layers: temporal::CorrectedFrames' ordered and layers.
-    explicit TemporalFrames(const MethodOptions& options, bool orderedBehind = false, int layers = 1);
+    // `layeredEveryFrame` (kbuffer-moments; layers 3): every frame is interpolated in this sense, its
+    // one pass and composite the three-layer corrected frame's, with no real frame: the reference
+    // depth of a frame's moments is made from the last frame's layers (startLayered).
+    explicit TemporalFrames(const MethodOptions& options, bool orderedBehind = false, int layers = 1,
+                            bool layeredEveryFrame = false);
 
     // Starts a frame of the given size; true = render it for real. Always true for the first frame,
     // after reset(), and when the size differs from the kept real frame's.
@@ -91,10 +95,18 @@ public:
     }
     // Interpolated frames render pass 1 fresh (refresh, correct) and pass 3 too (correct).
     bool refreshes() const { return mode_ == NeuralOptions::TemporalMode::Refresh; }
-    bool corrects() const { return mode_ == NeuralOptions::TemporalMode::Correct; }
+    bool corrects() const { return layered_ || mode_ == NeuralOptions::TemporalMode::Correct; }
 
     // False for a fixed interval of 1: then nothing is kept (no copy, no memory).
-    bool interpolates() const { return schedule_.isAuto() || schedule_.interval() > 1; }
+    bool interpolates() const { return layered_ || schedule_.isAuto() || schedule_.interval() > 1; }
+    // Layered every frame: true once after the first frame, a reset or a new size, when no last
+    // frame made the reference depth yet; the caller then renders the frame's pass and composite
+    // twice, the first only to make it (its output is drawn over).
+    bool takeLayeredPriming() {
+        const bool priming = priming_;
+        priming_ = false;
+        return priming;
+    }
     bool lastWasInterpolated() const { return lastInterpolated_; }
     // The interval of the current group (1 real + interval-1 interpolated frames).
     int interval() const { return schedule_.groupInterval(); }
@@ -126,6 +138,8 @@ private:
     NeuralOptions::TemporalMode mode_;
     bool skipEmptyPixels_ = true;  // NeuralOptions::skipEmptyPixels
     bool onePass_ = true;          // NeuralOptions::correctedOnePass
+    bool layered_ = false;         // layeredEveryFrame
+    bool priming_ = false;         // takeLayeredPriming
 };
 
 }  // namespace starnt
