@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "starnt/oit_method.hpp"
 #include "starnt/tools/image.hpp"
 #include "test_support.hpp"
 
@@ -104,13 +105,46 @@ TEST(Gles, EveryMethodMatchesDesktopOnSuiteScenes) {
     }
 }
 
+// ES 3.2 blends 32-bit float targets only with GL_EXT_float_blend, which a phone need not offer.
+// Without it the library accepts the context; every method that blends no 32-bit float renders the
+// same image bit for bit as with it, and the others fail with one error naming the extension and
+// write nothing.
+TEST(Gles, WithoutFloatBlendingTheSixteenBitMethodsRunAndTheOthersSaySo) {
+    const fs::path dir = test::makeTempDir("gles_no_float_blend");
+    const std::vector<std::string> run16 = {"abuffer", "dfaoit", "starnt", "hybrid", "starnt-residual", "kbuffer-moments", "recommended"};
+    const std::vector<std::string> need32 = {"unsorted", "wboit", "mboit", "peel", "hybrid-moments", "starnt-d"};
+    std::vector<std::string> every = run16;
+    every.insert(every.end(), need32.begin(), need32.end());
+    for (const std::string& method : methodNames()) {
+        EXPECT_NE(std::find(every.begin(), every.end(), method), every.end()) << method << ": in neither list";
+    }
+    for (const std::string& method : every) {
+        const std::string args = "render --api gles --scene builtin:tubes --width 48 --height 32 --frames 2 --method " + method;
+        const fs::path with = dir / (method + "_with.exr"), without = dir / (method + "_without.exr");
+        ASSERT_EQ(test::run(args + " --out " + (dir / "x.png").string() + " --exr " + with.string()).exitCode, 0) << method;
+        const test::CliRun r = test::run(args + " --out " + (dir / (method + ".png")).string() + " --exr " + without.string(),
+                                         "MESA_EXTENSION_OVERRIDE=-GL_EXT_float_blend ");
+        if (std::find(run16.begin(), run16.end(), method) != run16.end()) {
+            ASSERT_EQ(r.exitCode, 0) << method << ": " << r.err;
+            const Image a = loadImage(with.string()), b = loadImage(without.string());
+            EXPECT_EQ(a.rgba, b.rgba) << method << ": another image without the extension";
+        } else {
+            EXPECT_NE(r.exitCode, 0) << method;
+            EXPECT_NE(r.exitCode, -1) << method << ": crashed";
+            EXPECT_NE(r.err.find("GL_EXT_float_blend"), std::string::npos) << method << ": " << r.err;
+            EXPECT_FALSE(fs::exists(without)) << method;
+        }
+    }
+}
+
 TEST(Gles, ContextsThatLackWhatTheMethodsNeedFailClearly) {
     const fs::path dir = test::makeTempDir("gles_missing");
     const fs::path out = dir / "x.png";
     const std::string render = "render --api gles --scene builtin:tubes --width 32 --height 32 --method starnt --out " +
                                out.string();
-    // Mesa's overrides remove an extension or lower the ES version the driver offers.
-    for (const char* ext : {"GL_EXT_color_buffer_float", "GL_EXT_float_blend", "GL_OES_texture_float_linear"}) {
+    // Mesa's overrides remove an extension or lower the ES version the driver offers. (Without
+    // GL_EXT_float_blend starnt runs: WithoutFloatBlending... below.)
+    for (const char* ext : {"GL_EXT_color_buffer_float", "GL_OES_texture_float_linear"}) {
         const test::CliRun r = test::run(render, std::string("MESA_EXTENSION_OVERRIDE=-") + ext + " ");
         EXPECT_NE(r.exitCode, 0) << ext;
         EXPECT_NE(r.exitCode, -1) << ext << ": crashed";

@@ -78,6 +78,9 @@ const std::vector<Variant>& allVariants() {
         makeVariant("kbuffer-moments", "kbuffer-moments",
                     "one geometry pass a frame: the nearest three fragments exact by framebuffer fetch, the ordered closed form "
                     "of the depth moments behind them (no network; needs GL_EXT_shader_framebuffer_fetch)"),
+        makeVariant("kbuffer-moments-fp32", "kbuffer-moments",
+                    "kbuffer-moments with its sums and moments in 32-bit floats (the 16-bit layout's reference)",
+                    [](MethodOptions& o) { o.neural.targets = NeuralOptions::Targets::Float32; }),
         // What recommended renders where the context has no framebuffer fetch for kbuffer-moments
         // but the interpolated frames are asked for anyway: starnt-d with K = 8 corrected frames.
         accelerated(makeVariant("starnt-d-k8", "starnt-d",

@@ -21,15 +21,16 @@ void checkGlRequirements() {
                         offered);
         }
         // What ES 3.2 leaves optional and the methods need: float colour targets (every pass
-        // writes RGBA32F/R32F), blending into them (pass 3, WBOIT, MBOIT, the depth-complexity
-        // count), and linear filtering of float textures (the upsampling of reduced passes).
+        // writes RGBA32F/R32F) and linear filtering of float textures (the upsampling of reduced
+        // passes). Blending into 32-bit float targets (GL_EXT_float_blend) only the methods that do
+        // it need: their geometry pass says so (MethodBase::runGeometryPass).
         std::string missing;
-        for (const char* ext : {"GL_EXT_color_buffer_float", "GL_EXT_float_blend", "GL_OES_texture_float_linear"}) {
+        for (const char* ext : {"GL_EXT_color_buffer_float", "GL_OES_texture_float_linear"}) {
             if (!epoxy_has_gl_extension(ext)) missing += std::string(missing.empty() ? "" : ", ") + ext;
         }
         if (!missing.empty()) {
             throw Error("this OpenGL ES " + offered + " context lacks " + missing +
-                        " (float colour buffers, float blending and filtering), which the methods need");
+                        " (float colour buffers and filtering), which the methods need");
         }
     }
     GLint maxSsboFrag = 0, maxDrawBuffers = 0;

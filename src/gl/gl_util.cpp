@@ -1,4 +1,5 @@
 #include "gl/gl_util.hpp"
+#include "gl/pass_blend.hpp"
 
 #include <atomic>
 #include <dlfcn.h>
@@ -481,6 +482,8 @@ VertexArrayHandle makeEmptyVertexArray() {
 }
 
 void drawFullscreenTriangle(const VertexArrayHandle& emptyVao) {
+    // As MethodBase::runGeometryPass: no silent INVALID_OPERATION where ES cannot blend 32-bit floats.
+    checkFloatBlend("a full-screen pass");
     glBindVertexArray(emptyVao.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }

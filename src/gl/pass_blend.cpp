@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "gl/gl_util.hpp"
+#include "starnt/error.hpp"
 
 namespace starnt::gl {
 namespace {
@@ -59,6 +60,37 @@ PassBlend describeBoundColourTargets() {
         out.bytesByClass[formatClass(componentType, widest)] += double(written) / 8.0;
     }
     return out;
+}
+
+void checkFloatBlend(const std::string& pass) {
+    if (floatBlendAvailable() || !blendsFloat32Target()) return;
+    throw Error(pass + " blends 32-bit float targets, which needs GL_EXT_float_blend, and this OpenGL ES context lacks it. "
+                "Methods that blend 16-bit targets run there: dfaoit, starnt, hybrid and starnt-residual without temporal "
+                "frames, kbuffer-moments, recommended where it renders kbuffer-moments, and abuffer");
+}
+
+bool floatBlendAvailable() { return !isEs() || epoxy_has_gl_extension("GL_EXT_float_blend"); }
+
+bool blendsFloat32Target() {
+    GLint framebuffer = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
+    if (framebuffer == 0) return false;
+    GLint maxDrawBuffers = 0;
+    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &maxDrawBuffers);
+    for (GLint i = 0; i < maxDrawBuffers; ++i) {
+        GLint attachment = GL_NONE;
+        glGetIntegerv(GL_DRAW_BUFFER0 + i, &attachment);
+        if (attachment == GL_NONE || !glIsEnabledi(GL_BLEND, GLuint(i))) continue;
+        GLint objectType = GL_NONE, componentType = GL_NONE, red = 0;
+        glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GLenum(attachment), GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE,
+                                              &objectType);
+        if (objectType == GL_NONE) continue;
+        glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GLenum(attachment), GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE,
+                                              &componentType);
+        glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GLenum(attachment), GL_FRAMEBUFFER_ATTACHMENT_RED_SIZE, &red);
+        if (componentType == GL_FLOAT && red == 32) return true;
+    }
+    return false;
 }
 
 }  // namespace starnt::gl

@@ -32,4 +32,14 @@ struct PassBlend {
 // (framebuffer 0: nothing is described). Changes no GL state.
 PassBlend describeBoundColourTargets();
 
+// Whether the current context blends 32-bit float colour targets: desktop GL always, OpenGL ES
+// with GL_EXT_float_blend (which ES 3.2 leaves optional).
+bool floatBlendAvailable();
+// True when a fragment drawn now would blend into a 32-bit float target of the bound draw
+// framebuffer (blending on for a draw buffer whose attachment has 32-bit float channels).
+bool blendsFloat32Target();
+// Throws starnt::Error naming `pass` and GL_EXT_float_blend where a draw now would blend a 32-bit
+// float target that the context cannot (an INVALID_OPERATION, and a silently wrong frame).
+void checkFloatBlend(const std::string& pass);
+
 }  // namespace starnt::gl

@@ -1,4 +1,6 @@
 #include "reference/fragment_capture.hpp"
+
+#include "gl/pass_blend.hpp"
 #include "scene/tool_sources.hpp"
 
 #include <algorithm>
@@ -76,7 +78,8 @@ unsigned DepthComplexityCounter::countCanonical(const FrameDesc& frame, const Dr
     if (frame.width != width_ || frame.height != height_ || !output_) {
         width_ = frame.width;
         height_ = frame.height;
-        output_ = gl::Texture2D(GL_R32F, width_, height_);
+        // R16F where ES cannot blend 32-bit floats: its counts are exact up to 2048 fragments a pixel.
+        output_ = gl::Texture2D(gl::floatBlendAvailable() ? GL_R32F : GL_R16F, width_, height_);
         outputFb_ = gl::makeFramebuffer({&output_});
     }
     resetPassState();

@@ -1,5 +1,6 @@
 #include "methods/common/method_base.hpp"
 
+#include "gl/pass_blend.hpp"
 #include "starnt/bindings.h"
 #include "starnt/error.hpp"
 
@@ -86,6 +87,9 @@ void MethodBase::runGeometryPass(const char* name, const gl::Program& program, c
                                  const DrawCallback& draw) {
     glUseProgram(program.id());
     glUniform1f(program.uniform("u_alphaCutoff"), frame.alphaCutoff);
+    // OpenGL ES blends 32-bit float targets only with GL_EXT_float_blend: without it the draw would
+    // be an INVALID_OPERATION and the frame silently wrong, so a method that needs it says so.
+    gl::checkFloatBlend(std::string("geometry pass '") + name + "'");
     if (frame.timing) frame.timing->beginGeometry(name);
     try {
         draw(GeometryPass{name, program.id()});

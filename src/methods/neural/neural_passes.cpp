@@ -153,6 +153,11 @@ NeuralPasses::OutputSlot NeuralPasses::outputSlot(bool nearestFree) const {
     return {};
 }
 
+GLenum NeuralPasses::sumsFormat(int channels) const {
+    const bool half = packedOnly_ && targets_ == NeuralOptions::Targets::Compact;
+    return channels == 4 ? (half ? GL_RGBA16F : GL_RGBA32F) : (half ? GL_RG16F : GL_RG32F);
+}
+
 void NeuralPasses::resize(int width, int height) {
     if (width == width_ && height == height_) return;
     width_ = width;
@@ -170,12 +175,14 @@ void NeuralPasses::resize(int width, int height) {
     if (narrowLayers_) layerAlpha_ = gl::Texture2D(GL_RG16F, width, height);
     // The tail moments are centred with sum a C at read time, which a 16-bit sum would spoil
     // (measured on chess 320x180: MSE 2.9e-6 against 1.2e-6 with 32-bit sums), and weighted by the
-    // tail's optical depth -ln t_tail, which a 16-bit transmittance clamps beyond about 11.
-    alphaColor_ = gl::Texture2D(tailMoments_ ? GL_RGBA32F : color, width, height, GL_LINEAR);
-    colorCount_ = gl::Texture2D(colorSums_ ? color : countBesideBehind_ ? GL_RG32F : single, width, height, GL_LINEAR);
+    // tail's optical depth -ln t_tail, which a 16-bit transmittance clamps beyond about 11. Behind
+    // the three exact layers of kbuffer-moments (packedOnly_) the sums weigh little: there compact
+    // targets keep them in 16-bit floats (docs/DESIGN.md, "kbuffer-moments").
+    alphaColor_ = gl::Texture2D(tailMoments_ ? sumsFormat(4) : color, width, height, GL_LINEAR);
+    colorCount_ = gl::Texture2D(colorSums_ ? color : countBesideBehind_ ? sumsFormat(2) : single, width, height, GL_LINEAR);
     alphaColorOnlyFb_ = gl::makeFramebuffer({&alphaColor_});
     packedFb_.reset();  // runPackedNearestAndSums makes it again around the new targets
-    if (tailMoments_) tailMoment1_ = gl::Texture2D(GL_RGBA32F, width, height);
+    if (tailMoments_) tailMoment1_ = gl::Texture2D(sumsFormat(4), width, height);
     if (packedOnly_) {
         makeSumsFramebuffer();
         return;
@@ -211,7 +218,7 @@ void NeuralPasses::widenCountBesideBehind() {
     // sum a v^2 and the optical depth; 32-bit, as the spread the closed form takes from the moments
     // (m2 / a - mean^2) needs it.
     countBesideBehind_ = true;
-    colorCount_ = gl::Texture2D(GL_RG32F, width_, height_, GL_LINEAR);
+    colorCount_ = gl::Texture2D(sumsFormat(2), width_, height_, GL_LINEAR);
     forgetTargets();  // a new texture
     if (!packedOnly_) makePass3Framebuffer();
     makeSumsFramebuffer();

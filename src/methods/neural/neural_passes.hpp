@@ -279,6 +279,9 @@ private:
     gl::Texture2D packedLayers_;   // the nearest two fragments (twoLayers_), allocated on first need
     bool threeLayers_ = false;     // findThreeLayers
     bool packedOnly_ = false;      // packedPassOnly
+    // The tail-moment sums' and moments' format (4 or 2 channels): 32-bit floats, 16-bit in the
+    // packed pass alone with compact targets.
+    GLenum sumsFormat(int channels) const;
     bool compositeClears_ = false;  // compositeClearsTargets()
     // What holds its clear value at every texel, so that the next pass into it skips its clear
     // (compositeClears_ only): sharedSumTargets() (sumsClear_: after a clearing composite or
