@@ -13,9 +13,16 @@
 namespace starnt::test {
 
 std::filesystem::path sharedScenesDir() {
-    std::filesystem::path p(STARNT_SHARED_SCENES);
+    // STARNT_TEST_SCENES_DIR replaces the folder (a missing one shows what the tests do without it).
+    const char* dir = std::getenv("STARNT_TEST_SCENES_DIR");
+    std::filesystem::path p(dir && *dir ? dir : STARNT_SHARED_SCENES);
     std::error_code ec;
     return std::filesystem::is_directory(p, ec) ? std::filesystem::canonical(p) : std::filesystem::path();
+}
+
+bool sharedScenesRequired() {
+    const char* v = std::getenv("STARNT_TEST_REQUIRE_SCENES");
+    return v && *v && std::string(v) != "0";
 }
 
 std::filesystem::path makeTempDir(const std::string& tag) {
