@@ -128,8 +128,8 @@ TEST(BenchPlan, BuiltinScenesStandInWhenTheSuiteIsAbsent) {
 }
 
 TEST(BenchPlan, SuiteScenesHaveTheirSettings) {
+    STARNT_SKIP_WITHOUT_SHARED_SCENES("the bench on suite scenes not tested");
     const fs::path suite = test::sharedScenesDir();
-    if (suite.empty()) GTEST_SKIP() << "../shared/scenes not present";
     bench::Request request;
     request.suiteDir = suite.string();
     bench::Plan quick = bench::makePlan(request);

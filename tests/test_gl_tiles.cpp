@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <random>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -576,6 +577,9 @@ TEST(GlTiles, NoTransparentPixelGivesWBarZeroAndMinimumScales) {
 }
 
 TEST(GlTiles, OddSizesAndOnePixelRender) {
+    // MSE against the exact composite, measured on llvmpipe (GL and ES, both inferences alike):
+    // 1x1 3.7e-4, 17x33 9.85e-5, 50x3 1.38e-5; the bounds are 1.5x those.
+    const std::map<std::pair<int, int>, double> bound = {{{1, 1}, 5.6e-4}, {{17, 33}, 1.5e-4}, {{50, 3}, 2.1e-5}};
     for (auto [w, h] : {std::pair{1, 1}, std::pair{17, 33}, std::pair{50, 3}}) {
         test::TestScene c(makeBuiltinScene("tubes", 3), w, h, 10.0f, 20.0f, kBackground);
         for (auto inference : {NeuralOptions::Inference::Full, NeuralOptions::Inference::Corners}) {
@@ -589,7 +593,9 @@ TEST(GlTiles, OddSizesAndOnePixelRender) {
             EXPECT_GE(stats["pass2_size"][0].get<int>(), 1);
             EXPECT_LE(stats["pass2_size"][0].get<int>(), w);
             // The result stays close to the exact composite (tolerance of a reduced-scale render).
-            EXPECT_LT(mseSrgb(c.render("abuffer").image, image), 5e-3) << w << "x" << h;
+            const double mse = mseSrgb(c.render("abuffer").image, image);
+            std::printf("%dx%d %s: MSE %.3g\n", w, h, inference == NeuralOptions::Inference::Full ? "full" : "corners", mse);
+            EXPECT_LT(mse, bound.at({w, h})) << w << "x" << h;
         }
     }
 }
@@ -653,8 +659,10 @@ TEST(GlTiles, ReducedScalesRenderReducedPasses) {
     const Image exact = c.render("abuffer").image;
     const Image full = c.render("starnt", spatialOptions(false)).image;
     const double mseFull = mseSrgb(exact, full), mseReduced = mseSrgb(exact, reduced.image);
+    std::printf("MSE full %.3g, reduced %.3g (%.2fx)\n", mseFull, mseReduced, mseReduced / mseFull);
     EXPECT_GT(mseReduced, mseFull) << "reduced passes lose detail";
-    EXPECT_LT(mseReduced, 20 * mseFull + 1e-3) << "but stay a usable approximation";
+    // Measured on llvmpipe: 5.6e-4 against 1.03e-4 at full resolution (5.4x); the bound is 1.5x that.
+    EXPECT_LT(mseReduced, 8.1 * mseFull) << "but stay a usable approximation";
 }
 
 TEST(GlTiles, TileOverlayMarksLevels) {

@@ -94,8 +94,8 @@ TEST(Gles, ReducedPassesTilesAndInterpolatedFramesMatchDesktop) {
 }
 
 TEST(Gles, EveryMethodMatchesDesktopOnSuiteScenes) {
+    STARNT_SKIP_WITHOUT_SHARED_SCENES("--api gles on a suite scene not tested");
     const fs::path suite = test::sharedScenesDir();
-    if (suite.empty()) GTEST_SKIP() << "../shared/scenes not present";
     for (const char* file : {"chess/chess_classic_board.glb", "magic_stars/magic_stars_procedural.glb"}) {
         for (const char* method : kAllMethods) {
             expectSameOnBothApis("--scene " + (suite / file).string() + " --method " + method +

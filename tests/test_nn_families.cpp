@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <set>
@@ -10,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "starnt/error.hpp"
+#include "starnt/tools/camera.hpp"
 #include "starnt/tools/families.hpp"
 #include "starnt/tools/nn.hpp"
 #include "test_support.hpp"
@@ -23,8 +25,12 @@ bool sameList(const FragmentList& a, const FragmentList& b) {
     return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Fragment)) == 0);
 }
 
-// Window depth of the sphere centre for the orbit framing the generators use (see families.cpp).
-constexpr float kCentreDepth = 0.6967f;
+// Window depth of the sphere centre for the orbit framing the generators use (families.cpp): a unit
+// sphere seen from D = 1.02 / sin(22.5 deg), near/far = D -/+ 1.05, and GL's window depth
+// far (z - near) / (z (far - near)) at z = D (0.69697; NnFamilies.CentreDepthIsTheOrbitFramings
+// checks it against the camera code).
+const double kCameraDistance = 1.02 / std::sin(glm::radians(22.5));
+const float kCentreDepth = float((kCameraDistance + 1.05) * 1.05 / (kCameraDistance * 2.1));
 
 Fragment frag(glm::vec3 color, float alpha, float depth) {
     Fragment f;
@@ -66,6 +72,17 @@ TEST(NnFamilies, EveryFamilyGivesValidDeterministicLists) {
     EXPECT_FALSE(sameList(proceduralFamilyLists("particles", 1, 1)[0], proceduralFamilyLists("strands", 1, 1)[0]));
 }
 
+// kCentreDepth is what the project's own orbit framing gives: orbitCamera (45 degrees, a square
+// image) around a unit sphere, the centre projected to window depth.
+TEST(NnFamilies, CentreDepthIsTheOrbitFramings) {
+    const float a = 1.0f / std::sqrt(3.0f);  // Bounds::radius is half the box diagonal: 1
+    const Bounds unitSphere{glm::vec3(-a), glm::vec3(a)};
+    const Camera cam = orbitCamera(unitSphere, 30.0f, 10.0f, 1.0f);
+    const glm::vec4 clip = cam.projection(1.0f) * cam.view() * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    EXPECT_NEAR(clip.z / clip.w * 0.5f + 0.5f, kCentreDepth, 1e-5f);
+    EXPECT_NEAR(kCentreDepth, 0.69697f, 1e-5f);  // the value the formula gives, as a reader checks it
+}
+
 TEST(NnFamilies, FamiliesHaveTheirOwnStatistics) {
     // sheets: few fragments, alpha 0.15-0.7, several clearly different colours along the ray.
     size_t multiColour = 0;
@@ -88,7 +105,14 @@ TEST(NnFamilies, FamiliesHaveTheirOwnStatistics) {
         for (size_t i = 0; i < sorted.size() / 2; ++i) {
             EXPECT_EQ(sorted[i].color, sorted[sorted.size() - 1 - i].color);
             EXPECT_EQ(sorted[i].alpha, sorted[sorted.size() - 1 - i].alpha);
-            EXPECT_LE(sorted[i].depth, kCentreDepth + 1e-4f);
+            // Mirrored shells: the nearer half in front of the centre, the farther half behind it.
+            EXPECT_LE(sorted[i].depth, kCentreDepth + 1e-6f);
+            EXPECT_GE(sorted[sorted.size() - 1 - i].depth, kCentreDepth - 1e-6f);
+            // ... at mirrored distances: the pair's mean view distance is the centre's, D (window
+            // depth d back to distance with the framing's near and far: f n / (f - d (f - n))).
+            const double n = kCameraDistance - 1.05, f = kCameraDistance + 1.05;
+            auto distance = [&](float d) { return f * n / (f - double(d) * (f - n)); };
+            EXPECT_NEAR(0.5 * (distance(sorted[i].depth) + distance(sorted[sorted.size() - 1 - i].depth)), kCameraDistance, 1e-4);
         }
     }
     // particles: faint (many below the cut-off); foliage: mostly alpha-tested; strands: long lists.

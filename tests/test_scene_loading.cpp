@@ -64,8 +64,8 @@ bool finiteVec(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(
 }  // namespace
 
 TEST(SuiteScenes, AllLoadWithTheDocumentedTriangleCounts) {
+    STARNT_SKIP_WITHOUT_SHARED_SCENES("suite scenes not tested");
     const auto dir = sharedScenesDir();
-    if (dir.empty()) GTEST_SKIP() << "../shared/scenes not found; suite scenes not tested";
     for (const SuiteScene& s : kSuite) {
         SCOPED_TRACE(s.file);
         const auto t0 = std::chrono::steady_clock::now();
@@ -108,8 +108,8 @@ TEST(SuiteScenes, AllLoadWithTheDocumentedTriangleCounts) {
 }
 
 TEST(SuiteScenes, SmokeHasVertexColoursAndFoxHasItsTexture) {
+    STARNT_SKIP_WITHOUT_SHARED_SCENES("suite scenes not tested");
     const auto dir = sharedScenesDir();
-    if (dir.empty()) GTEST_SKIP() << "../shared/scenes not found; suite scenes not tested";
     Scene smoke = loadScene((dir / "smoke/smoke_procedural.glb").string());
     size_t belowOne = 0;
     for (const Mesh& m : smoke.meshes) {

@@ -75,7 +75,22 @@ TEST(SequenceCli, KeyframeFileDrivesTheCamera) {
     const CliRun r = run(sequence(dir, "--method wboit --frames 2 --camera-path " + keys.string()));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(readLines(dir / "s.jsonl").size(), 2u);
-    EXPECT_TRUE(fs::exists(dir / "f_0001.png"));
+    // Each frame is the image of its key's camera given alone (--camera FILE.json), and the two differ.
+    const char* poses[] = {R"({"position": [0, 1, 6], "target": [0, 0, 0]})", R"({"position": [6, 1, 0], "target": [0, 0, 0]})"};
+    std::vector<starnt::Image> frames;
+    for (int k = 0; k < 2; ++k) {
+        const fs::path pose = keys.parent_path() / ("key" + std::to_string(k) + ".json");
+        std::ofstream(pose) << poses[k];
+        const fs::path single = keys.parent_path() / ("key" + std::to_string(k) + ".png");
+        const CliRun one = run("render --scene builtin:panes --width 32 --height 24 --method wboit --camera " + pose.string() +
+                               " --out " + single.string());
+        ASSERT_EQ(one.exitCode, 0) << one.err;
+        char name[32];
+        std::snprintf(name, sizeof name, "f_%04d.png", k);
+        frames.push_back(starnt::loadImage((dir / name).string()));
+        EXPECT_LT(starnt::mseSrgb(frames.back(), starnt::loadImage(single.string())), 1e-7) << "frame " << k;  // measured 0
+    }
+    EXPECT_GT(starnt::mseSrgb(frames[0], frames[1]), 1e-3);  // measured 5.4e-3
 }
 
 TEST(SequenceCli, BadPatternsWriteNothing) {

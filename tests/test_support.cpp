@@ -13,9 +13,16 @@
 namespace starnt::test {
 
 std::filesystem::path sharedScenesDir() {
-    std::filesystem::path p(STARNT_SHARED_SCENES);
+    // STARNT_TEST_SCENES_DIR replaces the folder (a missing one shows what the tests do without it).
+    const char* dir = std::getenv("STARNT_TEST_SCENES_DIR");
+    std::filesystem::path p(dir && *dir ? dir : STARNT_SHARED_SCENES);
     std::error_code ec;
     return std::filesystem::is_directory(p, ec) ? std::filesystem::canonical(p) : std::filesystem::path();
+}
+
+bool sharedScenesRequired() {
+    const char* v = std::getenv("STARNT_TEST_REQUIRE_SCENES");
+    return v && *v && std::string(v) != "0";
 }
 
 std::filesystem::path makeTempDir(const std::string& tag) {
@@ -68,15 +75,17 @@ class GlErrorListener : public ::testing::EmptyTestEventListener {
 
 bool gWatching = false;
 
-// Watches where the context delivers error messages: checked by provoking one (Mesa's desktop
-// contexts do; its ES contexts, not created as debug contexts, deliver none).
+// Watches where the context delivers error messages: checked by provoking one. The probe is an
+// invalid enum, an error on desktop GL and ES alike (binding a never-generated buffer name, the
+// probe before, is an error on a core desktop context only: ES creates the buffer, so the ES runs
+// went unwatched).
 void watchGlErrors() {
     const bool debug = epoxy_is_desktop_gl() ? epoxy_gl_version() >= 43 : epoxy_gl_version() >= 32;
     if (!debug) return;
     glEnable(GL_DEBUG_OUTPUT);
     glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
     glDebugMessageCallback(onGlDebugMessage, nullptr);
-    glBindBuffer(GL_ARRAY_BUFFER, 0xBAD0);  // not a buffer name
+    glEnable(0xBAD0);  // not a capability: GL_INVALID_ENUM
     while (glGetError() != GL_NO_ERROR) {
     }
     gWatching = !glErrorsSeen().empty();

@@ -16,8 +16,12 @@
 
 namespace starnt::test {
 
-// ../shared/scenes beside the checkout; empty path when absent (tests then skip with a message).
+// ../shared/scenes beside the checkout (or STARNT_TEST_SCENES_DIR); empty path when absent (tests
+// then skip with a message, STARNT_SKIP_WITHOUT_SHARED_SCENES).
 std::filesystem::path sharedScenesDir();
+// Whether the scene folder must be there: STARNT_TEST_REQUIRE_SCENES=1 (set by .ci/run), so that CI
+// cannot pass green with the suite-scene tests skipped.
+bool sharedScenesRequired();
 // A fresh empty folder under the system temp dir, unique per call.
 std::filesystem::path makeTempDir(const std::string& tag);
 // `name` as a GoogleTest parameter name: every character but letters and digits becomes '_'
@@ -29,6 +33,17 @@ inline std::string identifier(std::string name) {
 }
 
 }  // namespace starnt::test
+
+// Skips the calling test (returns from it) when ../shared/scenes is absent, or fails it there when
+// sharedScenesRequired(). `what` says what goes untested.
+#define STARNT_SKIP_WITHOUT_SHARED_SCENES(what)                                                         \
+    do {                                                                                               \
+        if (::starnt::test::sharedScenesDir().empty()) {                                               \
+            if (::starnt::test::sharedScenesRequired())                                                \
+                FAIL() << "../shared/scenes not found and STARNT_TEST_REQUIRE_SCENES is set: " << what;  \
+            GTEST_SKIP() << "../shared/scenes not found; " << what;                                    \
+        }                                                                                              \
+    } while (0)
 
 namespace starnt {
 class HeadlessGlContext;

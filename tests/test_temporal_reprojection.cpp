@@ -15,6 +15,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "reference/reprojection_cpu.hpp"
+#include "methods/neural/temporal/reprojection_math.hpp"
+#include "starnt/tools/camera.hpp"
 #include "methods/neural/temporal/reprojector.hpp"
 #include "methods/neural/temporal/temporal_frames.hpp"
 #include "starnt/error.hpp"
@@ -337,6 +339,85 @@ TEST(TemporalReprojection, RenderedSceneMatchesCpuAndBeatsTheStaleFrame) {
 }
 
 // ---- TemporalFrames: the facade the neural method calls ----
+
+namespace {
+
+// A camera's pinhole model in double precision, built from its position, target, up, field of
+// view and clip planes (not from its matrices), for the round trip below.
+struct PinholeD {
+    glm::dvec3 eye, forward, right, up;
+    double tanHalf, aspect, n, f;
+    PinholeD(const Camera& c, double aspectRatio)
+        : eye(c.position), forward(glm::normalize(glm::dvec3(c.target) - glm::dvec3(c.position))),
+          right(glm::normalize(glm::cross(forward, glm::dvec3(c.up)))), up(glm::cross(right, forward)),
+          tanHalf(std::tan(glm::radians(double(c.fovYDeg)) / 2)), aspect(aspectRatio), n(c.nearPlane), f(c.farPlane) {}
+    // OpenGL's depth: NDC z = (f + n) / (f - n) - 2 f n / ((f - n) d) at distance d along the view axis.
+    double ndcZ(double d) const { return (f + n) / (f - n) - 2 * f * n / ((f - n) * d); }
+    double distance(double z) const { return 2 * f * n / ((f + n) - z * (f - n)); }
+    glm::dvec3 unproject(glm::dvec3 ndc) const {
+        return eye + distance(ndc.z) * (forward + ndc.x * tanHalf * aspect * right + ndc.y * tanHalf * up);
+    }
+    glm::dvec3 project(glm::dvec3 world, double* depth = nullptr) const {
+        const glm::dvec3 rel = world - eye;
+        const double d = glm::dot(rel, forward);
+        if (depth) *depth = d;
+        return {glm::dot(rel, right) / (d * tanHalf * aspect), glm::dot(rel, up) / (d * tanHalf), ndcZ(d)};
+    }
+};
+
+}  // namespace
+
+// The corrected and refresh frames' matrices (reprojection_math.hpp) are shared by the runtime and
+// its CPU references, so GpuMatchesCpuReference cannot see them wrong (old and new cameras swapped
+// would pass). Here they meet an independent double-precision world-space round trip: a pixel and
+// depth unprojected with the new camera, projected with the old one (newToOld), and the other way
+// round for the refresh frames' forward reprojection; sourceScale gives 1 / the old view depth.
+TEST(ReprojectionMath, MatricesMatchADoubleWorldSpaceRoundTrip) {
+    const double aspect = 16.0 / 9.0;
+    Camera oldCam, newCam;
+    oldCam.position = {0.4f, 0.9f, 4.0f};
+    oldCam.target = {0.0f, 0.1f, 0.0f};
+    oldCam.fovYDeg = 50.0f;
+    oldCam.nearPlane = 0.3f;
+    oldCam.farPlane = 12.0f;
+    newCam = oldCam;
+    newCam.position = {1.3f, 0.6f, 3.6f};  // moved and turned
+    newCam.target = {0.3f, -0.1f, 0.2f};
+    const glm::mat4 oldVP = oldCam.projection(float(aspect)) * oldCam.view();
+    const glm::mat4 newVP = newCam.projection(float(aspect)) * newCam.view();
+    const PinholeD oldD(oldCam, aspect), newD(newCam, aspect);
+    const temporal::CorrectionMatrices m = temporal::makeCorrectionMatrices(oldVP, newVP);
+    const temporal::Reprojection r = temporal::makeReprojection(oldVP, newVP);
+    double worstXY = 0, worstZ = 0, worstScale = 0, worstForward = 0;
+    int points = 0;
+    for (double x : {-0.9, -0.3, 0.2, 0.8})
+        for (double y : {-0.7, 0.0, 0.6})
+            for (double dist : {0.6, 2.5, 7.0}) {
+                // New camera's pixel at this view distance -> world -> old camera.
+                const glm::dvec3 ndcNew(x, y, newD.ndcZ(dist));
+                double oldDepth = 0;
+                const glm::dvec3 want = oldD.project(newD.unproject(ndcNew), &oldDepth);
+                const glm::vec4 h = m.newToOld * glm::vec4(glm::vec3(ndcNew), 1.0f);
+                const glm::dvec3 got = glm::dvec3(glm::vec3(h) / h.w);
+                worstXY = std::max({worstXY, std::abs(got.x - want.x), std::abs(got.y - want.y)});
+                worstZ = std::max(worstZ, std::abs(got.z - want.z));
+                // sourceScale . (old NDC, 1) = 1 / old view depth.
+                const double scale = glm::dot(glm::dvec4(m.sourceScale), glm::dvec4(want, 1.0));
+                worstScale = std::max(worstScale, std::abs(scale * oldDepth - 1.0));
+                EXPECT_EQ(r.sourceScale, m.sourceScale);
+                // The refresh frames' forward map (rows 0, 1, 3 of R): old NDC -> new NDC x, y.
+                const glm::dvec4 v(want, 1.0);
+                const double w = glm::dot(glm::dvec4(r.row3), v);
+                worstForward = std::max({worstForward, std::abs(glm::dot(glm::dvec4(r.row0), v) / w - x),
+                                         std::abs(glm::dot(glm::dvec4(r.row1), v) / w - y)});
+                ++points;
+            }
+    // float matrices against double: about 1e-6 here; old and new swapped moves points by ~0.1-1.
+    EXPECT_LT(worstXY, 1e-4) << points << " points";
+    EXPECT_LT(worstZ, 1e-4);
+    EXPECT_LT(worstScale, 1e-4);
+    EXPECT_LT(worstForward, 1e-4);
+}
 
 TEST(TemporalFrames, FixedTwoAlternatesAndKeepsItsOwnCopy) {
     test::glContext();
