@@ -671,9 +671,9 @@ TEST(DepthConventions, UpperLeftOriginGivesTheSameImageUpsideDown) {
             }
             // The same samples, mirrored: only a tie in the fill rule could move a pixel. And for
             // kbuffer-moments the reference depth's 16-pixel tiles, anchored at the window's origin:
-            // flipped, 60 rows tile otherwise, and the moments' float rounding moves a few deep
-            // pixels (measured: 7 channels, the largest 0.06).
-            EXPECT_LE(off, std::string(method) == "kbuffer-moments" ? 11u : 6u) << method << ", frame " << i << ": worst " << worst << (singleSided ? ", single-sided" : "");
+            // flipped, 60 rows tile otherwise, and the 16-bit moments' rounding moves a few deep
+            // pixels (measured: at most 14 of 14,400 channels, the largest 0.086; 7 with 32-bit sums).
+            EXPECT_LE(off, std::string(method) == "kbuffer-moments" ? 21u : 6u) << method << ", frame " << i << ": worst " << worst << (singleSided ? ", single-sided" : "");
         }
     }
   }
