@@ -70,7 +70,8 @@ def blend_bytes(m, cls=None):
 
 
 def fragments(m):
-    return sum(p.get("fragment_invocations", 0) for p in m["stats"].get("pass_counters", {}).values())
+    """Fragments over every geometry pass: samples_passed where counted (exact), else invocations."""
+    return sum(p.get("samples_passed", p.get("fragment_invocations", 0)) for p in m["stats"].get("pass_counters", {}).values())
 
 
 def main(paths):

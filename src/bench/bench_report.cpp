@@ -169,7 +169,7 @@ void gpuEstimateTable(std::ostringstream& md, const Results& r) {
         }
     if (!any) return;
     md << "## GPU estimate (ms a frame; an estimate, not a measurement)\n\n"
-          "What a GPU would take for these frames: each geometry pass's fragments (pipeline statistics) times a cost "
+          "What a GPU would take for these frames: each geometry pass's fragments (GL_SAMPLES_PASSED) times a cost "
           "that grows with the bytes each fragment writes by format class (`pass_blend`), each full-screen pass its "
           "pixels; coefficients fitted to "
        << model << " (docs/DESIGN.md, \"Cost on a GPU\"). Long-run means; in brackets the ratio to DFAOIT's estimate.\n\n";
