@@ -24,15 +24,24 @@ std::string formatClass(GLint componentType, int widestBits) {
     }
 }
 
-}  // namespace
+// One colour target of the bound draw framebuffer, as its attachment describes it.
+struct DrawTarget {
+    GLuint drawBuffer = 0;
+    GLint componentType = GL_NONE;
+    GLint bits[4] = {0, 0, 0, 0};  // red, green, blue, alpha
+};
 
-PassBlend describeBoundColourTargets() {
-    PassBlend out;
+// Calls `visit(target)` for every draw buffer of the bound draw framebuffer that has an
+// attachment (none for framebuffer 0).
+template <class Visit>
+void forEachDrawTarget(const Visit& visit) {
     GLint framebuffer = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
-    if (framebuffer == 0) return out;
+    if (framebuffer == 0) return;
     GLint maxDrawBuffers = 0;
     glGetIntegerv(GL_MAX_DRAW_BUFFERS, &maxDrawBuffers);
+    const GLenum sizes[4] = {GL_FRAMEBUFFER_ATTACHMENT_RED_SIZE, GL_FRAMEBUFFER_ATTACHMENT_GREEN_SIZE,
+                             GL_FRAMEBUFFER_ATTACHMENT_BLUE_SIZE, GL_FRAMEBUFFER_ATTACHMENT_ALPHA_SIZE};
     for (GLint i = 0; i < maxDrawBuffers; ++i) {
         GLint attachment = GL_NONE;
         glGetIntegerv(GL_DRAW_BUFFER0 + i, &attachment);
@@ -41,24 +50,33 @@ PassBlend describeBoundColourTargets() {
         glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GLenum(attachment), GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE,
                                               &objectType);
         if (objectType == GL_NONE) continue;
-        const GLenum sizes[4] = {GL_FRAMEBUFFER_ATTACHMENT_RED_SIZE, GL_FRAMEBUFFER_ATTACHMENT_GREEN_SIZE,
-                                 GL_FRAMEBUFFER_ATTACHMENT_BLUE_SIZE, GL_FRAMEBUFFER_ATTACHMENT_ALPHA_SIZE};
-        GLint bits[4] = {0, 0, 0, 0};
-        for (int c = 0; c < 4; ++c) glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GLenum(attachment), sizes[c], &bits[c]);
-        GLint componentType = GL_NONE;
+        DrawTarget target;
+        target.drawBuffer = GLuint(i);
+        for (int c = 0; c < 4; ++c) {
+            glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GLenum(attachment), sizes[c], &target.bits[c]);
+        }
         glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GLenum(attachment), GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE,
-                                              &componentType);
+                                              &target.componentType);
+        visit(target);
+    }
+}
+
+}  // namespace
+
+PassBlend describeBoundColourTargets() {
+    PassBlend out;
+    forEachDrawTarget([&](const DrawTarget& target) {
         GLboolean mask[4] = {GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE};
-        glGetBooleani_v(GL_COLOR_WRITEMASK, GLuint(i), mask);
+        glGetBooleani_v(GL_COLOR_WRITEMASK, target.drawBuffer, mask);
         int written = 0;
         for (int c = 0; c < 4; ++c) {
-            out.targetBitsPerPixel += bits[c];
-            if (mask[c]) written += bits[c];
+            out.targetBitsPerPixel += target.bits[c];
+            if (mask[c]) written += target.bits[c];
         }
-        if (written == 0) continue;
-        const int widest = *std::max_element(bits, bits + 4);
-        out.bytesByClass[formatClass(componentType, widest)] += double(written) / 8.0;
-    }
+        if (written == 0) return;
+        const int widest = *std::max_element(target.bits, target.bits + 4);
+        out.bytesByClass[formatClass(target.componentType, widest)] += double(written) / 8.0;
+    });
     return out;
 }
 
@@ -72,25 +90,11 @@ void checkFloatBlend(const std::string& pass) {
 bool floatBlendAvailable() { return !isEs() || epoxy_has_gl_extension("GL_EXT_float_blend"); }
 
 bool blendsFloat32Target() {
-    GLint framebuffer = 0;
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
-    if (framebuffer == 0) return false;
-    GLint maxDrawBuffers = 0;
-    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &maxDrawBuffers);
-    for (GLint i = 0; i < maxDrawBuffers; ++i) {
-        GLint attachment = GL_NONE;
-        glGetIntegerv(GL_DRAW_BUFFER0 + i, &attachment);
-        if (attachment == GL_NONE || !glIsEnabledi(GL_BLEND, GLuint(i))) continue;
-        GLint objectType = GL_NONE, componentType = GL_NONE, red = 0;
-        glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GLenum(attachment), GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE,
-                                              &objectType);
-        if (objectType == GL_NONE) continue;
-        glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GLenum(attachment), GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE,
-                                              &componentType);
-        glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GLenum(attachment), GL_FRAMEBUFFER_ATTACHMENT_RED_SIZE, &red);
-        if (componentType == GL_FLOAT && red == 32) return true;
-    }
-    return false;
+    bool blends = false;
+    forEachDrawTarget([&](const DrawTarget& target) {
+        blends = blends || (target.componentType == GL_FLOAT && target.bits[0] == 32 && glIsEnabledi(GL_BLEND, target.drawBuffer));
+    });
+    return blends;
 }
 
 }  // namespace starnt::gl
