@@ -4,14 +4,15 @@
 
 Written from the paper (Andersson, Nilsson, Akenine-Moller, Oskarsson, Astrom and Fairchild, "FLIP: A
 Difference Evaluator for Alternating Images", HPG 2020) and its published constants, not from
-src/metrics/flip.cpp nor from NVIDIA's code (neither that code nor a Debian package of it is
-available here). Where the paper leaves room it takes the choices src/metrics/flip.cpp documents in
+src/metrics/flip.cpp nor from NVIDIA's code. Where the paper leaves room it takes the choices src/metrics/flip.cpp documents in
 its header (docs/DESIGN.md points there): clamp-to-edge borders, one CSF radius for all channels from
 the widest Gaussian, each kernel normalised.
 
     python3 scripts/flip_reference.py    # prints the image pairs' mean FLIP at 67.02 pixels per degree
 
-The image pairs are built from integer formulas repeated in the C++ test (values k / 255 as float32).
+The image pairs are built from integer formulas repeated in the C++ test (values k / 255 as float32,
+linear). NVIDIA's reference (its v1.2 Python `compute_ldrflip`, given the pairs' sRGB encoding, as it
+takes sRGB images) gives 0.131816, 0.259295 and 0.524451; this script 0.131813, 0.259296, 0.524454.
 """
 import math
 
